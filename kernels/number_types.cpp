@@ -1,0 +1,87 @@
+#include "number_types.h"
+
+#include <gmp.h>
+
+#include <cctype>
+#include <memory>
+
+namespace tmcert {
+
+std::string to_string(const Exact& q) {
+  std::unique_ptr<char, void (*)(void*)> text(mpq_get_str(nullptr, 10, q.mpq()), free);
+  return std::string(text.get());  // GMP prints "p/q" in lowest terms, or "p"
+}
+
+namespace {
+
+bool is_digits(const std::string& s, std::size_t from, std::size_t to) {
+  if (from >= to) return false;
+  for (std::size_t i = from; i < to; ++i)
+    if (!std::isdigit(static_cast<unsigned char>(s[i]))) return false;
+  return true;
+}
+
+// [+-]digits
+bool parse_integer(const std::string& s, CGAL::Gmpz& out) {
+  std::size_t start = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
+  if (!is_digits(s, start, s.size())) return false;
+  out = CGAL::Gmpz(s.substr(start == 1 && s[0] == '+' ? 1 : 0));
+  return true;
+}
+
+}  // namespace
+
+bool parse_exact(const std::string& text, Exact& out) {
+  if (text.empty() || text.size() > 100000) return false;
+  const std::size_t slash = text.find('/');
+  if (slash != std::string::npos) {
+    CGAL::Gmpz num, den;
+    if (!parse_integer(text.substr(0, slash), num)) return false;
+    const std::string den_text = text.substr(slash + 1);
+    if (den_text.empty() || den_text[0] == '-' || den_text[0] == '+') return false;
+    if (!parse_integer(den_text, den) || den == 0) return false;
+    out = Exact(num, den);
+    return true;
+  }
+  // Decimal: [+-] digits [. digits] [(e|E) [+-] digits], at least one digit
+  // before or after the point.
+  std::size_t i = 0;
+  bool negative = false;
+  if (i < text.size() && (text[i] == '-' || text[i] == '+')) negative = text[i++] == '-';
+  std::string digits;
+  long long frac_digits = 0;
+  bool any_digit = false;
+  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
+    digits += text[i++];
+    any_digit = true;
+  }
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) {
+      digits += text[i++];
+      ++frac_digits;
+      any_digit = true;
+    }
+  }
+  if (!any_digit) return false;
+  long long exponent = 0;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    std::size_t start = i;
+    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+    if (!is_digits(text, i, text.size()) || text.size() - i > 6) return false;  // |exp| < 10^6
+    exponent = std::stoll(text.substr(start));
+    i = text.size();
+  }
+  if (i != text.size()) return false;
+  const long long scale = exponent - frac_digits;
+  if (scale > 100000 || scale < -100000) return false;  // refuse absurd sizes
+  CGAL::Gmpz mantissa(digits);
+  if (negative) mantissa = -mantissa;
+  CGAL::Gmpz power;
+  mpz_ui_pow_ui(power.mpz(), 10, static_cast<unsigned long>(scale < 0 ? -scale : scale));
+  out = scale >= 0 ? Exact(mantissa * power) : Exact(mantissa, power);
+  return true;
+}
+
+}  // namespace tmcert

@@ -1,0 +1,49 @@
+// The three number types tmcert computes with, and the rounding guard.
+//
+//  * Exact    - CGAL::Gmpq, exact rationals: the reference.
+//  * Interval - CGAL::Interval_nt<false>: needs the FPU rounding mode set
+//               upward, which only RoundingGuard (an RAII object) does.
+//               Comparisons return CGAL::Uncertain<bool>; converting an
+//               uncertain one to bool throws CGAL::Uncertain_conversion_exception,
+//               which the filtered dispatch turns into an exact re-run.
+//  * double   - the fast, uncertified path.
+#pragma once
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/FPU.h>
+#include <CGAL/Uncertain.h>
+#include <CGAL/enum.h>
+
+#include <array>
+#include <string>
+
+namespace tmcert {
+
+using Exact = CGAL::Gmpq;
+using Interval = CGAL::Interval_nt<false>;
+
+// Sets the rounding mode toward +infinity for the lifetime of the object and
+// restores the previous mode afterwards.  Interval arithmetic is valid only
+// inside such a scope.
+using RoundingGuard = CGAL::Protect_FPU_rounding<true>;
+
+using Vec3E = std::array<Exact, 3>;
+// A 3x4 affine map [A | a], row-major: m[4*r + c]; x -> A x + a.
+using Mat34E = std::array<Exact, 12>;
+
+// Smallest interval containing an exact rational.  Valid in any rounding mode.
+inline Interval to_interval(const Exact& q) { return Interval(CGAL::to_interval(q)); }
+
+// Exact value of a finite double (every finite double is a rational).
+inline Exact to_exact(double d) { return Exact(d); }
+
+// "p/q" in lowest terms, or "p" when the denominator is 1.
+std::string to_string(const Exact& q);
+
+// Parses "p", "p/q" (integers with optional sign) or a decimal such as
+// "-1.25e-3" exactly.  Returns false, leaving `out` unspecified, on anything
+// else (including "nan", "inf", empty strings and a zero denominator).
+bool parse_exact(const std::string& text, Exact& out);
+
+}  // namespace tmcert

@@ -1,0 +1,144 @@
+#include "src/metric/metric.h"
+
+#include <algorithm>
+
+namespace tmcert {
+
+namespace {
+
+// Gauss-Jordan inverse of a symmetric 4x4 rational matrix; returns false
+// when a pivot of the (pivot-free) LDL^T elimination is not positive, which
+// for a symmetric matrix is exactly "not positive definite".
+bool invert_positive_definite(const Mat44E& a, Mat44E& inv) {
+  Exact m[4][8];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      m[r][c] = a[4 * r + c];
+      m[r][c + 4] = (r == c) ? 1 : 0;
+    }
+  for (int k = 0; k < 4; ++k) {
+    // No pivoting: for a symmetric positive definite matrix every leading
+    // pivot is positive; a non-positive pivot proves it is not definite.
+    if (!(m[k][k] > 0)) return false;
+    const Exact pivot = m[k][k];
+    for (int c = 0; c < 8; ++c) m[k][c] /= pivot;
+    for (int r = 0; r < 4; ++r) {
+      if (r == k || m[r][k] == 0) continue;
+      const Exact f = m[r][k];
+      for (int c = 0; c < 8; ++c) m[r][c] -= f * m[k][c];
+    }
+  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) inv[4 * r + c] = m[r][c + 4];
+  return true;
+}
+
+}  // namespace
+
+Metric Metric::from_mass(const MassDistribution& mass) {
+  Metric metric;
+  for (auto& e : metric.g_) e = 0;
+  for (std::size_t i = 0; i < mass.points.size(); ++i) {
+    const Vec3E& p = mass.points[i];
+    const Exact h[4] = {p[0], p[1], p[2], Exact(1)};
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) metric.g_[4 * r + c] += mass.weights[i] * h[r] * h[c];
+  }
+  if (!invert_positive_definite(metric.g_, metric.g_inv_))
+    throw InputError("moment matrix of the mass distribution is not positive definite "
+                     "(mass points must not lie in one plane)");
+  return metric;
+}
+
+Exact Metric::rho2(const Vec3E& x) const {
+  const Exact h[4] = {x[0], x[1], x[2], Exact(1)};
+  Exact s = 0;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) s += h[r] * g_inv_[4 * r + c] * h[c];
+  return s;
+}
+
+Exact Metric::norm2(const Mat34E& m) const {
+  Exact s = 0;
+  for (int row = 0; row < 3; ++row)
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) s += m[4 * row + r] * g_[4 * r + c] * m[4 * row + c];
+  return s;
+}
+
+namespace {
+
+Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3E cross(const Vec3E& a, const Vec3E& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+Exact abs(const Exact& a) { return a < 0 ? -a : a; }
+
+// Index of the coordinate axis with the largest |component| of v.
+int dominant_axis(const Vec3E& v) {
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (abs(v[i]) > abs(v[k])) k = i;
+  return k;
+}
+
+}  // namespace
+
+MassDistribution default_mass(const std::vector<Vec3E>& vertices, const Exact& fallback_size) {
+  MassDistribution mass;
+  mass.points = vertices;
+  mass.weights.assign(vertices.size(), Exact(1));
+  if (vertices.empty()) return mass;
+
+  Vec3E lo = vertices[0], hi = vertices[0], centroid = {0, 0, 0};
+  for (const Vec3E& v : vertices)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], v[i]);
+      hi[i] = std::max(hi[i], v[i]);
+      centroid[i] += v[i];
+    }
+  for (int i = 0; i < 3; ++i) centroid[i] /= Exact(static_cast<long>(vertices.size()));
+  Exact size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  if (size == 0) size = fallback_size > 0 ? fallback_size : Exact(1);
+  const Exact offset = size / 10;
+
+  // Affine rank of the vertex set, exactly.
+  const Vec3E& p0 = vertices[0];
+  std::optional<Vec3E> dir;      // first nonzero difference
+  std::optional<Vec3E> normal;   // first nonzero cross product
+  bool full = false;
+  for (const Vec3E& v : vertices) {
+    const Vec3E d = sub(v, p0);
+    if (is_zero(d)) continue;
+    if (!dir) { dir = d; continue; }
+    if (!normal) {
+      const Vec3E n = cross(*dir, d);
+      if (!is_zero(n)) normal = n;
+      continue;
+    }
+    const Exact off = (*normal)[0] * d[0] + (*normal)[1] * d[1] + (*normal)[2] * d[2];
+    if (off != 0) { full = true; break; }
+  }
+  auto add = [&](int axis, const Exact& sign) {
+    Vec3E p = centroid;
+    p[axis] += sign * offset;
+    mass.points.push_back(p);
+    mass.weights.push_back(Exact(1));
+  };
+  if (full) return mass;
+  if (normal) {                       // coplanar: offset along the axis most normal to the plane
+    int k = dominant_axis(*normal);
+    add(k, 1);
+    add(k, -1);
+  } else if (dir) {                   // collinear: offset along the two axes least along the line
+    int k = dominant_axis(*dir);
+    for (int a = 0; a < 3; ++a)
+      if (a != k) { add(a, 1); add(a, -1); }
+  } else {                            // a single point: offset along every axis
+    for (int a = 0; a < 3; ++a) { add(a, 1); add(a, -1); }
+  }
+  return mass;
+}
+
+}  // namespace tmcert

@@ -1,0 +1,19 @@
+// Reading tmcert-scene/1 documents (SCENE_FORMAT.md) into the exact model.
+#pragma once
+
+#include "src/scene/model.h"
+
+#include <string>
+
+namespace tmcert {
+
+// Reads and validates a scene file.  Every number is read exactly from its
+// JSON text.  Throws InputError with a one-line message naming the file and
+// the JSON path (e.g. "scene.json: bodies[1].motion.weights[2]: weight must
+// be positive") on any malformed input.
+Scene parse_scene_file(const std::string& path);
+
+// The same for a document held in memory; `source` names it in messages.
+Scene parse_scene_text(const std::string& text, const std::string& source);
+
+}  // namespace tmcert
