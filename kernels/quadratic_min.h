@@ -1,0 +1,118 @@
+// Sign of the minimum of a bivariate quadratic over a convex polygon.
+//
+// This is the one numerical core of every contact test (DESIGN.md section 4,
+// proofs/quadratic-minimum.md).  It is written once over the number type FT:
+//   * FT = Exact (CGAL::Gmpq): the exact sign;
+//   * FT = Interval (CGAL::Interval_nt<false>, under RoundingGuard): every
+//     comparison yields CGAL::Uncertain<bool>, and an uncertain one throws
+//     CGAL::Uncertain_conversion_exception when a branch needs it; the
+//     filtered dispatch then re-runs the same template exactly;
+//   * FT = double: the fast, uncertified path.
+#pragma once
+
+#include <CGAL/enum.h>
+
+#include <array>
+#include <cstddef>
+
+namespace tmcert {
+
+template <class FT>
+using Pt2 = std::array<FT, 2>;
+
+// q(s) = h11 s1^2 + 2 h12 s1 s2 + h22 s2^2 + b1 s1 + b2 s2 + c
+template <class FT>
+struct Quadratic2 {
+  FT h11, h12, h22, b1, b2, c;
+
+  FT operator()(const FT& s1, const FT& s2) const {
+    return s1 * (h11 * s1 + FT(2) * h12 * s2 + b1) + s2 * (h22 * s2 + b2) + c;
+  }
+};
+
+// A convex polygon in the parameter plane: `count` vertices in order, with
+// orientation +1 (counter-clockwise) or -1 (clockwise).  A single vertex or a
+// segment (count 1 or 2) is allowed.
+template <class FT>
+struct ConvexDomain {
+  const Pt2<FT>* vertices = nullptr;
+  std::size_t count = 0;
+  int orientation = 1;
+};
+
+namespace detail {
+
+// The sign of the smallest of candidate values seen so far; an early
+// NEGATIVE ends the search (the minimum is negative).
+struct MinSign {
+  CGAL::Sign sign = CGAL::POSITIVE;
+  bool negative() const { return sign == CGAL::NEGATIVE; }
+};
+
+template <class FT>
+void take(MinSign& m, const FT& value) {
+  if (value < FT(0)) m.sign = CGAL::NEGATIVE;
+  else if (m.sign == CGAL::POSITIVE && !(value > FT(0))) m.sign = CGAL::ZERO;
+}
+
+}  // namespace detail
+
+// Returns the sign of min { q(s) : s in D }.
+//
+// The minimum of a continuous function over a compact convex polygon is
+// attained at a vertex, at a critical point of q restricted to the relative
+// interior of an edge, or at an interior critical point of q.  The last two
+// can be local minima only where the restricted second derivative is
+// positive (edge: alpha > 0; interior: Hessian positive definite); where it
+// is not, the minimum lies on the boundary and is found by the other cases.
+// Each candidate's value is a rational function of the inputs whose sign is
+// computed without division where possible.
+template <class FT>
+CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
+  detail::MinSign m;
+  const FT zero(0);
+  // Vertices.
+  for (std::size_t i = 0; i < d.count; ++i) {
+    detail::take(m, q(d.vertices[i][0], d.vertices[i][1]));
+    if (m.negative()) return m.sign;
+  }
+  if (d.count < 2) return m.sign;
+  // Edges: q(v + t e) = alpha t^2 + beta t + gamma, t in [0, 1].
+  const std::size_t edges = d.count == 2 ? 1 : d.count;
+  for (std::size_t i = 0; i < edges; ++i) {
+    const Pt2<FT>& v = d.vertices[i];
+    const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
+    const FT e1 = w[0] - v[0], e2 = w[1] - v[1];
+    const FT alpha = q.h11 * e1 * e1 + FT(2) * q.h12 * e1 * e2 + q.h22 * e2 * e2;
+    if (!(alpha > zero)) continue;  // no interior minimum on this edge
+    // Gradient of q at v, dotted with e.
+    const FT g1 = FT(2) * (q.h11 * v[0] + q.h12 * v[1]) + q.b1;
+    const FT g2 = FT(2) * (q.h12 * v[0] + q.h22 * v[1]) + q.b2;
+    const FT beta = g1 * e1 + g2 * e2;
+    // Critical t* = -beta / (2 alpha) lies in (0, 1)  <=>  0 < -beta < 2 alpha.
+    if (!(beta < zero) || !(-beta < FT(2) * alpha)) continue;
+    const FT gamma = q(v[0], v[1]);
+    // Minimum gamma - beta^2 / (4 alpha) has the sign of 4 alpha gamma - beta^2.
+    detail::take(m, FT(4) * alpha * gamma - beta * beta);
+    if (m.negative()) return m.sign;
+  }
+  if (d.count < 3) return m.sign;
+  // Interior: only a positive definite Hessian has an interior minimum.
+  const FT det = q.h11 * q.h22 - q.h12 * q.h12;
+  if (!(q.h11 > zero) || !(det > zero)) return m.sign;
+  // Critical point s* solves [h11 h12; h12 h22] s = -b / 2.
+  const FT s1 = (q.h12 * q.b2 - q.h22 * q.b1) / (FT(2) * det);
+  const FT s2 = (q.h12 * q.b1 - q.h11 * q.b2) / (FT(2) * det);
+  // Inside the closed polygon: no edge sees s* on its outer side.
+  for (std::size_t i = 0; i < d.count; ++i) {
+    const Pt2<FT>& v = d.vertices[i];
+    const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
+    const FT side = (w[0] - v[0]) * (s2 - v[1]) - (w[1] - v[1]) * (s1 - v[0]);
+    if (d.orientation > 0 ? side < zero : side > zero) return m.sign;
+  }
+  // q(s*) = c + (b . s*) / 2.
+  detail::take(m, FT(2) * q.c + q.b1 * s1 + q.b2 * s2);
+  return m.sign;
+}
+
+}  // namespace tmcert

@@ -1,0 +1,29 @@
+// Exact static intersection of points, segments and triangles in world
+// coordinates (DESIGN.md section 4: the start check and collision witnesses,
+// proofs/static-test.md).  Degenerate simplices (a triangle whose vertices
+// are collinear, a segment of length zero: they arise under singular affine
+// maps) are reduced exactly to the segment or point they are.
+#pragma once
+
+#include "kernels/number_types.h"
+
+#include <optional>
+
+namespace tmcert {
+
+// Up to three points: count 1 = point, 2 = segment, 3 = triangle.
+struct Simplex {
+  int count = 1;
+  std::array<Vec3E, 3> p;
+};
+
+// Reduces a degenerate simplex to the lower-dimensional one with the same
+// point set (a collinear triangle becomes the segment between its two
+// farthest vertices, equal points collapse).
+Simplex canonical(const Simplex& s);
+
+// A point common to both closed simplices, computed exactly, or nothing when
+// they are disjoint.
+std::optional<Vec3E> common_point(const Simplex& a, const Simplex& b);
+
+}  // namespace tmcert

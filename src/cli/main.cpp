@@ -1,0 +1,110 @@
+// tmcert command line (SCENE_FORMAT.md): exit 0 safe, 1 collision,
+// 2 undecided, 3 bad input or usage, 4 internal error or resource limit.
+#include "src/cli/report.h"
+#include "src/scene/parse.h"
+#include "src/verify/verify.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <new>
+
+namespace {
+
+constexpr int kExitBadInput = 3;
+constexpr int kExitInternal = 4;
+
+int exit_code(tmcert::Verdict v) {
+  switch (v) {
+    case tmcert::Verdict::Safe: return 0;
+    case tmcert::Verdict::Collision: return 1;
+    case tmcert::Verdict::Undecided: return 2;
+  }
+  return 2;
+}
+
+struct VerifyArgs {
+  std::string scene;
+  std::string epsilon;
+  int max_depth = -1;
+  std::string kernel = "filtered";
+  bool json = false;
+  std::string certificate;
+  int threads = 1;
+};
+
+int run_verify(const VerifyArgs& args) {
+  using namespace tmcert;
+  Scene scene = parse_scene_file(args.scene);
+  VerifyOptions options;
+  options.kernel = args.kernel == "exact" ? KernelKind::Exact
+                   : args.kernel == "fast" ? KernelKind::Fast
+                                           : KernelKind::Filtered;
+  if (!args.epsilon.empty()) {
+    Exact e;
+    if (!parse_exact(args.epsilon, e) || !(e > 0))
+      throw InputError("--epsilon: must be a positive number (decimal or p/q), got '" + args.epsilon + "'");
+    options.epsilon = e;
+  } else {
+    options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
+  }
+  options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
+  if (!args.certificate.empty())
+    throw InputError("--certificate: certificates are not supported by this version yet");
+  require_supported(scene);
+  const SceneResult result = verify_scene(scene, options, args.threads);
+  std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
+  return exit_code(result.verdict);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tmcert: certified collision checks of moving polyhedra"};
+  app.set_version_flag("--version", "tmcert 0.1.0");
+  app.require_subcommand(1);
+  VerifyArgs args;
+  CLI::App* verify = app.add_subcommand("verify", "check every requested body pair over the whole motion");
+  verify->add_option("scene", args.scene, "scene file (tmcert-scene/1)")->required();
+  verify->add_option("--epsilon", args.epsilon, "termination tolerance, a length (overrides the scene)");
+  verify->add_option("--max-depth", args.max_depth, "subdivision depth limit (overrides the scene)")
+      ->check(CLI::Range(0, 200));
+  verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
+      ->check(CLI::IsMember({"filtered", "exact", "fast"}));
+  verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
+  verify->add_option("--certificate", args.certificate, "write a certificate (not available yet)");
+  verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
+  CLI::App* check = app.add_subcommand("check", "re-verify a certificate (not available yet)");
+  std::string cert_file, cert_scene;
+  check->add_option("certificate", cert_file)->required();
+  check->add_option("scene", cert_scene)->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help, --version
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+
+  try {
+    if (check->parsed()) {
+      std::cerr << "tmcert check: certificates are not supported by this version yet\n";
+      return kExitBadInput;
+    }
+    return run_verify(args);
+  } catch (const tmcert::InputError& e) {
+    std::cerr << "tmcert: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "tmcert: out of memory\n";
+    return kExitInternal;
+  } catch (const std::exception& e) {
+    std::cerr << "tmcert: internal error: " << e.what() << "\n";
+    return kExitInternal;
+  } catch (...) {
+    std::cerr << "tmcert: internal error\n";
+    return kExitInternal;
+  }
+}

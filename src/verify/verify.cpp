@@ -1,0 +1,459 @@
+#include "src/verify/verify.h"
+
+#include "src/verify/prepared.h"
+
+#include <CGAL/number_utils.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <thread>
+
+namespace tmcert {
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::Safe: return "safe";
+    case Verdict::Collision: return "collision";
+    case Verdict::Undecided: return "undecided";
+  }
+  return "undecided";
+}
+
+const char* to_string(KernelKind k) {
+  switch (k) {
+    case KernelKind::Filtered: return "filtered";
+    case KernelKind::Exact: return "exact";
+    case KernelKind::Fast: return "fast";
+  }
+  return "filtered";
+}
+
+const char* to_string(StopReason r) {
+  switch (r) {
+    case StopReason::Epsilon: return "epsilon";
+    case StopReason::Depth: return "depth";
+    case StopReason::Limit: return "limit";
+  }
+  return "limit";
+}
+
+namespace {
+
+// ------------------------------------------------------------------ pairs
+
+struct PairRef {
+  ContactKind kind;
+  std::uint32_t i;  // in the moving body's table of that kind
+  std::uint32_t j;  // in the other body's table
+};
+
+const FeatureTable& moving_table(const PreparedBody& b, ContactKind k) {
+  return k == ContactKind::VertexFace ? b.vertices : k == ContactKind::EdgeEdge ? b.edges : b.faces;
+}
+const FeatureTable& other_table(const PreparedBody& b, ContactKind k) {
+  return k == ContactKind::VertexFace ? b.faces : k == ContactKind::EdgeEdge ? b.edges : b.vertices;
+}
+
+// The three contact types over all features: complete for the first contact
+// after a contact-free start (proofs/contact-tests.md).
+std::vector<PairRef> all_pairs(const PreparedBody& m, const PreparedBody& f) {
+  std::vector<PairRef> pairs;
+  for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
+    const std::size_t nx = moving_table(m, k).size(), ny = other_table(f, k).size();
+    for (std::size_t i = 0; i < nx; ++i)
+      for (std::size_t j = 0; j < ny; ++j)
+        pairs.push_back({k, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
+  }
+  return pairs;
+}
+
+// ------------------------------------------------------------------ kernels
+// Each policy supplies the piece representation, its ball and the contact
+// test in one number type; the search below is shared.
+
+Placement<Interval> interval_placement(const BallD& b) {
+  Placement<Interval> p;
+  for (int e = 0; e < 12; ++e) p.g1[e] = Interval(b.center[e]);
+  p.r2 = Interval(b.r2);
+  return p;
+}
+
+Placement<Exact> exact_placement(const std::array<Exact, 12>& center, const Exact& r2) {
+  Placement<Exact> p;
+  p.g1 = center;
+  p.r2 = r2;
+  return p;
+}
+
+struct FilteredPolicy {
+  using Piece = HomogeneousCurve<Interval>;
+  struct Ball {
+    BallD ball;
+    Placement<Interval> interval;
+    std::optional<Placement<Exact>> exact;  // built on the first exact fallback
+    bool valid() const { return ball.valid; }
+    double r2() const { return ball.r2; }
+  };
+  const PreparedBody& m;
+  const PreparedBody& f;
+
+  Piece root() const { return enclose(m.curve); }
+  void split(const Piece& p, Piece& l, Piece& r) const {
+    RoundingGuard guard;  // interval de Casteljau encloses the exact halves
+    split_half(p, l, r);
+  }
+  Ball ball(const Piece& p) const {
+    Ball b{bounding_ball(p, *m.metric_data), {}, std::nullopt};
+    if (b.ball.valid) b.interval = interval_placement(b.ball);
+    return b;
+  }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    const FeatureTable& X = moving_table(m, p.kind);
+    const FeatureTable& Y = other_table(f, p.kind);
+    return filtered(
+        [&] { return contact_sign<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval); },
+        [&] {
+          if (!b.exact) {
+            std::array<Exact, 12> c;
+            for (int e = 0; e < 12; ++e) c[e] = Exact(b.ball.center[e]);
+            b.exact = exact_placement(c, Exact(b.ball.r2));
+          }
+          return contact_sign<Exact>(p.kind, X.exact[p.i], Y.exact[p.j], *b.exact);
+        },
+        stats.by_kind[static_cast<int>(p.kind)]);
+  }
+};
+
+struct ExactPolicy {
+  using Piece = HomogeneousCurve<Exact>;
+  struct Ball {
+    Placement<Exact> placement;
+    bool valid() const { return true; }
+    double r2() const { return CGAL::to_double(placement.r2); }
+  };
+  const PreparedBody& m;
+  const PreparedBody& f;
+
+  Piece root() const { return m.curve; }
+  void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
+  Ball ball(const Piece& p) const {
+    BallE b = bounding_ball(p, *m.metric_data);
+    return Ball{exact_placement(b.center, b.r2)};
+  }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
+    ++c.calls;
+    ++c.exact_fallbacks;  // every call is exact
+    return contact_sign<Exact>(p.kind, moving_table(m, p.kind).exact[p.i], other_table(f, p.kind).exact[p.j],
+                               b.placement);
+  }
+};
+
+struct FastPolicy {
+  using Piece = HomogeneousCurve<double>;
+  struct Ball {
+    BallD ball;
+    Placement<double> placement;
+    bool valid() const { return ball.valid; }
+    double r2() const { return ball.r2; }
+  };
+  const PreparedBody& m;
+  const PreparedBody& f;
+
+  Piece root() const { return approximate(m.curve); }
+  void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
+  Ball ball(const Piece& p) const {
+    Ball b{bounding_ball(p, *m.metric_data), {}};
+    b.placement.g1 = b.ball.center;
+    b.placement.r2 = b.ball.r2;
+    return b;
+  }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    ++stats.by_kind[static_cast<int>(p.kind)].calls;
+    return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
+                                b.placement);
+  }
+};
+
+// ------------------------------------------------------------------ static tests
+
+struct StaticHit {
+  int part_moving, part_other;
+  Vec3E point;
+};
+
+std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, const std::vector<StaticPart>& b,
+                                   const std::set<std::pair<int, int>>* only, CheckStats& stats) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (only && !only->count({static_cast<int>(i), static_cast<int>(j)})) continue;
+      for (const Simplex& s : a[i].simplices)
+        for (const Simplex& t : b[j].simplices) {
+          ++stats.static_tests;
+          if (auto p = common_point(s, t)) return StaticHit{static_cast<int>(i), static_cast<int>(j), *p};
+        }
+    }
+  return std::nullopt;
+}
+
+// ------------------------------------------------------------------ search
+
+struct Node {
+  Exact u0, u1;  // curve parameters, dyadic
+  int depth;
+  std::vector<PairRef> alive;
+};
+
+struct Check {
+  const PreparedBody& moving;
+  const PreparedBody& other;
+  bool swapped;          // the check names the other body first
+  const Motion& motion;
+  double eps2;           // epsilon^2 for the stop test (a tolerance)
+  const VerifyOptions& options;
+  CheckResult& result;
+
+  Exact scene_t(const Exact& u) const { return motion.t0 + u * (motion.t1 - motion.t0); }
+
+  void set_witness(const Exact& u, const StaticHit& hit) {
+    const std::string a = moving.body->name + " " + moving.parts[hit.part_moving].name;
+    const std::string b = other.body->name + " " + other.parts[hit.part_other].name;
+    Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, hit.point};
+    result.witness = w;
+    result.verdict = Verdict::Collision;
+  }
+
+  // Exact static test of the configuration at curve parameter u, restricted
+  // to the parts that still have a live feature pair.
+  bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
+    std::set<std::pair<int, int>> parts;
+    for (const PairRef& p : alive)
+      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
+    const std::vector<StaticPart> placed = transformed_parts(moving, evaluate(moving.curve, u));
+    if (auto hit = first_hit(placed, other.parts, &parts, result.stats)) {
+      set_witness(u, *hit);
+      return true;
+    }
+    return false;
+  }
+
+  void record(const Node& n, StopReason reason) {
+    const Exact t0 = scene_t(n.u0), t1 = scene_t(n.u1);
+    if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
+      result.undecided.back().t1 = t1;
+    else
+      result.undecided.push_back({t0, t1, reason});
+    if (!result.first_contact) result.first_contact = std::pair{t0, t1};
+  }
+
+  template <class Policy>
+  void search(const Policy& policy) {
+    struct Item {
+      Node node;
+      typename Policy::Piece piece;
+    };
+    std::vector<Item> stack;
+    stack.push_back({Node{Exact(0), Exact(1), 0, all_pairs(moving, other)}, policy.root()});
+    CheckStats& stats = result.stats;
+    while (!stack.empty()) {
+      Item item = std::move(stack.back());
+      stack.pop_back();
+      Node& node = item.node;
+      if (stats.nodes >= options.max_nodes) {  // resource limit: not cleared
+        record(node, StopReason::Limit);
+        continue;
+      }
+      ++stats.nodes;
+      stats.max_depth = std::max(stats.max_depth, node.depth);
+      typename Policy::Ball ball = policy.ball(item.piece);
+      if (ball.valid()) {
+        std::vector<PairRef> still;
+        for (const PairRef& p : node.alive)
+          if (policy.test(ball, p, stats) != CGAL::POSITIVE) still.push_back(p);
+        node.alive.swap(still);
+      }
+      if (node.alive.empty()) continue;  // cleared on the whole piece
+      std::optional<StopReason> stop;
+      if (node.depth >= options.max_depth) stop = StopReason::Depth;
+      else if (ball.valid() && ball.r2() * moving.max_rho2 < eps2) stop = StopReason::Epsilon;
+      if (stop) {
+        const Exact mid = (node.u0 + node.u1) / 2;
+        if (try_witness(mid, node.alive) || try_witness(node.u1, node.alive)) {
+          const Exact& u = result.witness->t == scene_t(mid) ? mid : node.u1;
+          const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0);
+          result.first_contact = std::pair{lo, scene_t(u)};
+          return;
+        }
+        record(node, *stop);
+        continue;
+      }
+      Item left{Node{node.u0, (node.u0 + node.u1) / 2, node.depth + 1, node.alive}, {}};
+      Item right{Node{left.node.u1, node.u1, node.depth + 1, std::move(node.alive)}, {}};
+      policy.split(item.piece, left.piece, right.piece);
+      stack.push_back(std::move(right));
+      stack.push_back(std::move(left));  // parameter order: left first
+    }
+  }
+};
+
+Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
+  Vec3E r;
+  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+  return r;
+}
+
+std::vector<Vec3E> body_vertices(const Body& b) {
+  std::vector<Vec3E> v;
+  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
+  for (const auto& s : b.segments) v.insert(v.end(), s.begin(), s.end());
+  v.insert(v.end(), b.points.begin(), b.points.end());
+  return v;
+}
+
+}  // namespace
+
+Exact default_epsilon(const Scene& scene) {
+  std::optional<Vec3E> lo, hi;
+  for (const Body& b : scene.bodies) {
+    std::vector<Mat34E> maps;
+    if (b.motion) maps = b.motion->control_points;
+    else maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+    for (const Vec3E& v : body_vertices(b))
+      for (const Mat34E& m : maps) {
+        const Vec3E w = apply_map(m, v);
+        if (!lo) { lo = w; hi = w; continue; }
+        for (int i = 0; i < 3; ++i) {
+          if (w[i] < (*lo)[i]) (*lo)[i] = w[i];
+          if (w[i] > (*hi)[i]) (*hi)[i] = w[i];
+        }
+      }
+  }
+  if (!lo) return Exact(1, 1000);
+  Exact d2 = 0;
+  for (int i = 0; i < 3; ++i) d2 += ((*hi)[i] - (*lo)[i]) * ((*hi)[i] - (*lo)[i]);
+  const double eps = std::sqrt(CGAL::to_double(d2)) / 1000;
+  if (!(eps > 0) || !std::isfinite(eps)) return Exact(1, 1000);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6g", eps);
+  Exact out;
+  if (!parse_exact(text, out) || !(out > 0)) return Exact(1, 1000);
+  return out;
+}
+
+void require_supported(const Scene& scene) {
+  for (const auto& [a, b] : scene.checks) {
+    const Body& x = scene.bodies[a];
+    const Body& y = scene.bodies[b];
+    const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
+    if (mx && my)
+      throw InputError(scene.source + ": checks: [\"" + x.name + "\", \"" + y.name +
+                       "\"]: a check between two moving bodies is not supported yet");
+  }
+}
+
+namespace {
+
+CheckResult run_check(int a, int b, const PreparedBody& pa, const PreparedBody& pb,
+                      const VerifyOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  CheckResult result;
+  result.bodies = {a, b};
+  const bool swapped = !pa.moving && pb.moving;
+  const PreparedBody& moving = swapped ? pb : pa;
+  const PreparedBody& other = swapped ? pa : pb;
+
+  auto finish = [&] {
+    for (const FilterCounters& c : result.stats.by_kind) result.stats.contact += c;
+    result.stats.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+  };
+
+  if (!moving.moving) {
+    // Two motionless bodies: one exact static test decides.
+    if (auto hit = first_hit(moving.parts, other.parts, nullptr, result.stats)) {
+      const std::string x = moving.body->name + " " + moving.parts[hit->part_moving].name;
+      const std::string y = other.body->name + " " + other.parts[hit->part_other].name;
+      const Exact t0 = moving.body->motion ? moving.body->motion->t0 : Exact(0);
+      result.verdict = Verdict::Collision;
+      result.witness = Witness{t0, swapped ? std::array{y, x} : std::array{x, y}, hit->point};
+      result.first_contact = std::pair{t0, t0};
+    } else {
+      result.verdict = Verdict::Safe;
+    }
+    return finish();
+  }
+
+  const Motion& motion = *moving.body->motion;
+  const double eps = CGAL::to_double(options.epsilon);
+  Check check{moving, other, swapped, motion, eps * eps, options, result};
+
+  // The start check (DESIGN.md section 4): the contact tests are complete
+  // only after a contact-free start.
+  {
+    const std::vector<StaticPart> placed = transformed_parts(moving, evaluate(moving.curve, Exact(0)));
+    if (auto hit = first_hit(placed, other.parts, nullptr, result.stats)) {
+      check.set_witness(Exact(0), *hit);
+      result.first_contact = std::pair{motion.t0, motion.t0};
+      return finish();
+    }
+  }
+
+  switch (options.kernel) {
+    case KernelKind::Filtered: check.search(FilteredPolicy{moving, other}); break;
+    case KernelKind::Exact: check.search(ExactPolicy{moving, other}); break;
+    case KernelKind::Fast: check.search(FastPolicy{moving, other}); break;
+  }
+  if (result.verdict != Verdict::Collision)
+    result.verdict = result.undecided.empty() ? Verdict::Safe : Verdict::Undecided;
+  if (result.verdict == Verdict::Safe) result.first_contact.reset();
+  return finish();
+}
+
+}  // namespace
+
+CheckResult verify_check(const Scene& scene, int body_a, int body_b, const VerifyOptions& options) {
+  const PreparedBody pa = prepare_body(scene.bodies[body_a]);
+  const PreparedBody pb = prepare_body(scene.bodies[body_b]);
+  return run_check(body_a, body_b, pa, pb, options);
+}
+
+SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int threads) {
+  require_supported(scene);
+  SceneResult out;
+  out.kernel = options.kernel;
+  out.certified = options.kernel != KernelKind::Fast;
+  out.epsilon = options.epsilon;
+
+  std::map<int, PreparedBody> prepared;
+  for (const auto& [a, b] : scene.checks)
+    for (int i : {a, b})
+      if (!prepared.count(i)) prepared.emplace(i, prepare_body(scene.bodies[i]));
+
+  out.checks.resize(scene.checks.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
+      const auto [a, b] = scene.checks[k];
+      out.checks[k] = run_check(a, b, prepared.at(a), prepared.at(b), options);
+    }
+  };
+  const int n = std::max(1, std::min<int>(threads, static_cast<int>(scene.checks.size())));
+  std::vector<std::thread> pool;
+  for (int i = 1; i < n; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+
+  out.verdict = Verdict::Safe;
+  for (const CheckResult& c : out.checks) {
+    if (c.verdict == Verdict::Collision) out.verdict = Verdict::Collision;
+    else if (c.verdict == Verdict::Undecided && out.verdict == Verdict::Safe) out.verdict = Verdict::Undecided;
+  }
+  return out;
+}
+
+}  // namespace tmcert

@@ -1,0 +1,85 @@
+// Certified verification of body pairs over their motion (paper Algorithms
+// 1 and 2 as amended by DESIGN.md sections 4-6).
+#pragma once
+
+#include "kernels/filtered.h"
+#include "src/scene/model.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tmcert {
+
+enum class Verdict { Safe, Collision, Undecided };
+enum class KernelKind { Filtered, Exact, Fast };
+enum class StopReason { Epsilon, Depth, Limit };
+
+const char* to_string(Verdict v);
+const char* to_string(KernelKind k);
+const char* to_string(StopReason r);
+
+struct VerifyOptions {
+  KernelKind kernel = KernelKind::Filtered;
+  Exact epsilon;                  // > 0, a length in scene units
+  int max_depth = 40;
+  std::uint64_t max_nodes = 2'000'000;  // per check; beyond it: undecided "limit"
+};
+
+struct Witness {
+  Exact t;                                  // scene parameter
+  std::array<std::string, 2> features;      // as the check names its bodies
+  Vec3E point;                              // world coordinates, shared by both
+};
+
+struct UndecidedInterval {
+  Exact t0, t1;
+  StopReason reason;
+};
+
+struct CheckStats {
+  std::uint64_t nodes = 0;
+  int max_depth = 0;
+  FilterCounters contact;        // all contact tests
+  std::array<FilterCounters, 3> by_kind;  // vertex-face, edge-edge, face-vertex
+  std::uint64_t static_tests = 0;
+  double seconds = 0;
+};
+
+struct CheckResult {
+  std::array<int, 2> bodies;  // indices into Scene::bodies, in the order of the check
+  Verdict verdict = Verdict::Undecided;
+  std::optional<std::pair<Exact, Exact>> first_contact;
+  std::optional<Witness> witness;
+  std::vector<UndecidedInterval> undecided;
+  CheckStats stats;
+};
+
+struct SceneResult {
+  Verdict verdict = Verdict::Safe;
+  KernelKind kernel = KernelKind::Filtered;
+  bool certified = true;
+  Exact epsilon;
+  std::vector<CheckResult> checks;
+};
+
+// 1/1000 of the scene's bounding-box diagonal, as a decimal with six
+// significant digits (a tolerance, not a bound: no guarantee depends on it).
+// The box holds every body's vertices under every control point of its
+// motion, which bounds everything the bodies sweep.
+Exact default_epsilon(const Scene& scene);
+
+// Throws InputError when a check cannot be run by this version (two moving
+// bodies).  Called before any verdict is printed.
+void require_supported(const Scene& scene);
+
+// Verifies one check (a pair of body indices).
+CheckResult verify_check(const Scene& scene, int body_a, int body_b, const VerifyOptions& options);
+
+// Verifies every check of the scene, on up to `threads` threads; the result
+// does not depend on `threads`.
+SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int threads = 1);
+
+}  // namespace tmcert
