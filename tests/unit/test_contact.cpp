@@ -1,0 +1,180 @@
+// Contact tests: the orbit formula of the metric, and contact_sign against a
+// direct evaluation of Phi(x, y) = |g(x) - y|^2 - R^2 rho(x)^2 at sampled
+// points (an independent computation through Metric::rho2).
+#include "kernels/contact.h"
+#include "kernels/filtered.h"
+#include "src/metric/metric.h"
+#include "src/verify/prepared.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <random>
+
+using namespace tmcert;
+
+namespace {
+
+struct Rng {
+  std::mt19937 gen;
+  explicit Rng(unsigned seed) : gen(seed) {}
+  Exact q(int lo, int hi, int den) { return Exact(std::uniform_int_distribution<int>(lo, hi)(gen), den); }
+  int i(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen); }
+};
+
+Vec3E rand_point(Rng& r) { return {r.q(-8, 8, 4), r.q(-8, 8, 4), r.q(-8, 8, 4)}; }
+
+Body triangle_body(const std::string& name, const std::array<Vec3E, 3>& t) {
+  Body b;
+  b.name = name;
+  b.polygons = {{t[0], t[1], t[2]}};
+  b.pieces = {ConvexPiece{0, {t[0], t[1], t[2]}}};
+  b.mass = default_mass({t[0], t[1], t[2]}, Exact(1));
+  return b;
+}
+
+bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
+  const Vec3E u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 && u[0] * v[1] - u[1] * v[0] == 0;
+}
+
+Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
+  Vec3E r;
+  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+  return r;
+}
+
+Vec3E on_triangle(const std::array<Vec3E, 3>& t, const Exact& a, const Exact& b) {
+  const Exact c = Exact(1) - a - b;
+  return {c * t[0][0] + a * t[1][0] + b * t[2][0], c * t[0][1] + a * t[1][1] + b * t[2][1],
+          c * t[0][2] + a * t[1][2] + b * t[2][2]};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(contact)
+
+// |delta(x)|^2 <= ||delta||^2 rho(x)^2 for every affine delta, with equality
+// for delta = u (G^-1 x^)^T: rho is exactly the orbit radius per unit R.
+BOOST_AUTO_TEST_CASE(orbit_radius_is_rho_and_tight) {
+  Rng r(11);
+  for (int iter = 0; iter < 200; ++iter) {
+    MassDistribution mass;
+    for (int k = 0; k < 5; ++k) {
+      mass.points.push_back(rand_point(r));
+      mass.weights.push_back(r.q(1, 9, 3));
+    }
+    Metric metric;
+    try {
+      metric = Metric::from_mass(mass);
+    } catch (const InputError&) {
+      continue;  // coplanar draw
+    }
+    const Vec3E x = rand_point(r);
+    const Exact xh[4] = {x[0], x[1], x[2], 1};
+    const Exact rho2 = metric.rho2(x);
+    // Random delta: bound holds.
+    Mat34E d;
+    for (auto& e : d) e = r.q(-5, 5, 3);
+    Exact dx2 = 0;
+    for (int row = 0; row < 3; ++row) {
+      Exact s = 0;
+      for (int c = 0; c < 4; ++c) s += d[4 * row + c] * xh[c];
+      dx2 += s * s;
+    }
+    BOOST_CHECK(dx2 <= metric.norm2(d) * rho2);
+    // The maximiser: equality.
+    Exact gx[4];
+    for (int rr = 0; rr < 4; ++rr) {
+      gx[rr] = 0;
+      for (int c = 0; c < 4; ++c) gx[rr] += metric.inverse()[4 * rr + c] * xh[c];
+    }
+    Mat34E m;
+    const Exact u[3] = {1, 2, -2};  // |u|^2 = 9
+    for (int row = 0; row < 3; ++row)
+      for (int c = 0; c < 4; ++c) m[4 * row + c] = u[row] * gx[c];
+    Exact mx2 = 0;
+    for (int row = 0; row < 3; ++row) {
+      Exact s = 0;
+      for (int c = 0; c < 4; ++c) s += m[4 * row + c] * xh[c];
+      mx2 += s * s;
+    }
+    BOOST_CHECK(mx2 == metric.norm2(m) * rho2);
+    BOOST_CHECK(metric.norm2(m) == 9 * rho2);
+  }
+}
+
+// contact_sign(POSITIVE) must imply Phi > 0 at every sampled (x, y); and a
+// sampled Phi <= 0 must make it non-positive.  Also: filtered == exact.
+BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
+  Rng r(2026);
+  int cleared = 0, not_cleared = 0;
+  for (int iter = 0; iter < 150; ++iter) {
+    std::array<Vec3E, 3> tm{rand_point(r), rand_point(r), rand_point(r)};
+    std::array<Vec3E, 3> tf{rand_point(r), rand_point(r), rand_point(r)};
+    if (collinear(tm[0], tm[1], tm[2]) || collinear(tf[0], tf[1], tf[2])) continue;
+    Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
+    bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
+    const PreparedBody pm = prepare_body(bm), pf = prepare_body(bf);
+    Placement<Exact> pe;
+    for (auto& e : pe.g1) e = r.q(-4, 4, 4);
+    pe.g1[0] += 1; pe.g1[5] += 1; pe.g1[10] += 1;
+    pe.r2 = r.q(0, 48, 64);
+    Placement<Interval> pi;
+    for (int e = 0; e < 12; ++e) pi.g1[e] = to_interval(pe.g1[e]);
+    pi.r2 = to_interval(pe.r2);
+
+    auto phi = [&](const Vec3E& x, const Vec3E& y) {
+      const Vec3E gx = apply_map(pe.g1, x);
+      Exact d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += (gx[i] - y[i]) * (gx[i] - y[i]);
+      return d2 - pe.r2 * pm.metric->rho2(x);
+    };
+    const int n = 8;
+    auto check_pair = [&](ContactKind kind, const FeatureGeometry<Exact>& X, const FeatureGeometry<Exact>& Y,
+                          const FeatureGeometry<Interval>& Xi, const FeatureGeometry<Interval>& Yi, auto sample) {
+      const CGAL::Sign s = contact_sign<Exact>(kind, X, Y, pe);
+      bool sampled_touch = false;
+      for (int i = 0; i <= n && !sampled_touch; ++i)
+        for (int j = 0; j <= n && !sampled_touch; ++j) {
+          auto [x, y] = sample(Exact(i, n), Exact(j, n));
+          if (!(phi(x, y) > 0)) sampled_touch = true;
+        }
+      if (s == CGAL::POSITIVE) {
+        ++cleared;
+        BOOST_CHECK_MESSAGE(!sampled_touch, "false clearance, iteration " << iter << " kind " << int(kind));
+      } else {
+        ++not_cleared;
+      }
+      FilterCounters counters;
+      const CGAL::Sign f = filtered([&] { return contact_sign<Interval>(kind, Xi, Yi, pi); },
+                                    [&] { return contact_sign<Exact>(kind, X, Y, pe); }, counters);
+      BOOST_CHECK(f == s);
+    };
+    // Vertex 0 of the moving triangle against the fixed face.
+    check_pair(ContactKind::VertexFace, pm.vertices.exact[0], pf.faces.exact[0], pm.vertices.interval[0],
+               pf.faces.interval[0], [&](const Exact& a, const Exact& b) {
+                 return std::pair{tm[0], a + b <= 1 ? on_triangle(tf, a, b) : on_triangle(tf, Exact(1) - a, Exact(1) - b)};
+               });
+    // Moving face against fixed vertex 0.
+    check_pair(ContactKind::FaceVertex, pm.faces.exact[0], pf.vertices.exact[0], pm.faces.interval[0],
+               pf.vertices.interval[0], [&](const Exact& a, const Exact& b) {
+                 return std::pair{a + b <= 1 ? on_triangle(tm, a, b) : on_triangle(tm, Exact(1) - a, Exact(1) - b), tf[0]};
+               });
+    // Edge 0 against edge 0 (edges are p0->p1 of the respective triangles).
+    const auto& em = pm.edges.exact[0];
+    const auto& ef = pf.edges.exact[0];
+    check_pair(ContactKind::EdgeEdge, em, ef, pm.edges.interval[0], pf.edges.interval[0],
+               [&](const Exact& a, const Exact& b) {
+                 Vec3E x, y;
+                 for (int i = 0; i < 3; ++i) {
+                   x[i] = em.origin[i] + a * em.axis[0][i];
+                   y[i] = ef.origin[i] + b * ef.axis[0][i];
+                 }
+                 return std::pair{x, y};
+               });
+  }
+  BOOST_TEST(cleared > 30);
+  BOOST_TEST(not_cleared > 30);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
