@@ -345,6 +345,11 @@ Exact default_epsilon(const Scene& scene) {
 }
 
 void require_supported(const Scene& scene) {
+  // Nothing to check would be reported "safe" vacuously: a user who forgot
+  // the motion or the checks must hear about it instead.
+  if (scene.checks.empty())
+    throw InputError(scene.source + ": checks: nothing to check (no body has a motion and no checks are given, "
+                     "or the list is empty)");
   for (const auto& [a, b] : scene.checks) {
     const Body& x = scene.bodies[a];
     const Body& y = scene.bodies[b];

@@ -1,0 +1,891 @@
+// Reading tmcert-scene/1 documents (SCENE_FORMAT.md).
+//
+// Two stages.  First the JSON text becomes a small tree of our own through
+// nlohmann's SAX interface: unlike its DOM, SAX hands us the raw text of
+// every number, so 0.1 stays the decimal 1/10 instead of the nearest double.
+// Then the tree is validated and turned into the exact model; every error
+// names the JSON path of the offending value.  Polygons are checked
+// (planar, simple) and split into convex pieces with exact arithmetic.
+#include "src/scene/parse.h"
+
+#include "src/metric/metric.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string_view>
+#include <unordered_set>
+#include <utility>
+
+namespace tmcert {
+
+namespace {
+
+// Limits that turn absurd input into an InputError instead of exhausting
+// memory or time.  A real scene is far below each of them.
+constexpr std::size_t kMaxNesting = 64;             // scenes need 7 levels
+constexpr std::size_t kMaxValues = 10'000'000;      // JSON values in a document
+constexpr std::uintmax_t kMaxFileBytes = 1ull << 30;
+constexpr std::size_t kMaxPolygonVertices = 100'000;
+
+constexpr const char* kFormat = "tmcert-scene/1";
+
+// ---------------------------------------------------------------- messages
+
+// A user string made safe for a one-line message: quoted, control
+// characters escaped, long strings shortened.
+std::string quote_text(const std::string& s) {
+  constexpr std::size_t kShown = 60;
+  std::string out = "\"";
+  for (std::size_t i = 0; i < s.size() && i < kShown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20 || c == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\u00";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (s.size() > kShown) out += "...";
+  return out + "\"";
+}
+
+// Replaces line breaks and other control characters so a message stays on one line.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+  return s;
+}
+
+bool is_identifier(const std::string& key) {
+  if (key.empty() || std::isdigit(static_cast<unsigned char>(key[0]))) return false;
+  return std::all_of(key.begin(), key.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+// JSON paths in the style "bodies[1].motion.weights[2]".
+std::string member_path(const std::string& parent, const std::string& key) {
+  if (is_identifier(key)) return parent.empty() ? key : parent + "." + key;
+  return parent + "[" + quote_text(key) + "]";
+}
+
+std::string index_path(const std::string& parent, std::size_t index) {
+  return parent + "[" + std::to_string(index) + "]";
+}
+
+std::string located(const std::string& source, const std::string& path, const std::string& what) {
+  return source + ": " + (path.empty() ? std::string("document") : path) + ": " + what;
+}
+
+// ---------------------------------------------------------------- JSON tree
+
+struct Node {
+  enum class Kind { Null, Boolean, Number, String, Array, Object };
+  Kind kind = Kind::Null;
+  bool boolean = false;
+  std::string text;               // a number as written, or a string's value
+  std::vector<Node> items;        // array elements, or object member values
+  std::vector<std::string> keys;  // object member keys, parallel to items
+};
+
+const char* kind_name(Node::Kind kind) {
+  switch (kind) {
+    case Node::Kind::Null: return "null";
+    case Node::Kind::Boolean: return "a boolean";
+    case Node::Kind::Number: return "a number";
+    case Node::Kind::String: return "a string";
+    case Node::Kind::Array: return "an array";
+    case Node::Kind::Object: return "an object";
+  }
+  return "a value";
+}
+
+// SAX handler building the tree iteratively (nlohmann's SAX parser keeps
+// its own explicit stack, and so do we), so deep nesting cannot overflow
+// the call stack; the nesting limit also bounds the recursion of Node's
+// destructor.  On error a callback stores the message and returns false,
+// which stops the parse.
+class TreeBuilder {
+ public:
+  using json = nlohmann::json;
+
+  explicit TreeBuilder(std::string source) : source_(std::move(source)) {}
+
+  Node& root() { return root_; }
+  const std::string& error() const { return error_; }
+
+  bool null() { return add(Node{}) != nullptr; }
+  bool boolean(bool value) {
+    Node node;
+    node.kind = Node::Kind::Boolean;
+    node.boolean = value;
+    return add(std::move(node)) != nullptr;
+  }
+  // Integers arrive as machine integers; their decimal text is exact.
+  bool number_integer(json::number_integer_t value) { return add_number(std::to_string(value)); }
+  bool number_unsigned(json::number_unsigned_t value) { return add_number(std::to_string(value)); }
+  // Everything else (fractions, exponents, integers beyond 64 bits) comes
+  // with the raw token; the double is ignored.
+  bool number_float(json::number_float_t, const std::string& raw) {
+    // The lexer writes the C locale's decimal point into the token; the JSON
+    // grammar leaves no other character it could be.
+    std::string text = raw;
+    for (char& c : text)
+      if (!std::isdigit(static_cast<unsigned char>(c)) && c != '-' && c != '+' && c != 'e' && c != 'E')
+        c = '.';
+    return add_number(std::move(text));
+  }
+  bool string(std::string& value) {
+    Node node;
+    node.kind = Node::Kind::String;
+    node.text = std::move(value);
+    return add(std::move(node)) != nullptr;
+  }
+  bool binary(json::binary_t&) { return fail(pending_path(), "binary values are not allowed"); }
+  bool start_object(std::size_t) { return open(Node::Kind::Object); }
+  bool start_array(std::size_t) { return open(Node::Kind::Array); }
+  bool key(std::string& key) {
+    Frame& frame = stack_.back();
+    if (!frame.keys.insert(key).second)
+      return fail(member_path(container_path(), key), "duplicate key " + quote_text(key));
+    frame.node->keys.push_back(std::move(key));
+    return true;
+  }
+  bool end_object() { stack_.pop_back(); return true; }
+  bool end_array() { stack_.pop_back(); return true; }
+
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) {
+    if (ex.id == 406)  // the reader's double overflowed: the number is finite, but too big for it
+      return fail(pending_path(), "number too large to read as a JSON number; "
+                                  "write it as a string (e.g. \"1e400\") to keep it exact");
+    std::string what = ex.what();
+    const std::size_t bracket = what.find("] ");  // drop "[json.exception.parse_error.101] "
+    if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) what.erase(0, bracket + 2);
+    // nlohmann counts the offending character (or the end of input) as read.
+    const std::size_t offset = position > 0 ? position - 1 : 0;
+    error_ = source_ + ": invalid JSON at byte " + std::to_string(offset) + ": " + one_line(what);
+    return false;
+  }
+
+ private:
+  struct Frame {
+    Node* node;                            // an open array or object
+    std::unordered_set<std::string> keys;  // keys seen so far, for objects
+  };
+
+  bool fail(const std::string& path, const std::string& what) {
+    error_ = located(source_, path, what);
+    return false;
+  }
+
+  bool add_number(std::string text) {
+    Node node;
+    node.kind = Node::Kind::Number;
+    node.text = std::move(text);
+    return add(std::move(node)) != nullptr;
+  }
+
+  // Places a finished or just-opened value into the open container (or as
+  // the root) and returns where it now lives.
+  Node* add(Node&& node) {
+    if (++values_ > kMaxValues) {
+      fail(pending_path(), "document has more than " + std::to_string(kMaxValues) + " values");
+      return nullptr;
+    }
+    if (stack_.empty()) {
+      root_ = std::move(node);
+      return &root_;
+    }
+    // Appending may move earlier siblings, but never an open container:
+    // those live in their own parents' vectors.
+    Node* parent = stack_.back().node;
+    parent->items.push_back(std::move(node));
+    return &parent->items.back();
+  }
+
+  bool open(Node::Kind kind) {
+    if (stack_.size() >= kMaxNesting)
+      return fail(pending_path(), "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
+    Node node;
+    node.kind = kind;
+    Node* placed = add(std::move(node));
+    if (!placed) return false;
+    stack_.push_back(Frame{placed, {}});
+    return true;
+  }
+
+  // Path of the innermost open container (`pending` false) or of the value
+  // about to be added to it (`pending` true).
+  std::string path(bool pending) const {
+    std::string p;
+    const std::size_t levels = pending ? stack_.size() : (stack_.empty() ? 0 : stack_.size() - 1);
+    for (std::size_t i = 0; i < levels; ++i) {
+      const Node* container = stack_[i].node;
+      const bool next_is_pending = pending && i + 1 == stack_.size();
+      if (container->kind == Node::Kind::Array)
+        p = index_path(p, container->items.size() - (next_is_pending ? 0 : 1));
+      else
+        p = member_path(p, container->keys.back());
+    }
+    return p;
+  }
+  std::string pending_path() const { return path(true); }
+  std::string container_path() const { return path(false); }
+
+  std::string source_;
+  Node root_;
+  std::vector<Frame> stack_;
+  std::size_t values_ = 0;
+  std::string error_;
+};
+
+Node parse_json(const std::string& text, const std::string& source) {
+  TreeBuilder builder(source);
+  bool ok = false;
+  try {
+    ok = nlohmann::json::sax_parse(text, &builder);
+  } catch (const nlohmann::json::exception& ex) {  // not expected with a SAX handler; be safe
+    throw InputError(source + ": invalid JSON: " + one_line(ex.what()));
+  }
+  if (!ok) throw InputError(builder.error().empty() ? source + ": invalid JSON" : builder.error());
+  return std::move(builder.root());
+}
+
+// ---------------------------------------------------------------- exact geometry
+
+using Vec2E = std::array<Exact, 2>;
+
+int sign(const Exact& x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
+
+Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3E cross(const Vec3E& a, const Vec3E& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+
+// Twice the signed area of triangle abc: > 0 for a left turn.
+Exact orient(const Vec2E& a, const Vec2E& b, const Vec2E& c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+// Given that p is collinear with a and b: is it on the closed segment ab?
+bool within_box(const Vec2E& a, const Vec2E& b, const Vec2E& p) {
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
+         std::min(a[1], b[1]) <= p[1] && p[1] <= std::max(a[1], b[1]);
+}
+
+// Do the closed segments ab and cd share a point?
+bool segments_meet(const Vec2E& a, const Vec2E& b, const Vec2E& c, const Vec2E& d) {
+  const int o1 = sign(orient(a, b, c)), o2 = sign(orient(a, b, d));
+  const int o3 = sign(orient(c, d, a)), o4 = sign(orient(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && within_box(a, b, c)) || (o2 == 0 && within_box(a, b, d)) ||
+         (o3 == 0 && within_box(c, d, a)) || (o4 == 0 && within_box(c, d, b));
+}
+
+// Position of a direction in counterclockwise order starting at +x.
+bool angle_less(const Vec2E& a, const Vec2E& b) {
+  auto half = [](const Vec2E& d) { return (d[1] < 0 || (d[1] == 0 && d[0] < 0)) ? 1 : 0; };
+  if (half(a) != half(b)) return half(a) < half(b);
+  return a[0] * b[1] - a[1] * b[0] > 0;
+}
+
+// A polygon after validation, in original 3D coordinates and in the
+// injective 2D projection, with each vertex's index in the input.
+struct CleanPolygon {
+  std::vector<Vec3E> points;
+  std::vector<Vec2E> flat;
+  std::vector<std::size_t> original;
+};
+
+std::string vertex_name(std::size_t i) { return "vertex " + std::to_string(i); }
+
+// Throws InputError (message without location; the caller adds the path)
+// unless the polygon is planar, has no repeated vertex and not all vertices
+// are collinear.  Projects it onto the coordinate plane that drops the
+// largest component of its normal, which is injective on its plane.
+CleanPolygon project_polygon(const std::vector<Vec3E>& v) {
+  const std::size_t n = v.size();
+  // Repeated vertices, in O(n log n): sort, then compare neighbours.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return v[a] < v[b] || (v[a] == v[b] && a < b);
+  });
+  for (std::size_t k = 1; k < n; ++k)
+    if (v[order[k]] == v[order[k - 1]])
+      throw InputError(vertex_name(order[k - 1]) + " and " + vertex_name(order[k]) +
+                       " are equal (a polygon must be simple)");
+
+  // A non-collinear triple 0, 1, j gives the plane.
+  const Vec3E e1 = sub(v[1], v[0]);
+  Vec3E normal{0, 0, 0};
+  std::size_t j = 2;
+  for (; j < n; ++j) {
+    normal = cross(e1, sub(v[j], v[0]));
+    if (!is_zero(normal)) break;
+  }
+  if (j == n) throw InputError("polygon vertices are collinear");
+  for (std::size_t i = 2; i < n; ++i)
+    if (dot(normal, sub(v[i], v[0])) != 0)
+      throw InputError("polygon is not planar: " + vertex_name(i) + " is off the plane of vertices 0, 1 and " +
+                       std::to_string(j));
+
+  int drop = 0;
+  for (int a = 1; a < 3; ++a)
+    if (CGAL::abs(normal[a]) > CGAL::abs(normal[drop])) drop = a;
+  const int u = drop == 0 ? 1 : 0, w = drop == 2 ? 1 : 2;
+  CleanPolygon p;
+  p.points = v;
+  p.original.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    p.flat.push_back({v[i][u], v[i][w]});
+    p.original[i] = i;
+  }
+  return p;
+}
+
+// Removes, repeatedly, every vertex that lies strictly between its two
+// neighbours on their line: the boundary stays the same point set.  A vertex
+// collinear with its neighbours but not between them is a spike where the
+// two edges overlap: the polygon is not simple.
+CleanPolygon remove_collinear(const CleanPolygon& in) {
+  const std::size_t n = in.flat.size();
+  std::vector<std::size_t> prev(n), next(n);
+  std::vector<bool> alive(n, true);
+  for (std::size_t i = 0; i < n; ++i) {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  std::vector<std::size_t> work(n);
+  for (std::size_t i = 0; i < n; ++i) work[i] = n - 1 - i;
+  std::size_t count = n;
+  while (!work.empty()) {
+    const std::size_t i = work.back();
+    work.pop_back();
+    if (!alive[i]) continue;
+    const Vec2E &a = in.flat[prev[i]], &b = in.flat[i], &c = in.flat[next[i]];
+    if (orient(a, b, c) != 0) continue;
+    const Exact along = (a[0] - b[0]) * (c[0] - b[0]) + (a[1] - b[1]) * (c[1] - b[1]);
+    if (along > 0)
+      throw InputError("adjacent edges overlap at " + vertex_name(in.original[i]) + " (a polygon must be simple)");
+    // Only a fully collinear polygon could shrink below 3; that was rejected before.
+    if (count <= 3) throw InputError("polygon vertices are collinear");
+    alive[i] = false;
+    --count;
+    next[prev[i]] = next[i];
+    prev[next[i]] = prev[i];
+    work.push_back(prev[i]);
+    work.push_back(next[i]);
+  }
+  CleanPolygon out;
+  for (std::size_t i = 0; i < n; ++i)
+    if (alive[i]) {
+      out.points.push_back(in.points[i]);
+      out.flat.push_back(in.flat[i]);
+      out.original.push_back(in.original[i]);
+    }
+  return out;
+}
+
+// True iff the cleaned polygon (no zero turns) turns the same way at every
+// vertex and winds around exactly once, i.e. is convex and simple.  The
+// winding is counted as how often the edge direction passes the +x direction.
+bool is_convex(const CleanPolygon& p) {
+  const std::size_t n = p.flat.size();
+  int turn = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int s = sign(orient(p.flat[(i + n - 1) % n], p.flat[i], p.flat[(i + 1) % n]));
+    if (turn == 0) turn = s;
+    if (s != turn) return false;
+  }
+  std::vector<Vec2E> dir(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2E &a = p.flat[i], &b = p.flat[(i + 1) % n];
+    dir[i] = {b[0] - a[0], b[1] - a[1]};
+  }
+  int wraps = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2E &d = dir[i], &e = dir[(i + 1) % n];
+    if (turn > 0 ? angle_less(e, d) : angle_less(d, e)) ++wraps;
+  }
+  return wraps == 1;
+}
+
+// Throws unless no two non-adjacent edges share a point (adjacent edges
+// meet only at their common vertex once zero turns are gone).  Edges are
+// swept in order of their smallest x so only overlapping ones are compared.
+void require_simple(const CleanPolygon& p) {
+  const std::size_t n = p.flat.size();
+  std::vector<Exact> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2E &a = p.flat[i], &b = p.flat[(i + 1) % n];
+    lo[i] = std::min(a[0], b[0]);
+    hi[i] = std::max(a[0], b[0]);
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo[a] < lo[b]; });
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = order[k];
+    for (std::size_t m = k + 1; m < n && lo[order[m]] <= hi[i]; ++m) {
+      const std::size_t j = order[m];
+      if ((i + 1) % n == j || (j + 1) % n == i) continue;  // adjacent
+      if (segments_meet(p.flat[i], p.flat[(i + 1) % n], p.flat[j], p.flat[(j + 1) % n])) {
+        auto edge = [&](std::size_t e) {
+          return "edge " + std::to_string(p.original[e]) + "-" + std::to_string(p.original[(e + 1) % n]);
+        };
+        const std::size_t first = std::min(i, j), second = std::max(i, j);
+        throw InputError("polygon is self-intersecting: " + edge(first) + " and " + edge(second) + " meet");
+      }
+    }
+  }
+}
+
+// Ear clipping on a simple polygon.  An ear is a strictly convex vertex
+// whose closed triangle holds no other remaining vertex; by the two-ears
+// theorem one always exists, and clipping it leaves a simple polygon.
+std::vector<std::array<std::size_t, 3>> triangulate(const CleanPolygon& p) {
+  const std::size_t n = p.flat.size();
+  Exact twice_area = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2E &a = p.flat[i], &b = p.flat[(i + 1) % n];
+    twice_area += a[0] * b[1] - a[1] * b[0];
+  }
+  const int orientation = sign(twice_area);  // nonzero for a simple polygon
+  std::vector<std::size_t> prev(n), next(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  auto inside = [&](const Vec2E& a, const Vec2E& b, const Vec2E& c, const Vec2E& q) {
+    return orientation * sign(orient(a, b, q)) >= 0 && orientation * sign(orient(b, c, q)) >= 0 &&
+           orientation * sign(orient(c, a, q)) >= 0;
+  };
+  auto is_ear = [&](std::size_t i) {
+    const Vec2E &a = p.flat[prev[i]], &b = p.flat[i], &c = p.flat[next[i]];
+    if (sign(orient(a, b, c)) != orientation) return false;
+    // Comparisons are cheap, orientations are not: skip vertices outside
+    // the triangle's bounding box first.
+    const Exact x0 = std::min({a[0], b[0], c[0]}), x1 = std::max({a[0], b[0], c[0]});
+    const Exact y0 = std::min({a[1], b[1], c[1]}), y1 = std::max({a[1], b[1], c[1]});
+    for (std::size_t k = next[next[i]]; k != prev[i]; k = next[k]) {
+      const Vec2E& q = p.flat[k];
+      if (q[0] < x0 || q[0] > x1 || q[1] < y0 || q[1] > y1) continue;
+      if (inside(a, b, c, q)) return false;
+    }
+    return true;
+  };
+
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::size_t remaining = n, current = 0, tried = 0;
+  while (remaining > 3) {
+    if (is_ear(current)) {
+      triangles.push_back({prev[current], current, next[current]});
+      next[prev[current]] = next[current];
+      prev[next[current]] = prev[current];
+      current = prev[current];
+      --remaining;
+      tried = 0;
+    } else {
+      current = next[current];
+      if (++tried > remaining) throw InputError("polygon could not be triangulated (is it simple?)");
+    }
+  }
+  triangles.push_back({prev[current], current, next[current]});
+  return triangles;
+}
+
+// Validates one input polygon and returns its cleaned vertices plus its
+// convex pieces (tagged with `index`).  Errors carry no location.
+std::pair<std::vector<Vec3E>, std::vector<ConvexPiece>> split_polygon(const std::vector<Vec3E>& vertices,
+                                                                      int index) {
+  const CleanPolygon clean = remove_collinear(project_polygon(vertices));
+  std::vector<ConvexPiece> pieces;
+  if (is_convex(clean)) {
+    pieces.push_back(ConvexPiece{index, clean.points});
+  } else {
+    require_simple(clean);
+    for (const auto& t : triangulate(clean))
+      pieces.push_back(ConvexPiece{index, {clean.points[t[0]], clean.points[t[1]], clean.points[t[2]]}});
+  }
+  return {clean.points, std::move(pieces)};
+}
+
+// ---------------------------------------------------------------- scene reader
+
+// Walks the tree, validating as it goes.  Every error is thrown as
+// "<source>: <path>: <what>".
+class SceneReader {
+ public:
+  explicit SceneReader(std::string source) : source_(std::move(source)) {}
+
+  Scene read(const Node& root) {
+    Scene scene;
+    scene.source = source_;
+    const Node& doc = object(root, "");
+
+    const Node* format = find(doc, "format");
+    if (!format) fail("format", std::string("missing required field (expected \"") + kFormat + "\")");
+    if (format->kind != Node::Kind::String || format->text != kFormat)
+      fail("format", "unknown format version " + describe(*format) + ", expected \"" + kFormat + "\"");
+    reject_unknown_keys(doc, "", {"format", "epsilon", "max_depth", "bodies", "checks"});
+
+    if (const Node* eps = find(doc, "epsilon")) {
+      scene.epsilon = number(*eps, "epsilon");
+      if (!(*scene.epsilon > 0)) fail("epsilon", "must be positive");
+    }
+    if (const Node* depth = find(doc, "max_depth")) scene.max_depth = max_depth(*depth, "max_depth");
+
+    const Node* bodies = find(doc, "bodies");
+    if (!bodies) fail("bodies", "missing required field");
+    const Node& list = array(*bodies, "bodies");
+    if (list.items.empty()) fail("bodies", "at least one body is required");
+    std::map<std::string, std::size_t> names;
+    for (std::size_t i = 0; i < list.items.size(); ++i) {
+      const std::string path = index_path("bodies", i);
+      scene.bodies.push_back(body(list.items[i], path));
+      const std::string& name = scene.bodies.back().name;
+      if (auto [it, fresh] = names.emplace(name, i); !fresh)
+        fail(member_path(path, "name"),
+             "duplicate body name " + quote_text(name) + " (also " + index_path("bodies", it->second) + ")");
+    }
+    assign_masses(scene);
+
+    if (const Node* checks = find(doc, "checks"))
+      scene.checks = explicit_checks(*checks, names);
+    else
+      scene.checks = default_checks(scene);
+    return scene;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InputError(located(source_, path, what));
+  }
+
+  // A value for a message: a string quoted, anything else by its kind.
+  static std::string describe(const Node& node) {
+    return node.kind == Node::Kind::String ? quote_text(node.text) : std::string("(") + kind_name(node.kind) + ")";
+  }
+
+  static const Node* find(const Node& object, std::string_view key) {
+    for (std::size_t i = 0; i < object.keys.size(); ++i)
+      if (object.keys[i] == key) return &object.items[i];
+    return nullptr;
+  }
+
+  // Keys starting with "_" and "comment" are free for annotations.
+  static bool is_annotation(const std::string& key) { return key == "comment" || (!key.empty() && key[0] == '_'); }
+
+  void reject_unknown_keys(const Node& object, const std::string& path,
+                           std::initializer_list<std::string_view> known) const {
+    for (const std::string& key : object.keys)
+      if (!is_annotation(key) && std::find(known.begin(), known.end(), key) == known.end())
+        fail(member_path(path, key), "unknown field " + quote_text(key));
+  }
+
+  const Node& object(const Node& node, const std::string& path) const {
+    if (node.kind != Node::Kind::Object) fail(path, std::string("expected an object, got ") + kind_name(node.kind));
+    return node;
+  }
+
+  const Node& array(const Node& node, const std::string& path) const {
+    if (node.kind != Node::Kind::Array) fail(path, std::string("expected an array, got ") + kind_name(node.kind));
+    return node;
+  }
+
+  // A JSON number (exactly the decimal it spells) or a string holding an
+  // integer, "p/q" or a decimal.
+  Exact number(const Node& node, const std::string& path) const {
+    Exact value;
+    if (node.kind == Node::Kind::Number) {
+      if (!parse_exact(node.text, value)) fail(path, "number " + node.text.substr(0, 60) + " is out of range");
+    } else if (node.kind == Node::Kind::String) {
+      if (!parse_exact(node.text, value))
+        fail(path, "not a number: " + quote_text(node.text) + " (expected an integer, \"p/q\" with q > 0, or a decimal)");
+    } else {
+      fail(path, std::string("expected a number, got ") + kind_name(node.kind));
+    }
+    return value;
+  }
+
+  int max_depth(const Node& node, const std::string& path) const {
+    const Exact value = number(node, path);
+    if (value.denominator() != 1) fail(path, "must be an integer");
+    if (value < 1 || value > 200) fail(path, "must be between 1 and 200");
+    return static_cast<int>(CGAL::to_double(value));
+  }
+
+  Vec3E point(const Node& node, const std::string& path) const {
+    const Node& coords = array(node, path);
+    if (coords.items.size() != 3)
+      fail(path, "a point needs exactly 3 coordinates, got " + std::to_string(coords.items.size()));
+    return {number(coords.items[0], index_path(path, 0)), number(coords.items[1], index_path(path, 1)),
+            number(coords.items[2], index_path(path, 2))};
+  }
+
+  std::vector<Vec3E> points(const Node& node, const std::string& path) const {
+    const Node& list = array(node, path);
+    std::vector<Vec3E> out;
+    out.reserve(list.items.size());
+    for (std::size_t i = 0; i < list.items.size(); ++i) out.push_back(point(list.items[i], index_path(path, i)));
+    return out;
+  }
+
+  // A 3x4 affine matrix [A | a] written as 3 rows of 4 numbers.
+  Mat34E affine(const Node& node, const std::string& path) const {
+    const Node& rows = array(node, path);
+    if (rows.items.size() != 3)
+      fail(path, "a control point is a 3x4 matrix: expected 3 rows, got " + std::to_string(rows.items.size()));
+    Mat34E m;
+    for (std::size_t r = 0; r < 3; ++r) {
+      const std::string row_path = index_path(path, r);
+      const Node& row = array(rows.items[r], row_path);
+      if (row.items.size() != 4)
+        fail(row_path, "a matrix row needs exactly 4 numbers, got " + std::to_string(row.items.size()));
+      for (std::size_t c = 0; c < 4; ++c) m[4 * r + c] = number(row.items[c], index_path(row_path, c));
+    }
+    return m;
+  }
+
+  Body body(const Node& node, const std::string& path) const {
+    const Node& obj = object(node, path);
+    if (find(obj, "mesh")) fail(member_path(path, "mesh"), "mesh bodies are not supported yet");
+    reject_unknown_keys(obj, path, {"name", "polygons", "segments", "points", "mass", "motion", "solid", "mesh"});
+    Body b;
+
+    const Node* name = find(obj, "name");
+    if (!name) fail(member_path(path, "name"), "missing required field");
+    if (name->kind != Node::Kind::String || name->text.empty())
+      fail(member_path(path, "name"), "a body name must be a non-empty string");
+    b.name = name->text;
+
+    if (const Node* polygons = find(obj, "polygons")) {
+      const std::string list_path = member_path(path, "polygons");
+      const Node& list = array(*polygons, list_path);
+      for (std::size_t i = 0; i < list.items.size(); ++i) polygon(b, list.items[i], index_path(list_path, i));
+    }
+    if (const Node* segments = find(obj, "segments")) {
+      const std::string list_path = member_path(path, "segments");
+      const Node& list = array(*segments, list_path);
+      for (std::size_t i = 0; i < list.items.size(); ++i) {
+        const std::string seg_path = index_path(list_path, i);
+        const std::vector<Vec3E> ends = points(list.items[i], seg_path);
+        if (ends.size() != 2) fail(seg_path, "a segment needs exactly 2 points, got " + std::to_string(ends.size()));
+        if (ends[0] == ends[1]) fail(seg_path, "segment endpoints are equal");
+        b.segments.push_back({ends[0], ends[1]});
+      }
+    }
+    if (const Node* pts = find(obj, "points")) b.points = points(*pts, member_path(path, "points"));
+    if (b.polygons.empty() && b.segments.empty() && b.points.empty())
+      fail(path, "body has no features (needs at least one of polygons, segments, points)");
+
+    if (const Node* solid = find(obj, "solid")) {
+      if (solid->kind != Node::Kind::Boolean) fail(member_path(path, "solid"), "expected true or false");
+      b.solid = solid->boolean;
+    }
+    if (const Node* mass = find(obj, "mass")) {
+      b.mass = explicit_mass(*mass, member_path(path, "mass"));
+      b.mass_is_default = false;
+    }
+    if (const Node* m = find(obj, "motion")) b.motion = motion(*m, member_path(path, "motion"));
+    return b;
+  }
+
+  void polygon(Body& b, const Node& node, const std::string& path) const {
+    const Node& list = array(node, path);
+    if (list.items.size() < 3)
+      fail(path, "a polygon needs at least 3 vertices, got " + std::to_string(list.items.size()));
+    if (list.items.size() > kMaxPolygonVertices)
+      fail(path, "polygon has more than " + std::to_string(kMaxPolygonVertices) + " vertices");
+    const std::vector<Vec3E> vertices = points(node, path);
+    try {
+      auto [clean, pieces] = split_polygon(vertices, static_cast<int>(b.polygons.size()));
+      b.polygons.push_back(std::move(clean));
+      for (ConvexPiece& piece : pieces) b.pieces.push_back(std::move(piece));
+    } catch (const InputError& e) {
+      fail(path, e.what());
+    }
+  }
+
+  MassDistribution explicit_mass(const Node& node, const std::string& path) const {
+    const Node& obj = object(node, path);
+    reject_unknown_keys(obj, path, {"points", "weights"});
+    const Node* pts = find(obj, "points");
+    if (!pts) fail(member_path(path, "points"), "missing required field");
+    const Node* weights = find(obj, "weights");
+    if (!weights) fail(member_path(path, "weights"), "missing required field");
+    MassDistribution mass;
+    mass.points = points(*pts, member_path(path, "points"));
+    if (mass.points.empty()) fail(member_path(path, "points"), "at least one mass point is required");
+    mass.weights = positive_weights(*weights, member_path(path, "weights"), mass.points.size(), "mass point");
+    try {
+      Metric::from_mass(mass);
+    } catch (const InputError& e) {
+      fail(path, e.what());
+    }
+    return mass;
+  }
+
+  // `count` weights, each > 0 (one per point / control point).
+  std::vector<Exact> positive_weights(const Node& node, const std::string& path, std::size_t count,
+                                      const std::string& per) const {
+    const Node& list = array(node, path);
+    if (list.items.size() != count)
+      fail(path, "expected " + std::to_string(count) + " weights (one per " + per + "), got " +
+                     std::to_string(list.items.size()));
+    std::vector<Exact> out;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string item_path = index_path(path, i);
+      out.push_back(number(list.items[i], item_path));
+      if (!(out.back() > 0)) fail(item_path, "weight must be positive");
+    }
+    return out;
+  }
+
+  Motion motion(const Node& node, const std::string& path) const {
+    const Node& obj = object(node, path);
+    const std::string type_path = member_path(path, "type");
+    const Node* type = find(obj, "type");
+    if (!type) fail(type_path, "missing required field (e.g. \"rational_bezier\")");
+    if (type->kind != Node::Kind::String || type->text != "rational_bezier")
+      fail(type_path, "unknown motion type " + describe(*type) + " (supported: \"rational_bezier\")");
+    reject_unknown_keys(obj, path, {"type", "interval", "control_points", "weights"});
+
+    Motion m;
+    if (const Node* interval = find(obj, "interval")) {
+      const std::string interval_path = member_path(path, "interval");
+      const Node& ends = array(*interval, interval_path);
+      if (ends.items.size() != 2)
+        fail(interval_path, "expected [t0, t1], got " + std::to_string(ends.items.size()) + " values");
+      m.t0 = number(ends.items[0], index_path(interval_path, 0));
+      m.t1 = number(ends.items[1], index_path(interval_path, 1));
+      if (!(m.t0 < m.t1)) fail(interval_path, "interval start must be less than its end");
+    }
+    const std::string cp_path = member_path(path, "control_points");
+    const Node* cps = find(obj, "control_points");
+    if (!cps) fail(cp_path, "missing required field");
+    const Node& list = array(*cps, cp_path);
+    if (list.items.empty()) fail(cp_path, "at least one control point is required");
+    for (std::size_t k = 0; k < list.items.size(); ++k)
+      m.control_points.push_back(affine(list.items[k], index_path(cp_path, k)));
+    if (const Node* weights = find(obj, "weights"))
+      m.weights = positive_weights(*weights, member_path(path, "weights"), list.items.size(), "control point");
+    else
+      m.weights.assign(list.items.size(), Exact(1));
+    return m;
+  }
+
+  // Default masses need the size of the whole scene, so they come after all
+  // bodies are read.  Every mass, default or not, must give a metric.
+  void assign_masses(Scene& scene) const {
+    auto vertices_of = [](const Body& b) {
+      std::vector<Vec3E> v;
+      for (const auto& polygon : b.polygons) v.insert(v.end(), polygon.begin(), polygon.end());
+      for (const auto& segment : b.segments) v.insert(v.end(), segment.begin(), segment.end());
+      v.insert(v.end(), b.points.begin(), b.points.end());
+      return v;
+    };
+    std::optional<Vec3E> lo, hi;
+    for (const Body& b : scene.bodies)
+      for (const Vec3E& p : vertices_of(b)) {
+        if (!lo) { lo = p; hi = p; }
+        for (int a = 0; a < 3; ++a) {
+          (*lo)[a] = std::min((*lo)[a], p[a]);
+          (*hi)[a] = std::max((*hi)[a], p[a]);
+        }
+      }
+    Exact size = 0;
+    if (lo)
+      for (int a = 0; a < 3; ++a) size = std::max(size, (*hi)[a] - (*lo)[a]);
+    if (size == 0) size = 1;
+
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      Body& b = scene.bodies[i];
+      if (!b.mass_is_default) continue;
+      b.mass = default_mass(vertices_of(b), size);
+      try {
+        Metric::from_mass(b.mass);
+      } catch (const InputError& e) {  // default_mass promises this cannot happen
+        fail(index_path("bodies", i), std::string("default mass: ") + e.what());
+      }
+    }
+  }
+
+  std::vector<std::pair<int, int>> explicit_checks(const Node& node,
+                                                   const std::map<std::string, std::size_t>& names) const {
+    const Node& list = array(node, "checks");
+    std::vector<std::pair<int, int>> out;
+    std::map<std::pair<int, int>, std::size_t> seen;  // unordered pair -> where it was written
+    for (std::size_t k = 0; k < list.items.size(); ++k) {
+      const std::string path = index_path("checks", k);
+      const Node& pair = array(list.items[k], path);
+      if (pair.items.size() != 2)
+        fail(path, "a check names exactly 2 bodies, got " + std::to_string(pair.items.size()));
+      int idx[2];
+      for (std::size_t s = 0; s < 2; ++s) {
+        const std::string side = index_path(path, s);
+        const Node& name = pair.items[s];
+        if (name.kind != Node::Kind::String) fail(side, std::string("expected a body name, got ") + kind_name(name.kind));
+        const auto it = names.find(name.text);
+        if (it == names.end()) fail(side, "unknown body " + quote_text(name.text));
+        idx[s] = static_cast<int>(it->second);
+      }
+      if (idx[0] == idx[1]) fail(path, "a body cannot be checked against itself");
+      const auto key = std::minmax(idx[0], idx[1]);
+      if (auto [it, fresh] = seen.emplace(key, k); !fresh)
+        fail(path, "duplicate check (same pair as " + index_path("checks", it->second) + ")");
+      out.emplace_back(idx[0], idx[1]);
+    }
+    return out;
+  }
+
+  // Every pair with at least one moving body, once, in body order.
+  static std::vector<std::pair<int, int>> default_checks(const Scene& scene) {
+    std::vector<std::pair<int, int>> out;
+    const int n = static_cast<int>(scene.bodies.size());
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (scene.bodies[i].motion || scene.bodies[j].motion) out.emplace_back(i, j);
+    return out;
+  }
+
+  std::string source_;
+};
+
+}  // namespace
+
+Scene parse_scene_text(const std::string& text, const std::string& source) {
+  const Node root = parse_json(text, source);
+  return SceneReader(source).read(root);
+}
+
+Scene parse_scene_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open file (it is a directory)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxFileBytes)
+    throw InputError(path + ": file too large (more than " + std::to_string(kMaxFileBytes) + " bytes)");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": cannot read file");
+  return parse_scene_text(buffer.str(), path);
+}
+
+}  // namespace tmcert

@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# Command-line regression for tmcert (SCENE_FORMAT.md, "Command line").
+#
+#   run_cli.sh TMCERT_BINARY TESTS_DATA_DIR EXAMPLES_DIR
+#
+# 1. Every malformed scene in DATA/bad/EXPECTED ("<file><TAB><substring>")
+#    must give exit code 3, nothing on stdout and the substring on stderr;
+#    so must a file that does not exist.
+# 2. Every scene in DATA/scenes/EXPECTED and EXAMPLES/EXPECTED
+#    ("<file><TAB>safe|collision|undecided"), if those lists exist, must give
+#    the exit code of its verdict (0, 1, 2) and that top-level "verdict" in
+#    the --json output.
+# Ends with the line "N passed, M failed"; exits non-zero if M > 0.
+set -u
+
+if [ $# -ne 3 ]; then
+  echo "usage: $0 TMCERT_BINARY TESTS_DATA_DIR EXAMPLES_DIR" >&2
+  exit 2
+fi
+tmcert=$1
+data=$2
+examples=$3
+
+passed=0
+failed=0
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# A hung run must fail the test, not the whole suite.
+run() {
+  local limit=$1
+  shift
+  if command -v timeout >/dev/null 2>&1; then
+    timeout "$limit" "$@" >"$work/out" 2>"$work/err"
+  else
+    "$@" >"$work/out" 2>"$work/err"
+  fi
+}
+
+pass() { passed=$((passed + 1)); }
+fail() {
+  failed=$((failed + 1))
+  echo "FAIL: $1" >&2
+  if [ -s "$work/err" ]; then sed 's/^/  stderr: /' "$work/err" | head -n 5 >&2; fi
+  if [ -s "$work/out" ]; then sed 's/^/  stdout: /' "$work/out" | head -n 5 >&2; fi
+}
+
+# Bad input: exit 3, empty stdout, a message on stderr containing $2.
+expect_bad() {
+  local scene=$1 substring=$2 code
+  run 60 "$tmcert" verify "$scene"
+  code=$?
+  if [ "$code" -ne 3 ]; then
+    fail "$scene: exit code $code, expected 3"
+  elif [ -s "$work/out" ]; then
+    fail "$scene: output on stdout with exit code 3"
+  elif ! grep -qF -- "$substring" "$work/err"; then
+    fail "$scene: stderr does not contain '$substring'"
+  else
+    pass
+  fi
+}
+
+# The top-level "verdict" of the JSON document in $work/out.
+top_verdict() {
+  if command -v python3 >/dev/null 2>&1; then
+    python3 -c 'import json, sys; print(json.load(sys.stdin).get("verdict", ""))' <"$work/out" 2>/dev/null
+  else
+    # Without python3: the first "verdict" key, which the format puts at the top.
+    grep -o '"verdict": *"[a-z]*"' "$work/out" | head -n 1 | sed 's/.*"\([a-z]*\)"$/\1/'
+  fi
+}
+
+# A scene with a known verdict: matching exit code and top-level verdict.
+expect_verdict() {
+  local scene=$1 verdict=$2 want code got
+  case "$verdict" in
+    safe) want=0 ;;
+    collision) want=1 ;;
+    undecided) want=2 ;;
+    *) fail "$scene: unknown expected verdict '$verdict' in EXPECTED"; return ;;
+  esac
+  run 600 "$tmcert" verify --json "$scene"
+  code=$?
+  got=$(top_verdict)
+  if [ "$code" -ne "$want" ]; then
+    fail "$scene: exit code $code, expected $want ($verdict)"
+  elif [ "$got" != "$verdict" ]; then
+    fail "$scene: top-level verdict '$got', expected '$verdict'"
+  else
+    pass
+  fi
+}
+
+# Calls "$2 DIR/<file> <field>" for each "<file><TAB><field>" line of $1
+# (blank lines and lines starting with # are skipped).
+for_each_line() {
+  local list=$1 check=$2 dir file field
+  dir=$(dirname "$list")
+  while IFS=$'\t' read -r file field || [ -n "$file" ]; do
+    file=${file%$'\r'}
+    field=${field%$'\r'}
+    case "$file" in '' | '#'*) continue ;; esac
+    "$check" "$dir/$file" "$field"
+  done <"$list"
+}
+
+if [ -f "$data/bad/EXPECTED" ]; then
+  for_each_line "$data/bad/EXPECTED" expect_bad
+else
+  : >"$work/err"
+  : >"$work/out"
+  fail "missing $data/bad/EXPECTED"
+fi
+expect_bad "$data/bad/does-not-exist.json" "does-not-exist.json"
+if [ -f "$data/bad-cli/EXPECTED" ]; then
+  for_each_line "$data/bad-cli/EXPECTED" expect_bad
+fi
+
+# Bad options: exit 3 with nothing on stdout.
+expect_bad_options() {
+  local substring=$1 code
+  shift
+  run 60 "$tmcert" "$@"
+  code=$?
+  if [ "$code" -ne 3 ]; then
+    fail "tmcert $*: exit code $code, expected 3"
+  elif [ -s "$work/out" ]; then
+    fail "tmcert $*: output on stdout with exit code 3"
+  elif ! grep -qF -- "$substring" "$work/err"; then
+    fail "tmcert $*: stderr does not contain '$substring'"
+  else
+    pass
+  fi
+}
+good="$examples/octagons-clear.json"
+expect_bad_options "--epsilon" verify "$good" --epsilon 0
+expect_bad_options "--epsilon" verify "$good" --epsilon nan
+expect_bad_options "--epsilon" verify "$good" --epsilon -1/3
+expect_bad_options "--kernel" verify "$good" --kernel quadruple
+expect_bad_options "--max-depth" verify "$good" --max-depth -2
+expect_bad_options "--threads" verify "$good" --threads 0
+expect_bad_options "frobnicate" verify "$good" --frobnicate
+expect_bad_options "scene" verify
+
+for list in "$data/scenes/EXPECTED" "$examples/EXPECTED"; do
+  if [ -f "$list" ]; then
+    for_each_line "$list" expect_verdict
+  fi
+done
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
