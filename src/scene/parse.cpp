@@ -12,6 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -251,9 +255,44 @@ class TreeBuilder {
   std::string error_;
 };
 
-Node parse_json(const std::string& text, const std::string& source) {
+// A JSON number such as 1e400 is valid JSON and means an exact rational, but
+// the reader converts every number to double on the way and stops at an
+// overflow.  Such tokens are quoted before reading: a string holding a
+// decimal means the same exact number in a scene.
+std::string quote_overflowing_numbers(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) out += text[++i];
+      else if (c == '"') in_string = false;
+      ++i;
+      continue;
+    }
+    if (c == '"') { in_string = true; out += c; ++i; continue; }
+    if (c == '-' || (c >= '0' && c <= '9')) {
+      std::size_t j = i;
+      while (j < text.size() && std::strchr("+-0123456789.eE", text[j]) != nullptr) ++j;
+      const std::string token = text.substr(i, j - i);
+      const bool has_exponent = token.find_first_of("eE") != std::string::npos;
+      if (has_exponent && std::isinf(std::strtod(token.c_str(), nullptr))) out += '"' + token + '"';
+      else out += token;
+      i = j;
+      continue;
+    }
+    out += c;
+    ++i;
+  }
+  return out;
+}
+
+Node parse_json(const std::string& raw_text, const std::string& source) {
   TreeBuilder builder(source);
   bool ok = false;
+  const std::string text = quote_overflowing_numbers(raw_text);
   try {
     ok = nlohmann::json::sax_parse(text, &builder);
   } catch (const nlohmann::json::exception& ex) {  // not expected with a SAX handler; be safe

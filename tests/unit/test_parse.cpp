@@ -300,7 +300,14 @@ BOOST_AUTO_TEST_CASE(json_errors) {
   expect_error(scene_of(R"({"name": "a", "name": "b", "points": [[0,0,0]]})"), "bodies[0].name", "duplicate key");
   expect_error("[1, 2]", "document", "expected an object");
   // A finite number too large for the JSON reader's double.
-  expect_error(scene_of(R"({"name": "a", "points": [[0,0,1e400]]})"), "bodies[0].points[0][2]", "as a string");
+  // Beyond double range as a JSON number: still read exactly.
+  {
+    CGAL::Gmpz p10;
+    mpz_ui_pow_ui(p10.mpz(), 10, 400);
+    const Scene big = read_scene(scene_of(R"({"name": "a", "points": [[0,0,1e400]], "_s": "1e999 \" [1e999]"})"));
+    BOOST_TEST(big.bodies[0].points[0][2] == Exact(p10));
+    BOOST_TEST(read_scene(scene_of(R"({"name": "a", "points": [[0,0,-2.5E+400]]})")).bodies[0].points[0][2] < Exact(0));
+  }
   BOOST_TEST(read_scene(scene_of(R"({"name": "a", "points": [[0,0,"1e400"]]})")).bodies[0].points[0][2] > Exact(1));
 }
 
