@@ -4,12 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace tmcert {
 
-HomogeneousCurve<Exact> homogeneous_curve(const Motion& motion) {
-  HomogeneousCurve<Exact> c(motion.control_points.size());
+HomogeneousCurve<Exact, 1> homogeneous_curve(const Motion& motion) {
+  HomogeneousCurve<Exact, 1> c(motion.control_points.size());
   for (std::size_t k = 0; k < c.size(); ++k) {
     for (int e = 0; e < 12; ++e) c[k][e] = motion.weights[k] * motion.control_points[k][e];
     c[k][12] = motion.weights[k];
@@ -17,29 +16,79 @@ HomogeneousCurve<Exact> homogeneous_curve(const Motion& motion) {
   return c;
 }
 
-HomogeneousCurve<Interval> enclose(const HomogeneousCurve<Exact>& curve) {
-  HomogeneousCurve<Interval> c(curve.size());
-  for (std::size_t k = 0; k < c.size(); ++k)
-    for (int e = 0; e < 13; ++e) c[k][e] = to_interval(curve[k][e]);
+namespace {
+
+Exact binomial(int n, int k) {
+  Exact r = 1;
+  for (int i = 1; i <= k; ++i) r = r * Exact(n - k + i) / Exact(i);
+  return r;
+}
+
+// Bernstein coefficients of the product of two polynomials given by their
+// Bernstein coefficients (degrees n and m):
+//   c_k = sum_{i+j=k} C(n,i) C(m,j) / C(n+m,k) a_i b_j.
+// A positive combination: positive inputs give positive outputs.
+std::vector<Exact> bernstein_product(const std::vector<Exact>& a, const std::vector<Exact>& b) {
+  const int n = static_cast<int>(a.size()) - 1, m = static_cast<int>(b.size()) - 1;
+  std::vector<Exact> c(n + m + 1, Exact(0));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= m; ++j) c[i + j] += binomial(n, i) * binomial(m, j) * a[i] * b[j];
+  for (int k = 0; k <= n + m; ++k) c[k] /= binomial(n + m, k);
   return c;
 }
 
-HomogeneousCurve<double> approximate(const HomogeneousCurve<Exact>& curve) {
-  HomogeneousCurve<double> c(curve.size());
-  for (std::size_t k = 0; k < c.size(); ++k)
-    for (int e = 0; e < 13; ++e) c[k][e] = CGAL::to_double(curve[k][e]);
+bool constant_weights(const Motion& m) {
+  return std::all_of(m.weights.begin(), m.weights.end(), [&](const Exact& w) { return w == m.weights[0]; });
+}
+
+}  // namespace
+
+HomogeneousCurve<Exact, 2> joint_curve(const Motion& first, const Motion& second) {
+  const Motion* motions[2] = {&first, &second};
+  const bool polynomial = constant_weights(first) && constant_weights(second);
+  const int n1 = first.degree(), n2 = second.degree();
+  // Per block: the polynomial each coordinate's numerator is multiplied by,
+  // and the common weight.
+  std::vector<Exact> weight;
+  std::array<std::vector<Exact>, 2> factor;
+  if (polynomial) {
+    // c_b(t) = sum B_k P_k exactly (equal weights cancel): elevate the
+    // affine control points to the common degree, weights all 1.
+    const int n = std::max(n1, n2);
+    weight.assign(n + 1, Exact(1));
+    factor[0].assign(n - n1 + 1, Exact(1));
+    factor[1].assign(n - n2 + 1, Exact(1));
+  } else {
+    weight = bernstein_product(first.weights, second.weights);
+    factor[0] = second.weights;
+    factor[1] = first.weights;
+  }
+  HomogeneousCurve<Exact, 2> c(weight.size());
+  for (int b = 0; b < 2; ++b) {
+    const Motion& m = *motions[b];
+    for (int e = 0; e < 12; ++e) {
+      std::vector<Exact> numerator(m.control_points.size());
+      for (std::size_t k = 0; k < numerator.size(); ++k)
+        numerator[k] = (polynomial ? Exact(1) : m.weights[k]) * m.control_points[k][e];
+      const std::vector<Exact> product = bernstein_product(numerator, factor[b]);
+      for (std::size_t k = 0; k < c.size(); ++k) c[k][12 * b + e] = product[k];
+    }
+  }
+  for (std::size_t k = 0; k < c.size(); ++k) c[k][24] = weight[k];
   return c;
 }
 
-Mat34E evaluate(const HomogeneousCurve<Exact>& curve, const Exact& u) {
+template <int B>
+Mat34E evaluate(const HomogeneousCurve<Exact, B>& curve, const Exact& u, int block) {
   // De Casteljau with exact rationals.
-  std::vector<HomogeneousPoint<Exact>> work(curve);
+  HomogeneousCurve<Exact, B> work(curve);
   const Exact v = Exact(1) - u;
+  const std::size_t w = kHomogeneousSize<B> - 1;
   for (std::size_t level = 1; level < work.size(); ++level)
     for (std::size_t k = 0; k + level < work.size(); ++k)
-      for (int e = 0; e < 13; ++e) work[k][e] = v * work[k][e] + u * work[k + 1][e];
+      for (std::size_t e = 0; e <= w; ++e) work[k][e] = v * work[k][e] + u * work[k + 1][e];
   Mat34E m;
-  for (int e = 0; e < 12; ++e) m[e] = work[0][e] / work[0][12];
+  for (int e = 0; e < 12; ++e) m[e] = work[0][12 * block + e] / work[0][w];
   return m;
 }
 
@@ -52,68 +101,83 @@ MetricData::MetricData(const Metric& m) : exact(&m) {
 
 namespace {
 
-using Affine12 = std::array<double, 12>;
+template <int B>
+using Affine = std::array<double, 12 * B>;
 
-double metric_distance2(const Affine12& p, const Affine12& q, const std::array<double, 16>& g) {
+template <int B>
+double metric_distance2(const Affine<B>& p, const Affine<B>& q, const Metrics<B>& metrics) {
   double s = 0;
-  for (int row = 0; row < 3; ++row) {
-    double d[4];
-    for (int c = 0; c < 4; ++c) d[c] = p[4 * row + c] - q[4 * row + c];
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) s += d[r] * g[4 * r + c] * d[c];
+  for (int b = 0; b < B; ++b) {
+    const std::array<double, 16>& g = metrics[b]->g_double;
+    for (int row = 0; row < 3; ++row) {
+      double d[4];
+      for (int c = 0; c < 4; ++c) d[c] = p[12 * b + 4 * row + c] - q[12 * b + 4 * row + c];
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) s += d[r] * g[4 * r + c] * d[c];
+    }
   }
   return s;
 }
 
 // A good (not optimal: only R must be rigorous) center for the points: the
 // better of their centroid and the midpoint of their farthest pair.
-Affine12 choose_center(const std::vector<Affine12>& pts, const std::array<double, 16>& g) {
-  Affine12 centroid{};
-  for (const Affine12& p : pts)
-    for (int e = 0; e < 12; ++e) centroid[e] += p[e] / static_cast<double>(pts.size());
+template <int B>
+Affine<B> choose_center(const std::vector<Affine<B>>& pts, const Metrics<B>& metrics) {
+  Affine<B> centroid{};
+  for (const Affine<B>& p : pts)
+    for (int e = 0; e < 12 * B; ++e) centroid[e] += p[e] / static_cast<double>(pts.size());
   std::size_t fi = 0, fj = 0;
   double far = -1;
   for (std::size_t i = 0; i < pts.size(); ++i)
     for (std::size_t j = i + 1; j < pts.size(); ++j) {
-      const double d = metric_distance2(pts[i], pts[j], g);
+      const double d = metric_distance2<B>(pts[i], pts[j], metrics);
       if (d > far) { far = d; fi = i; fj = j; }
     }
-  Affine12 mid;
-  for (int e = 0; e < 12; ++e) mid[e] = 0.5 * (pts[fi][e] + pts[fj][e]);
-  auto radius2 = [&](const Affine12& c) {
+  Affine<B> mid;
+  for (int e = 0; e < 12 * B; ++e) mid[e] = 0.5 * (pts[fi][e] + pts[fj][e]);
+  auto radius2 = [&](const Affine<B>& c) {
     double r = 0;
-    for (const Affine12& p : pts) r = std::max(r, metric_distance2(p, c, g));
+    for (const Affine<B>& p : pts) r = std::max(r, metric_distance2<B>(p, c, metrics));
     return r;
   };
   return radius2(mid) < radius2(centroid) ? mid : centroid;
 }
 
-bool all_finite(const Affine12& a) {
+template <std::size_t N>
+bool all_finite(const std::array<double, N>& a) {
   return std::all_of(a.begin(), a.end(), [](double x) { return std::isfinite(x); });
 }
 
 }  // namespace
 
-BallD bounding_ball(const HomogeneousCurve<Interval>& piece, const MetricData& metric) {
-  BallD ball;
+template <int B>
+BallD<B> bounding_ball(const HomogeneousCurve<Interval, B>& piece, const Metrics<B>& metrics) {
+  constexpr int W = 12 * B;  // index of the weight
+  BallD<B> ball;
   // Approximate affine control points (round to nearest; only a center).
-  std::vector<Affine12> approx(piece.size());
+  std::vector<Affine<B>> approx(piece.size());
   for (std::size_t k = 0; k < piece.size(); ++k)
-    for (int e = 0; e < 12; ++e) approx[k][e] = CGAL::to_double(piece[k][e]) / CGAL::to_double(piece[k][12]);
-  ball.center = choose_center(approx, metric.g_double);
+    for (int e = 0; e < W; ++e) approx[k][e] = CGAL::to_double(piece[k][e]) / CGAL::to_double(piece[k][W]);
+  ball.center = choose_center<B>(approx, metrics);
   if (!all_finite(ball.center)) return ball;  // valid = false: clears nothing
 
   // R^2 = max_k ||P_k - g||^2, each P_k = N_k / w_k enclosed by intervals.
   // Upward rounding makes the interval sup an upper bound of the exact value.
   RoundingGuard guard;
   double r2 = 0;
-  for (const HomogeneousPoint<Interval>& h : piece) {
+  for (const HomogeneousPoint<Interval, B>& h : piece) {
     Interval s(0);
-    for (int row = 0; row < 3; ++row) {
-      Interval d[4];
-      for (int c = 0; c < 4; ++c) d[c] = h[4 * row + c] / h[12] - Interval(ball.center[4 * row + c]);
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) s += d[r] * metric.g_interval[4 * r + c] * d[c];
+    for (int b = 0; b < B; ++b) {
+      const std::array<Interval, 16>& g = metrics[b]->g_interval;
+      for (int row = 0; row < 3; ++row) {
+        Interval d[4];
+        for (int c = 0; c < 4; ++c) {
+          const int e = 12 * b + 4 * row + c;
+          d[c] = h[e] / h[W] - Interval(ball.center[e]);
+        }
+        for (int r = 0; r < 4; ++r)
+          for (int c = 0; c < 4; ++c) s += d[r] * g[4 * r + c] * d[c];
+      }
     }
     const double sup = s.sup();
     if (!(sup >= 0) || !std::isfinite(sup)) return ball;  // NaN or infinite: invalid
@@ -124,38 +188,54 @@ BallD bounding_ball(const HomogeneousCurve<Interval>& piece, const MetricData& m
   return ball;
 }
 
-BallE bounding_ball(const HomogeneousCurve<Exact>& piece, const MetricData& metric) {
-  std::vector<Affine12> approx(piece.size());
-  std::vector<Mat34E> exact_points(piece.size());
+template <int B>
+BallE<B> bounding_ball(const HomogeneousCurve<Exact, B>& piece, const Metrics<B>& metrics) {
+  constexpr int W = 12 * B;
+  std::vector<Affine<B>> approx(piece.size());
+  std::vector<std::array<Exact, 12 * B>> exact_points(piece.size());
   for (std::size_t k = 0; k < piece.size(); ++k)
-    for (int e = 0; e < 12; ++e) {
-      exact_points[k][e] = piece[k][e] / piece[k][12];
+    for (int e = 0; e < W; ++e) {
+      exact_points[k][e] = piece[k][e] / piece[k][W];
       approx[k][e] = CGAL::to_double(exact_points[k][e]);
     }
-  const Affine12 c = choose_center(approx, metric.g_double);
-  BallE ball;
-  for (int e = 0; e < 12; ++e) ball.center[e] = std::isfinite(c[e]) ? Exact(c[e]) : exact_points[0][e];
+  const Affine<B> c = choose_center<B>(approx, metrics);
+  BallE<B> ball;
+  for (int e = 0; e < W; ++e) ball.center[e] = std::isfinite(c[e]) ? Exact(c[e]) : exact_points[0][e];
   ball.r2 = 0;
-  for (const Mat34E& p : exact_points) {
-    Mat34E d;
-    for (int e = 0; e < 12; ++e) d[e] = p[e] - ball.center[e];
-    const Exact n2 = metric.exact->norm2(d);
+  for (const auto& p : exact_points) {
+    Exact n2 = 0;
+    for (int b = 0; b < B; ++b) {
+      Mat34E d;
+      for (int e = 0; e < 12; ++e) d[e] = p[12 * b + e] - ball.center[12 * b + e];
+      n2 += metrics[b]->exact->norm2(d);
+    }
     if (n2 > ball.r2) ball.r2 = n2;
   }
   return ball;
 }
 
-BallD bounding_ball(const HomogeneousCurve<double>& piece, const MetricData& metric) {
-  BallD ball;
-  std::vector<Affine12> pts(piece.size());
+template <int B>
+BallD<B> bounding_ball(const HomogeneousCurve<double, B>& piece, const Metrics<B>& metrics) {
+  constexpr int W = 12 * B;
+  BallD<B> ball;
+  std::vector<Affine<B>> pts(piece.size());
   for (std::size_t k = 0; k < piece.size(); ++k)
-    for (int e = 0; e < 12; ++e) pts[k][e] = piece[k][e] / piece[k][12];
-  ball.center = choose_center(pts, metric.g_double);
+    for (int e = 0; e < W; ++e) pts[k][e] = piece[k][e] / piece[k][W];
+  ball.center = choose_center<B>(pts, metrics);
   double r2 = 0;
-  for (const Affine12& p : pts) r2 = std::max(r2, metric_distance2(p, ball.center, metric.g_double));
+  for (const Affine<B>& p : pts) r2 = std::max(r2, metric_distance2<B>(p, ball.center, metrics));
   ball.r2 = r2;
   ball.valid = std::isfinite(r2) && all_finite(ball.center);
   return ball;
 }
+
+template Mat34E evaluate<1>(const HomogeneousCurve<Exact, 1>&, const Exact&, int);
+template Mat34E evaluate<2>(const HomogeneousCurve<Exact, 2>&, const Exact&, int);
+template BallD<1> bounding_ball<1>(const HomogeneousCurve<Interval, 1>&, const Metrics<1>&);
+template BallD<2> bounding_ball<2>(const HomogeneousCurve<Interval, 2>&, const Metrics<2>&);
+template BallE<1> bounding_ball<1>(const HomogeneousCurve<Exact, 1>&, const Metrics<1>&);
+template BallE<2> bounding_ball<2>(const HomogeneousCurve<Exact, 2>&, const Metrics<2>&);
+template BallD<1> bounding_ball<1>(const HomogeneousCurve<double, 1>&, const Metrics<1>&);
+template BallD<2> bounding_ball<2>(const HomogeneousCurve<double, 2>&, const Metrics<2>&);
 
 }  // namespace tmcert

@@ -73,26 +73,33 @@ std::vector<PairRef> all_pairs(const PreparedBody& m, const PreparedBody& f) {
 
 // ------------------------------------------------------------------ kernels
 // Each policy supplies the piece representation, its ball and the contact
-// test in one number type; the search below is shared.
+// test in one number type; the search below is shared.  B = 1: body 1 moves,
+// body 2 is fixed (world coordinates, no rho term); B = 2: both move along
+// their joint curve, with the product metric.
 
-Placement<Interval> interval_placement(const BallD& b) {
-  Placement<Interval> p;
-  for (int e = 0; e < 12; ++e) p.g1[e] = Interval(b.center[e]);
-  p.r2 = Interval(b.r2);
-  return p;
-}
-
-Placement<Exact> exact_placement(const std::array<Exact, 12>& center, const Exact& r2) {
-  Placement<Exact> p;
-  p.g1 = center;
+template <int B, class FT>
+Placement<FT> make_placement(const std::array<FT, 12 * B>& center, const FT& r2) {
+  Placement<FT> p;
+  for (int e = 0; e < 12; ++e) p.g1[e] = center[e];
+  if constexpr (B == 2) {
+    p.body2_moving = true;
+    for (int e = 0; e < 12; ++e) p.g2[e] = center[12 + e];
+  }
   p.r2 = r2;
   return p;
 }
 
+template <int B>
+Metrics<B> metrics_of(const PreparedBody& m, const PreparedBody& f) {
+  if constexpr (B == 1) return {m.metric_data.get()};
+  else return {m.metric_data.get(), f.metric_data.get()};
+}
+
+template <int B>
 struct FilteredPolicy {
-  using Piece = HomogeneousCurve<Interval>;
+  using Piece = HomogeneousCurve<Interval, B>;
   struct Ball {
-    BallD ball;
+    BallD<B> ball;
     Placement<Interval> interval;
     std::optional<Placement<Exact>> exact;  // built on the first exact fallback
     bool valid() const { return ball.valid; }
@@ -100,15 +107,20 @@ struct FilteredPolicy {
   };
   const PreparedBody& m;
   const PreparedBody& f;
+  const HomogeneousCurve<Exact, B>& curve;
 
-  Piece root() const { return enclose(m.curve); }
+  Piece root() const { return enclose(curve); }
   void split(const Piece& p, Piece& l, Piece& r) const {
     RoundingGuard guard;  // interval de Casteljau encloses the exact halves
     split_half(p, l, r);
   }
   Ball ball(const Piece& p) const {
-    Ball b{bounding_ball(p, *m.metric_data), {}, std::nullopt};
-    if (b.ball.valid) b.interval = interval_placement(b.ball);
+    Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}, std::nullopt};
+    if (b.ball.valid) {
+      std::array<Interval, 12 * B> c;
+      for (int e = 0; e < 12 * B; ++e) c[e] = Interval(b.ball.center[e]);
+      b.interval = make_placement<B>(c, Interval(b.ball.r2));
+    }
     return b;
   }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
@@ -118,9 +130,9 @@ struct FilteredPolicy {
         [&] { return contact_sign<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval); },
         [&] {
           if (!b.exact) {
-            std::array<Exact, 12> c;
-            for (int e = 0; e < 12; ++e) c[e] = Exact(b.ball.center[e]);
-            b.exact = exact_placement(c, Exact(b.ball.r2));
+            std::array<Exact, 12 * B> c;
+            for (int e = 0; e < 12 * B; ++e) c[e] = Exact(b.ball.center[e]);
+            b.exact = make_placement<B>(c, Exact(b.ball.r2));
           }
           return contact_sign<Exact>(p.kind, X.exact[p.i], Y.exact[p.j], *b.exact);
         },
@@ -128,8 +140,9 @@ struct FilteredPolicy {
   }
 };
 
+template <int B>
 struct ExactPolicy {
-  using Piece = HomogeneousCurve<Exact>;
+  using Piece = HomogeneousCurve<Exact, B>;
   struct Ball {
     Placement<Exact> placement;
     bool valid() const { return true; }
@@ -137,12 +150,13 @@ struct ExactPolicy {
   };
   const PreparedBody& m;
   const PreparedBody& f;
+  const HomogeneousCurve<Exact, B>& curve;
 
-  Piece root() const { return m.curve; }
+  Piece root() const { return curve; }
   void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
   Ball ball(const Piece& p) const {
-    BallE b = bounding_ball(p, *m.metric_data);
-    return Ball{exact_placement(b.center, b.r2)};
+    BallE<B> b = bounding_ball<B>(p, metrics_of<B>(m, f));
+    return Ball{make_placement<B>(b.center, b.r2)};
   }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
@@ -153,23 +167,24 @@ struct ExactPolicy {
   }
 };
 
+template <int B>
 struct FastPolicy {
-  using Piece = HomogeneousCurve<double>;
+  using Piece = HomogeneousCurve<double, B>;
   struct Ball {
-    BallD ball;
+    BallD<B> ball;
     Placement<double> placement;
     bool valid() const { return ball.valid; }
     double r2() const { return ball.r2; }
   };
   const PreparedBody& m;
   const PreparedBody& f;
+  const HomogeneousCurve<Exact, B>& curve;
 
-  Piece root() const { return approximate(m.curve); }
+  Piece root() const { return approximate(curve); }
   void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
   Ball ball(const Piece& p) const {
-    Ball b{bounding_ball(p, *m.metric_data), {}};
-    b.placement.g1 = b.ball.center;
-    b.placement.r2 = b.ball.r2;
+    Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}};
+    b.placement = make_placement<B>(b.ball.center, b.ball.r2);
     return b;
   }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
@@ -208,12 +223,15 @@ struct Node {
   std::vector<PairRef> alive;
 };
 
+template <int B>
 struct Check {
-  const PreparedBody& moving;
-  const PreparedBody& other;
-  bool swapped;          // the check names the other body first
-  const Motion& motion;
-  double eps2;           // epsilon^2 for the stop test (a tolerance)
+  const PreparedBody& moving;    // body 1
+  const PreparedBody& other;     // body 2: fixed (B = 1) or moving (B = 2)
+  bool swapped;                  // the check names body 2 first
+  const HomogeneousCurve<Exact, B>& curve;
+  const Motion& motion;          // body 1's: the parameter interval
+  double eps2;                   // epsilon^2 for the stop test (a tolerance)
+  double rho2_sum;               // max rho1^2 (+ max rho2^2): the fat size per unit R^2
   const VerifyOptions& options;
   CheckResult& result;
 
@@ -227,14 +245,24 @@ struct Check {
     result.verdict = Verdict::Collision;
   }
 
+  // Both bodies' parts placed exactly at curve parameter u.
+  std::optional<StaticHit> static_test(const Exact& u, const std::set<std::pair<int, int>>* only) {
+    const std::vector<StaticPart> placed = transformed_parts(moving, evaluate<B>(curve, u, 0));
+    if constexpr (B == 2) {
+      const std::vector<StaticPart> placed_other = transformed_parts(other, evaluate<B>(curve, u, 1));
+      return first_hit(placed, placed_other, only, result.stats);
+    } else {
+      return first_hit(placed, other.parts, only, result.stats);
+    }
+  }
+
   // Exact static test of the configuration at curve parameter u, restricted
   // to the parts that still have a live feature pair.
   bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
     std::set<std::pair<int, int>> parts;
     for (const PairRef& p : alive)
       parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
-    const std::vector<StaticPart> placed = transformed_parts(moving, evaluate(moving.curve, u));
-    if (auto hit = first_hit(placed, other.parts, &parts, result.stats)) {
+    if (auto hit = static_test(u, &parts)) {
       set_witness(u, *hit);
       return true;
     }
@@ -279,14 +307,16 @@ struct Check {
       if (node.alive.empty()) continue;  // cleared on the whole piece
       std::optional<StopReason> stop;
       if (node.depth >= options.max_depth) stop = StopReason::Depth;
-      else if (ball.valid() && ball.r2() * moving.max_rho2 < eps2) stop = StopReason::Epsilon;
+      else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
       if (stop) {
         const Exact mid = (node.u0 + node.u1) / 2;
-        if (try_witness(mid, node.alive) || try_witness(node.u1, node.alive)) {
-          const Exact& u = result.witness->t == scene_t(mid) ? mid : node.u1;
-          const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0);
-          result.first_contact = std::pair{lo, scene_t(u)};
-          return;
+        const Exact end = node.u1;
+        for (const Exact* u : {&mid, &end}) {
+          if (try_witness(*u, node.alive)) {
+            const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0);
+            result.first_contact = std::pair{lo, scene_t(*u)};
+            return;
+          }
         }
         record(node, *stop);
         continue;
@@ -296,6 +326,21 @@ struct Check {
       policy.split(item.piece, left.piece, right.piece);
       stack.push_back(std::move(right));
       stack.push_back(std::move(left));  // parameter order: left first
+    }
+  }
+
+  // The start check (DESIGN.md section 4: the contact tests are complete
+  // only after a contact-free start), then the search.
+  void run() {
+    if (auto hit = static_test(Exact(0), nullptr)) {
+      set_witness(Exact(0), *hit);
+      result.first_contact = std::pair{motion.t0, motion.t0};
+      return;
+    }
+    switch (options.kernel) {
+      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve}); break;
+      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve}); break;
+      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve}); break;
     }
   }
 };
@@ -354,9 +399,9 @@ void require_supported(const Scene& scene) {
     const Body& x = scene.bodies[a];
     const Body& y = scene.bodies[b];
     const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
-    if (mx && my)
+    if (mx && my && (x.motion->t0 != y.motion->t0 || x.motion->t1 != y.motion->t1))
       throw InputError(scene.source + ": checks: [\"" + x.name + "\", \"" + y.name +
-                       "\"]: a check between two moving bodies is not supported yet");
+                       "\"]: two moving bodies must share their motion interval");
   }
 }
 
@@ -395,23 +440,13 @@ CheckResult run_check(int a, int b, const PreparedBody& pa, const PreparedBody& 
 
   const Motion& motion = *moving.body->motion;
   const double eps = CGAL::to_double(options.epsilon);
-  Check check{moving, other, swapped, motion, eps * eps, options, result};
-
-  // The start check (DESIGN.md section 4): the contact tests are complete
-  // only after a contact-free start.
-  {
-    const std::vector<StaticPart> placed = transformed_parts(moving, evaluate(moving.curve, Exact(0)));
-    if (auto hit = first_hit(placed, other.parts, nullptr, result.stats)) {
-      check.set_witness(Exact(0), *hit);
-      result.first_contact = std::pair{motion.t0, motion.t0};
-      return finish();
-    }
-  }
-
-  switch (options.kernel) {
-    case KernelKind::Filtered: check.search(FilteredPolicy{moving, other}); break;
-    case KernelKind::Exact: check.search(ExactPolicy{moving, other}); break;
-    case KernelKind::Fast: check.search(FastPolicy{moving, other}); break;
+  if (!other.moving) {
+    Check<1> check{moving, other, swapped, moving.curve, motion, eps * eps, moving.max_rho2, options, result};
+    check.run();
+  } else {
+    const HomogeneousCurve<Exact, 2> joint = joint_curve(motion, *other.body->motion);
+    Check<2> check{moving, other, false, joint, motion, eps * eps, moving.max_rho2 + other.max_rho2, options, result};
+    check.run();
   }
   if (result.verdict != Verdict::Collision)
     result.verdict = result.undecided.empty() ? Verdict::Safe : Verdict::Undecided;
