@@ -2,6 +2,8 @@
 
 #include <CGAL/number_utils.h>
 
+#include <cmath>
+#include <limits>
 #include <map>
 
 namespace tmcert {
@@ -173,6 +175,49 @@ PreparedBody prepare_body(const Body& body) {
     pb.max_rho2 = CGAL::to_double(best);
   }
   return pb;
+}
+
+SweptBox swept_box(const Body& body) {
+  std::vector<Mat34E> maps;
+  if (body.motion) maps = body.motion->control_points;
+  else maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+  std::vector<std::array<Interval, 12>> imaps;
+  for (const Mat34E& m : maps) {
+    std::array<Interval, 12> im;
+    for (int e = 0; e < 12; ++e) im[e] = to_interval(m[e]);
+    imaps.push_back(im);
+  }
+  SweptBox box;
+  box.lo.fill(std::numeric_limits<double>::infinity());
+  box.hi.fill(-std::numeric_limits<double>::infinity());
+  auto add_point = [&](const Vec3E& x) {
+    const Interval xi[3] = {to_interval(x[0]), to_interval(x[1]), to_interval(x[2])};
+    RoundingGuard guard;
+    for (const auto& m : imaps)
+      for (int i = 0; i < 3; ++i) {
+        const Interval y = m[4 * i] * xi[0] + m[4 * i + 1] * xi[1] + m[4 * i + 2] * xi[2] + m[4 * i + 3];
+        box.lo[i] = std::min(box.lo[i], y.inf());
+        box.hi[i] = std::max(box.hi[i], y.sup());
+      }
+  };
+  for (const auto& poly : body.polygons)
+    for (const Vec3E& x : poly) add_point(x);
+  for (const auto& s : body.segments) {
+    add_point(s[0]);
+    add_point(s[1]);
+  }
+  for (const Vec3E& x : body.points) add_point(x);
+  box.valid = true;
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(box.lo[i]) || !std::isfinite(box.hi[i]) || !(box.lo[i] <= box.hi[i])) box.valid = false;
+  return box;
+}
+
+bool disjoint(const SweptBox& a, const SweptBox& b) {
+  if (!a.valid || !b.valid) return false;
+  for (int i = 0; i < 3; ++i)
+    if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return true;
+  return false;
 }
 
 std::vector<StaticPart> transformed_parts(const PreparedBody& body, const Mat34E& map) {

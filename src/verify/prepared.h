@@ -49,6 +49,20 @@ struct PreparedBody {
 
 PreparedBody prepare_body(const Body& body);
 
+// A box that certainly contains every point of the body at every parameter
+// of its motion: the hull of all vertices under all affine control points
+// (convex hull property), computed with outward rounding.  `valid` is false
+// when a bound is not finite.
+struct SweptBox {
+  std::array<double, 3> lo{}, hi{};
+  bool valid = false;
+};
+
+SweptBox swept_box(const Body& body);
+
+// True when the boxes are certainly disjoint: the bodies never touch.
+bool disjoint(const SweptBox& a, const SweptBox& b);
+
 // The static parts transformed exactly by an affine map.
 std::vector<StaticPart> transformed_parts(const PreparedBody& body, const Mat34E& map);
 

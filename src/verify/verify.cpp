@@ -456,10 +456,34 @@ CheckResult run_check(int a, int b, const PreparedBody& pa, const PreparedBody& 
 
 }  // namespace
 
+Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
+    : scene_(scene), options_(options), once_(new std::once_flag[scene.bodies.size()]),
+      prepared_(scene.bodies.size()) {
+  boxes_.reserve(scene.bodies.size());
+  for (const Body& b : scene.bodies) boxes_.push_back(swept_box(b));
+}
+
+Verifier::~Verifier() = default;
+
+const PreparedBody& Verifier::prepared(int body) const {
+  std::call_once(once_[body], [&] { prepared_[body] = std::make_unique<PreparedBody>(prepare_body(scene_.bodies[body])); });
+  return *prepared_[body];
+}
+
+CheckResult Verifier::check(int a, int b) const {
+  if (disjoint(boxes_[a], boxes_[b])) {
+    // Certified prefilter: the boxes hold everything the bodies sweep.
+    CheckResult result;
+    result.bodies = {a, b};
+    result.verdict = Verdict::Safe;
+    result.stats.prefiltered = true;
+    return result;
+  }
+  return run_check(a, b, prepared(a), prepared(b), options_);
+}
+
 CheckResult verify_check(const Scene& scene, int body_a, int body_b, const VerifyOptions& options) {
-  const PreparedBody pa = prepare_body(scene.bodies[body_a]);
-  const PreparedBody pb = prepare_body(scene.bodies[body_b]);
-  return run_check(body_a, body_b, pa, pb, options);
+  return Verifier(scene, options).check(body_a, body_b);
 }
 
 SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int threads) {
@@ -469,17 +493,21 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   out.certified = options.kernel != KernelKind::Fast;
   out.epsilon = options.epsilon;
 
-  std::map<int, PreparedBody> prepared;
-  for (const auto& [a, b] : scene.checks)
-    for (int i : {a, b})
-      if (!prepared.count(i)) prepared.emplace(i, prepare_body(scene.bodies[i]));
-
+  const Verifier verifier(scene, options);
   out.checks.resize(scene.checks.size());
   std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
   auto worker = [&] {
-    for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
-      const auto [a, b] = scene.checks[k];
-      out.checks[k] = run_check(a, b, prepared.at(a), prepared.at(b), options);
+    try {
+      for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
+        const auto [a, b] = scene.checks[k];
+        out.checks[k] = verifier.check(a, b);
+      }
+    } catch (...) {  // reported by the caller; never a verdict
+      std::lock_guard<std::mutex> lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = scene.checks.size();
     }
   };
   const int n = std::max(1, std::min<int>(threads, static_cast<int>(scene.checks.size())));
@@ -487,6 +515,7 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   for (int i = 1; i < n; ++i) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 
   out.verdict = Verdict::Safe;
   for (const CheckResult& c : out.checks) {

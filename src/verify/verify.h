@@ -6,6 +6,8 @@
 #include "src/scene/model.h"
 
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,6 +47,7 @@ struct CheckStats {
   FilterCounters contact;        // all contact tests
   std::array<FilterCounters, 3> by_kind;  // vertex-face, edge-edge, face-vertex
   std::uint64_t static_tests = 0;
+  bool prefiltered = false;      // cleared by the swept-box prefilter alone
   double seconds = 0;
 };
 
@@ -74,6 +77,32 @@ Exact default_epsilon(const Scene& scene);
 // Throws InputError when a check cannot be run by this version (two moving
 // bodies).  Called before any verdict is printed.
 void require_supported(const Scene& scene);
+
+struct PreparedBody;
+struct SweptBox;
+
+// Verifies checks of one scene.  Bodies are prepared lazily, once, on first
+// use, and only when the cheap certified prefilter (disjoint boxes around
+// everything each body sweeps) cannot clear a check; so a scene with
+// thousands of small bodies costs little per check.  check() is thread-safe.
+class Verifier {
+ public:
+  Verifier(const Scene& scene, const VerifyOptions& options);
+  ~Verifier();
+  Verifier(const Verifier&) = delete;
+  Verifier& operator=(const Verifier&) = delete;
+
+  CheckResult check(int body_a, int body_b) const;
+
+ private:
+  const PreparedBody& prepared(int body) const;
+
+  const Scene& scene_;
+  VerifyOptions options_;
+  std::vector<SweptBox> boxes_;
+  std::unique_ptr<std::once_flag[]> once_;
+  mutable std::vector<std::unique_ptr<PreparedBody>> prepared_;
+};
 
 // Verifies one check (a pair of body indices).
 CheckResult verify_check(const Scene& scene, int body_a, int body_b, const VerifyOptions& options);
