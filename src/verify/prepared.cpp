@@ -122,11 +122,11 @@ PreparedBody prepare_body(const Body& body) {
   auto place = [&](const Vec3E& x) { return pb.moving ? x : apply_map(pose, x); };
 
   if (pb.moving) {
-    pb.metric = Metric::from_mass(body.mass);
+    pb.metric = std::make_unique<const Metric>(Metric::from_mass(body.mass));
     pb.metric_data = std::make_unique<MetricData>(*pb.metric);
     pb.curve = homogeneous_curve(*body.motion);
   }
-  const Metric* metric = pb.metric ? &*pb.metric : nullptr;
+  const Metric* metric = pb.metric.get();
 
   // Static parts and vertices.
   const int first_segment = static_cast<int>(body.polygons.size());

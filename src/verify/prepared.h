@@ -41,7 +41,8 @@ struct PreparedBody {
   std::vector<StaticPart> parts;
   FeatureTable vertices, edges, faces;
   // Moving bodies only.
-  std::optional<Metric> metric;
+  // Heap-held so that MetricData may point at it while PreparedBody moves.
+  std::unique_ptr<const Metric> metric;
   std::unique_ptr<MetricData> metric_data;
   HomogeneousCurve<Exact> curve;
   double max_rho2 = 0;  // upper bound of max rho^2 over the body (at a vertex: rho^2 is convex)
