@@ -92,11 +92,14 @@ Mat34E evaluate(const HomogeneousCurve<Exact, B>& curve, const Exact& u, int blo
   return m;
 }
 
-MetricData::MetricData(const Metric& m) : exact(&m) {
+MetricData metric_data_of(const Metric& metric) {
+  MetricData d;
   for (int i = 0; i < 16; ++i) {
-    g_interval[i] = to_interval(m.moment()[i]);
-    g_double[i] = CGAL::to_double(m.moment()[i]);
+    d.g_interval[i] = to_interval(metric.moment()[i]);
+    d.g_double[i] = CGAL::to_double(metric.moment()[i]);
   }
+  d.exact = [&metric]() -> const Metric& { return metric; };
+  return d;
 }
 
 namespace {
@@ -207,7 +210,7 @@ BallE<B> bounding_ball(const HomogeneousCurve<Exact, B>& piece, const Metrics<B>
     for (int b = 0; b < B; ++b) {
       Mat34E d;
       for (int e = 0; e < 12; ++e) d[e] = p[12 * b + e] - ball.center[12 * b + e];
-      n2 += metrics[b]->exact->norm2(d);
+      n2 += metrics[b]->exact().norm2(d);
     }
     if (n2 > ball.r2) ball.r2 = n2;
   }

@@ -13,6 +13,7 @@
 #include "src/scene/model.h"
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace tmcert {
@@ -75,12 +76,13 @@ void split_half(const std::vector<std::array<NT, N>>& c, std::vector<std::array<
 template <int B>
 Mat34E evaluate(const HomogeneousCurve<Exact, B>& curve, const Exact& u, int block = 0);
 
-// Metric data prepared once per body for the ball computations.
+// Metric data prepared once per body for the ball computations: the moment
+// matrix enclosed by intervals and rounded to doubles, and a way to the exact
+// metric (built lazily by its owner: exact arithmetic is rarely needed).
 struct MetricData {
   std::array<Interval, 16> g_interval;
   std::array<double, 16> g_double;
-  const Metric* exact = nullptr;
-  explicit MetricData(const Metric& m);
+  std::function<const Metric&()> exact;
 };
 
 // A ball of affine maps (product metric for B = 2) containing a curve piece:
@@ -99,6 +101,9 @@ struct BallE {
   std::array<Exact, 12 * B> center;
   Exact r2;
 };
+
+// Metric data of an exact metric that outlives it.
+MetricData metric_data_of(const Metric& metric);
 
 template <int B>
 using Metrics = std::array<const MetricData*, B>;

@@ -10,88 +10,113 @@ namespace tmcert {
 
 namespace {
 
+const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
 Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
   Vec3E r;
   for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
   return r;
 }
 
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+template <class FT>
+Vec3<FT> sub(const Vec3<FT>& a, const Vec3<FT>& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+template <class FT>
+FT dot(const Vec3<FT>& a, const Vec3<FT>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// ---------------------------------------------------------------- geometry
+// Feature geometry written once over FT: exact with Exact, an enclosure with
+// Interval (under RoundingGuard).  `gi` is G^-1 (row-major 4x4) or null for a
+// body without metric (fixed, in world coordinates).
 
 // rho^2 quadratic of x(s) = origin + s1 a0 + s2 a1: Q = M^T G^-1 M with
-// M = [a0 a1 origin; 0 0 1] (4x3).  Zero when the body has no metric.
-void set_rho2(FeatureGeometry<Exact>& f, const Metric* metric) {
-  for (auto& q : f.rho2) q = 0;
-  if (!metric) return;
-  const Mat44E& gi = metric->inverse();
-  Exact m[4][3];
+// M = [a0 a1 origin; 0 0 1] (4x3).
+template <class FT>
+void set_rho2(FeatureGeometry<FT>& f, const std::array<FT, 16>* gi) {
+  for (auto& q : f.rho2) q = FT(0);
+  if (!gi) return;
+  FT m[4][3];
   for (int r = 0; r < 3; ++r) {
     m[r][0] = f.axis[0][r];
     m[r][1] = f.axis[1][r];
     m[r][2] = f.origin[r];
   }
-  m[3][0] = 0;
-  m[3][1] = 0;
-  m[3][2] = 1;
-  for (int i = 0; i < 3; ++i)
+  m[3][0] = FT(0);
+  m[3][1] = FT(0);
+  m[3][2] = FT(1);
+  FT gm[4][3];  // G^-1 M
+  for (int r = 0; r < 4; ++r)
     for (int j = 0; j < 3; ++j) {
-      Exact s = 0;
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) s += m[r][i] * gi[4 * r + c] * m[c][j];
+      gm[r][j] = FT(0);
+      for (int c = 0; c < 4; ++c) gm[r][j] += (*gi)[4 * r + c] * m[c][j];
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      FT s(0);
+      for (int r = 0; r < 4; ++r) s += m[r][i] * gm[r][j];
       f.rho2[3 * i + j] = s;
+      f.rho2[3 * j + i] = s;
     }
 }
 
-FeatureGeometry<Exact> make_vertex(const Vec3E& p, const Metric* metric) {
-  FeatureGeometry<Exact> f;
+template <class FT>
+FeatureGeometry<FT> make_vertex(const Vec3<FT>& p, const std::array<FT, 16>* gi) {
+  FeatureGeometry<FT> f;
   f.dim = 0;
   f.origin = p;
-  f.axis = {Vec3E{0, 0, 0}, Vec3E{0, 0, 0}};
-  set_rho2(f, metric);
+  f.axis = {Vec3<FT>{FT(0), FT(0), FT(0)}, Vec3<FT>{FT(0), FT(0), FT(0)}};
+  set_rho2(f, gi);
   return f;
 }
 
-FeatureGeometry<Exact> make_edge(const Vec3E& p, const Vec3E& q, const Metric* metric) {
-  FeatureGeometry<Exact> f;
+template <class FT>
+FeatureGeometry<FT> make_edge(const Vec3<FT>& p, const Vec3<FT>& q, const std::array<FT, 16>* gi) {
+  FeatureGeometry<FT> f;
   f.dim = 1;
   f.origin = p;
-  f.axis = {sub(q, p), Vec3E{0, 0, 0}};
-  set_rho2(f, metric);
+  f.axis = {sub(q, p), Vec3<FT>{FT(0), FT(0), FT(0)}};
+  set_rho2(f, gi);
   return f;
 }
 
-// A convex polygon (>= 3 vertices, consecutive ones not collinear).  Nothing
-// when the polygon is degenerate (a fixed body under a singular pose): its
-// point set is then the union of its edges, which are features of their own.
-std::optional<FeatureGeometry<Exact>> make_face(const std::vector<Vec3E>& v, const Metric* metric) {
-  FeatureGeometry<Exact> f;
+// A convex polygon with v0, v1, v2 not collinear (checked exactly by the
+// caller).  Parameter axes a0 = v1 - v0, a1 = v2 - v0, so the domain starts
+// (0,0), (1,0), (0,1): counter-clockwise, and so is the whole convex polygon.
+template <class FT>
+FeatureGeometry<FT> make_face(const std::vector<Vec3<FT>>& v, const std::array<FT, 16>* gi) {
+  FeatureGeometry<FT> f;
   f.dim = 2;
   f.origin = v[0];
   f.axis = {sub(v[1], v[0]), sub(v[2], v[0])};
-  set_rho2(f, metric);
-  // Parameter coordinates of every vertex: solve the 2x2 Gram system.
-  const Exact g00 = dot(f.axis[0], f.axis[0]), g01 = dot(f.axis[0], f.axis[1]), g11 = dot(f.axis[1], f.axis[1]);
-  const Exact det = g00 * g11 - g01 * g01;  // > 0 iff the axes are independent
-  if (det == 0) return std::nullopt;
-  Exact area2 = 0;
-  for (const Vec3E& p : v) {
-    const Vec3E d = sub(p, v[0]);
-    const Exact r0 = dot(f.axis[0], d), r1 = dot(f.axis[1], d);
-    f.domain.push_back({(g11 * r0 - g01 * r1) / det, (g00 * r1 - g01 * r0) / det});
+  set_rho2(f, gi);
+  f.orientation = 1;
+  f.domain = {{FT(0), FT(0)}, {FT(1), FT(0)}, {FT(0), FT(1)}};
+  if (v.size() > 3) {
+    // Parameter coordinates of the other vertices: the 2x2 Gram system.
+    const FT g00 = dot(f.axis[0], f.axis[0]), g01 = dot(f.axis[0], f.axis[1]), g11 = dot(f.axis[1], f.axis[1]);
+    const FT det = g00 * g11 - g01 * g01;
+    for (std::size_t i = 3; i < v.size(); ++i) {
+      const Vec3<FT> d = sub(v[i], v[0]);
+      const FT r0 = dot(f.axis[0], d), r1 = dot(f.axis[1], d);
+      f.domain.push_back({(g11 * r0 - g01 * r1) / det, (g00 * r1 - g01 * r0) / det});
+    }
   }
-  for (std::size_t i = 0; i < f.domain.size(); ++i) {
-    const auto& a = f.domain[i];
-    const auto& b = f.domain[(i + 1) % f.domain.size()];
-    area2 += a[0] * b[1] - a[1] * b[0];
-  }
-  f.orientation = area2 > 0 ? 1 : -1;
   return f;
 }
 
-template <class FT, class Convert>
-FeatureGeometry<FT> convert(const FeatureGeometry<Exact>& e, Convert cv) {
-  FeatureGeometry<FT> f;
+bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
+  const Vec3E u = sub(b, a), w = sub(c, a);
+  return u[1] * w[2] - u[2] * w[1] == 0 && u[2] * w[0] - u[0] * w[2] == 0 && u[0] * w[1] - u[1] * w[0] == 0;
+}
+
+Vec3<Interval> enclose3(const Vec3E& x) { return {to_interval(x[0]), to_interval(x[1]), to_interval(x[2])}; }
+
+FeatureGeometry<double> midpoint(const FeatureGeometry<Interval>& e) {
+  auto cv = [](const Interval& x) { return CGAL::to_double(x); };
+  FeatureGeometry<double> f;
   f.dim = e.dim;
   f.orientation = e.orientation;
   for (int i = 0; i < 3; ++i) {
@@ -104,83 +129,185 @@ FeatureGeometry<FT> convert(const FeatureGeometry<Exact>& e, Convert cv) {
   return f;
 }
 
-void add(FeatureTable& t, FeatureGeometry<Exact> f, int part) {
-  t.interval.push_back(convert<Interval>(f, [](const Exact& x) { return to_interval(x); }));
-  t.approx.push_back(convert<double>(f, [](const Exact& x) { return CGAL::to_double(x); }));
-  t.exact.push_back(std::move(f));
-  t.part.push_back(part);
-}
+// The feature list of a body, in a fixed order shared by the interval and
+// exact tables: faces = convex pieces (skipping pieces degenerate under a
+// singular pose), edges = piece edges (shared diagonals once), segments,
+// points as degenerate edges; vertices = polygon vertices, segment ends,
+// points.  See proofs/contact-tests.md for why this set is complete.
+struct FeatureList {
+  std::vector<std::pair<std::vector<Vec3E>, int>> faces;
+  std::vector<std::pair<std::array<Vec3E, 2>, int>> edges;
+  std::vector<std::pair<Vec3E, int>> vertices;
+};
 
-}  // namespace
-
-PreparedBody prepare_body(const Body& body) {
-  PreparedBody pb;
-  pb.body = &body;
-  pb.moving = body.motion && body.motion->degree() >= 1;
-  Mat34E pose = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-  if (body.motion && !pb.moving) pose = body.motion->control_points[0];
-  auto place = [&](const Vec3E& x) { return pb.moving ? x : apply_map(pose, x); };
-
-  if (pb.moving) {
-    pb.metric = std::make_unique<const Metric>(Metric::from_mass(body.mass));
-    pb.metric_data = std::make_unique<MetricData>(*pb.metric);
-    pb.curve = homogeneous_curve(*body.motion);
-  }
-  const Metric* metric = pb.metric.get();
-
-  // Static parts and vertices.
+FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E&)>& place) {
+  FeatureList out;
   const int first_segment = static_cast<int>(body.polygons.size());
   const int first_point = first_segment + static_cast<int>(body.segments.size());
-  for (std::size_t i = 0; i < body.polygons.size(); ++i)
-    pb.parts.push_back({"polygon " + std::to_string(i), {}});
+  std::map<std::pair<Vec3E, Vec3E>, bool> seen;
   for (const ConvexPiece& piece : body.pieces) {
     std::vector<Vec3E> v;
     for (const Vec3E& x : piece.vertices) v.push_back(place(x));
-    for (std::size_t k = 1; k + 1 < v.size(); ++k)
-      pb.parts[piece.polygon].simplices.push_back(Simplex{3, {v[0], v[k], v[k + 1]}});
-    if (auto face = make_face(v, metric)) add(pb.faces, std::move(*face), piece.polygon);
-  }
-  // Edges of the convex pieces (shared diagonals once), then segments and
-  // points (a point is a degenerate edge, see proofs/contact-tests.md).
-  std::map<std::pair<Vec3E, Vec3E>, bool> seen;
-  for (const ConvexPiece& piece : body.pieces) {
-    const std::size_t n = piece.vertices.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      Vec3E p = place(piece.vertices[k]), q = place(piece.vertices[(k + 1) % n]);
+    // Degenerate only under a singular pose: its point set is then the union
+    // of its edges, which stay features.
+    if (!collinear(v[0], v[1], v[2])) out.faces.push_back({v, piece.polygon});
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const Vec3E& p = v[k];
+      const Vec3E& q = v[(k + 1) % v.size()];
       auto key = p < q ? std::pair{p, q} : std::pair{q, p};
-      if (seen.emplace(key, true).second) add(pb.edges, make_edge(p, q, metric), piece.polygon);
+      if (seen.emplace(key, true).second) out.edges.push_back({{p, q}, piece.polygon});
     }
   }
   for (std::size_t i = 0; i < body.polygons.size(); ++i)
-    for (const Vec3E& x : body.polygons[i]) add(pb.vertices, make_vertex(place(x), metric), static_cast<int>(i));
+    for (const Vec3E& x : body.polygons[i]) out.vertices.push_back({place(x), static_cast<int>(i)});
   for (std::size_t i = 0; i < body.segments.size(); ++i) {
     const int part = first_segment + static_cast<int>(i);
     const Vec3E p = place(body.segments[i][0]), q = place(body.segments[i][1]);
-    pb.parts.push_back({"segment " + std::to_string(i), {Simplex{2, {p, q, q}}}});
-    add(pb.edges, make_edge(p, q, metric), part);
-    add(pb.vertices, make_vertex(p, metric), part);
-    add(pb.vertices, make_vertex(q, metric), part);
+    out.edges.push_back({{p, q}, part});
+    out.vertices.push_back({p, part});
+    out.vertices.push_back({q, part});
   }
   for (std::size_t i = 0; i < body.points.size(); ++i) {
     const int part = first_point + static_cast<int>(i);
     const Vec3E p = place(body.points[i]);
-    pb.parts.push_back({"point " + std::to_string(i), {Simplex{1, {p, p, p}}}});
-    add(pb.edges, make_edge(p, p, metric), part);
-    add(pb.vertices, make_vertex(p, metric), part);
+    out.edges.push_back({{p, p}, part});
+    out.vertices.push_back({p, part});
   }
-  if (metric) {
-    Exact best = 0;
-    for (const auto& v : pb.vertices.exact)
-      if (v.q(2, 2) > best) best = v.q(2, 2);
-    pb.max_rho2 = CGAL::to_double(best);
+  return out;
+}
+
+// An enclosure of G^-1 by interval Gauss-Jordan (no pivoting: G is positive
+// definite).  Nothing when a pivot is not certainly positive.
+std::optional<std::array<Interval, 16>> interval_inverse(const std::array<Interval, 16>& g) {
+  RoundingGuard guard;
+  Interval m[4][8];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      m[r][c] = g[4 * r + c];
+      m[r][c + 4] = Interval(r == c ? 1 : 0);
+    }
+  for (int k = 0; k < 4; ++k) {
+    if (!(m[k][k].inf() > 0)) return std::nullopt;
+    const Interval pivot = m[k][k];
+    for (int c = 0; c < 8; ++c) m[k][c] /= pivot;
+    for (int r = 0; r < 4; ++r) {
+      if (r == k) continue;
+      const Interval f = m[r][k];
+      for (int c = 0; c < 8; ++c) m[r][c] -= f * m[k][c];
+    }
   }
-  return pb;
+  std::array<Interval, 16> inv;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) inv[4 * r + c] = m[r][c + 4];
+  for (const Interval& x : inv)
+    if (!std::isfinite(x.inf()) || !std::isfinite(x.sup())) return std::nullopt;
+  return inv;
+}
+
+}  // namespace
+
+PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motion->degree() >= 1), pose_(kIdentity) {
+  if (b.motion && !moving) pose_ = b.motion->control_points[0];
+  const bool identity = pose_ == kIdentity;
+  auto place = [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); };
+
+  // Static parts, exact.
+  for (std::size_t i = 0; i < b.polygons.size(); ++i) parts.push_back({"polygon " + std::to_string(i), {}});
+  for (const ConvexPiece& piece : b.pieces) {
+    std::vector<Vec3E> v;
+    for (const Vec3E& x : piece.vertices) v.push_back(place(x));
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) parts[piece.polygon].simplices.push_back(Simplex{3, {v[0], v[k], v[k + 1]}});
+  }
+  for (std::size_t i = 0; i < b.segments.size(); ++i) {
+    const Vec3E p = place(b.segments[i][0]), q = place(b.segments[i][1]);
+    parts.push_back({"segment " + std::to_string(i), {Simplex{2, {p, q, q}}}});
+  }
+  for (std::size_t i = 0; i < b.points.size(); ++i) {
+    const Vec3E p = place(b.points[i]);
+    parts.push_back({"point " + std::to_string(i), {Simplex{1, {p, p, p}}}});
+  }
+
+  // Metric, enclosed by intervals.
+  std::optional<std::array<Interval, 16>> gi;
+  if (moving) {
+    curve = homogeneous_curve(*b.motion);
+    {
+      RoundingGuard guard;
+      metric_data.g_interval.fill(Interval(0));
+      for (std::size_t i = 0; i < b.mass.points.size(); ++i) {
+        const Vec3<Interval> p = enclose3(b.mass.points[i]);
+        const Interval h[4] = {p[0], p[1], p[2], Interval(1)};
+        const Interval w = to_interval(b.mass.weights[i]);
+        for (int r = 0; r < 4; ++r)
+          for (int c = 0; c < 4; ++c) metric_data.g_interval[4 * r + c] += w * h[r] * h[c];
+      }
+    }
+    for (int i = 0; i < 16; ++i) metric_data.g_double[i] = CGAL::to_double(metric_data.g_interval[i]);
+    metric_data.exact = [this]() -> const Metric& { return exact_metric(); };
+    gi = interval_inverse(metric_data.g_interval);
+    if (!gi) {  // ill-conditioned: enclose the exact inverse instead
+      std::array<Interval, 16> e;
+      for (int i = 0; i < 16; ++i) e[i] = to_interval(exact_metric().inverse()[i]);
+      gi = e;
+    }
+  }
+
+  // Features, enclosed by intervals (computed from enclosures of the exact
+  // coordinates under the rounding guard).
+  const FeatureList list = feature_list(b, place);
+  const std::array<Interval, 16>* g = gi ? &*gi : nullptr;
+  RoundingGuard guard;
+  for (const auto& [v, part] : list.faces) {
+    std::vector<Vec3<Interval>> vi;
+    for (const Vec3E& x : v) vi.push_back(enclose3(x));
+    faces.interval.push_back(make_face<Interval>(vi, g));
+    faces.part.push_back(part);
+  }
+  for (const auto& [e, part] : list.edges) {
+    edges.interval.push_back(make_edge<Interval>(enclose3(e[0]), enclose3(e[1]), g));
+    edges.part.push_back(part);
+  }
+  double best = 0;
+  for (const auto& [v, part] : list.vertices) {
+    vertices.interval.push_back(make_vertex<Interval>(enclose3(v), g));
+    vertices.part.push_back(part);
+    best = std::max(best, vertices.interval.back().q(2, 2).sup());
+  }
+  max_rho2 = best;
+  for (FeatureTable* t : {&vertices, &edges, &faces})
+    for (const auto& f : t->interval) t->approx.push_back(midpoint(f));
+}
+
+const Metric& PreparedBody::exact_metric() const {
+  std::call_once(metric_once_, [this] { metric_ = std::make_unique<const Metric>(Metric::from_mass(body->mass)); });
+  return *metric_;
+}
+
+std::vector<Vec3E> PreparedBody::placed(const std::vector<Vec3E>& points) const {
+  std::vector<Vec3E> out;
+  for (const Vec3E& x : points) out.push_back(moving || pose_ == kIdentity ? x : apply_map(pose_, x));
+  return out;
+}
+
+const ExactFeatures& PreparedBody::exact() const {
+  std::call_once(exact_once_, [this] {
+    auto e = std::make_unique<ExactFeatures>();
+    const Mat44E* gi = moving ? &exact_metric().inverse() : nullptr;
+    const bool identity = pose_ == kIdentity;
+    const FeatureList list =
+        feature_list(*body, [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); });
+    for (const auto& [v, part] : list.faces) e->faces.push_back(make_face<Exact>(v, gi));
+    for (const auto& [ed, part] : list.edges) e->edges.push_back(make_edge<Exact>(ed[0], ed[1], gi));
+    for (const auto& [v, part] : list.vertices) e->vertices.push_back(make_vertex<Exact>(v, gi));
+    exact_ = std::move(e);
+  });
+  return *exact_;
 }
 
 SweptBox swept_box(const Body& body) {
   std::vector<Mat34E> maps;
   if (body.motion) maps = body.motion->control_points;
-  else maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+  else maps.push_back(kIdentity);
   std::vector<std::array<Interval, 12>> imaps;
   for (const Mat34E& m : maps) {
     std::array<Interval, 12> im;
@@ -191,7 +318,7 @@ SweptBox swept_box(const Body& body) {
   box.lo.fill(std::numeric_limits<double>::infinity());
   box.hi.fill(-std::numeric_limits<double>::infinity());
   auto add_point = [&](const Vec3E& x) {
-    const Interval xi[3] = {to_interval(x[0]), to_interval(x[1]), to_interval(x[2])};
+    const Vec3<Interval> xi = enclose3(x);
     RoundingGuard guard;
     for (const auto& m : imaps)
       for (int i = 0; i < 3; ++i) {

@@ -1,5 +1,7 @@
-// A body prepared for one check: its contact features in the three number
-// types, its metric, and its parts for exact static tests.
+// A body prepared for verification: its contact features enclosed by
+// intervals (and rounded to doubles for the fast kernel), its metric, its
+// parts for exact static tests, and - built only when first needed - the
+// same features and metric in exact rationals.
 #pragma once
 
 #include "kernels/contact.h"
@@ -9,20 +11,24 @@
 #include "src/scene/model.h"
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace tmcert {
 
-// One kind of contact feature (vertices, edges or faces) of a body, the same
-// geometry held exactly, as enclosing intervals and as doubles.
+// One kind of contact feature (vertices, edges or faces) of a body.
 struct FeatureTable {
-  std::vector<FeatureGeometry<Exact>> exact;
-  std::vector<FeatureGeometry<Interval>> interval;
-  std::vector<FeatureGeometry<double>> approx;
-  std::vector<int> part;  // index into PreparedBody::parts
-  std::size_t size() const { return exact.size(); }
+  std::vector<FeatureGeometry<Interval>> interval;  // enclose the exact features
+  std::vector<FeatureGeometry<double>> approx;      // for the fast kernel only
+  std::vector<int> part;                            // index into PreparedBody::parts
+  std::size_t size() const { return interval.size(); }
+};
+
+// The exact features, in the same order as the tables.
+struct ExactFeatures {
+  std::vector<FeatureGeometry<Exact>> vertices, edges, faces;
 };
 
 // A polygon, segment or point as written, as simplices (a polygon's convex
@@ -32,23 +38,36 @@ struct StaticPart {
   std::vector<Simplex> simplices;
 };
 
-struct PreparedBody {
+class PreparedBody {
+ public:
+  explicit PreparedBody(const Body& body);
+  PreparedBody(const PreparedBody&) = delete;
+  PreparedBody& operator=(const PreparedBody&) = delete;
+
   const Body* body = nullptr;
   bool moving = false;  // has a motion of degree >= 1
   // Fixed bodies: their pose (identity, or a one-point motion) is applied
-  // exactly and all geometry below is in world coordinates.  Moving bodies:
-  // the body frame.
+  // exactly and all geometry is in world coordinates.  Moving bodies: the
+  // body frame.
   std::vector<StaticPart> parts;
   FeatureTable vertices, edges, faces;
   // Moving bodies only.
-  // Heap-held so that MetricData may point at it while PreparedBody moves.
-  std::unique_ptr<const Metric> metric;
-  std::unique_ptr<MetricData> metric_data;
+  MetricData metric_data;
   HomogeneousCurve<Exact> curve;
-  double max_rho2 = 0;  // upper bound of max rho^2 over the body (at a vertex: rho^2 is convex)
-};
+  double max_rho2 = 0;  // about max rho^2 over the body (a tolerance, not a bound)
 
-PreparedBody prepare_body(const Body& body);
+  // Exact metric and features; thread-safe, computed once on first call.
+  const Metric& exact_metric() const;
+  const ExactFeatures& exact() const;
+
+ private:
+  std::vector<Vec3E> placed(const std::vector<Vec3E>& points) const;
+
+  Mat34E pose_;
+  mutable std::once_flag metric_once_, exact_once_;
+  mutable std::unique_ptr<const Metric> metric_;
+  mutable std::unique_ptr<const ExactFeatures> exact_;
+};
 
 // A box that certainly contains every point of the body at every parameter
 // of its motion: the hull of all vertices under all affine control points

@@ -54,6 +54,14 @@ struct PairRef {
 const FeatureTable& moving_table(const PreparedBody& b, ContactKind k) {
   return k == ContactKind::VertexFace ? b.vertices : k == ContactKind::EdgeEdge ? b.edges : b.faces;
 }
+const std::vector<FeatureGeometry<Exact>>& moving_exact(const PreparedBody& b, ContactKind k) {
+  const ExactFeatures& e = b.exact();
+  return k == ContactKind::VertexFace ? e.vertices : k == ContactKind::EdgeEdge ? e.edges : e.faces;
+}
+const std::vector<FeatureGeometry<Exact>>& other_exact(const PreparedBody& b, ContactKind k) {
+  const ExactFeatures& e = b.exact();
+  return k == ContactKind::VertexFace ? e.faces : k == ContactKind::EdgeEdge ? e.edges : e.vertices;
+}
 const FeatureTable& other_table(const PreparedBody& b, ContactKind k) {
   return k == ContactKind::VertexFace ? b.faces : k == ContactKind::EdgeEdge ? b.edges : b.vertices;
 }
@@ -91,8 +99,8 @@ Placement<FT> make_placement(const std::array<FT, 12 * B>& center, const FT& r2)
 
 template <int B>
 Metrics<B> metrics_of(const PreparedBody& m, const PreparedBody& f) {
-  if constexpr (B == 1) return {m.metric_data.get()};
-  else return {m.metric_data.get(), f.metric_data.get()};
+  if constexpr (B == 1) return {&m.metric_data};
+  else return {&m.metric_data, &f.metric_data};
 }
 
 template <int B>
@@ -134,7 +142,7 @@ struct FilteredPolicy {
             for (int e = 0; e < 12 * B; ++e) c[e] = Exact(b.ball.center[e]);
             b.exact = make_placement<B>(c, Exact(b.ball.r2));
           }
-          return contact_sign<Exact>(p.kind, X.exact[p.i], Y.exact[p.j], *b.exact);
+          return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], *b.exact);
         },
         stats.by_kind[static_cast<int>(p.kind)]);
   }
@@ -162,7 +170,7 @@ struct ExactPolicy {
     FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
     ++c.calls;
     ++c.exact_fallbacks;  // every call is exact
-    return contact_sign<Exact>(p.kind, moving_table(m, p.kind).exact[p.i], other_table(f, p.kind).exact[p.j],
+    return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j],
                                b.placement);
   }
 };
@@ -466,7 +474,7 @@ Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
 Verifier::~Verifier() = default;
 
 const PreparedBody& Verifier::prepared(int body) const {
-  std::call_once(once_[body], [&] { prepared_[body] = std::make_unique<PreparedBody>(prepare_body(scene_.bodies[body])); });
+  std::call_once(once_[body], [&] { prepared_[body] = std::make_unique<PreparedBody>(scene_.bodies[body]); });
   return *prepared_[body];
 }
 

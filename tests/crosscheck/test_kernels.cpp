@@ -71,7 +71,7 @@ BOOST_AUTO_TEST_CASE(predicates_fast_filtered_exact) {
     if (collinear(tm) || collinear(tf)) continue;
     Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
     bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
-    const PreparedBody pm = prepare_body(bm), pf = prepare_body(bf);
+    const PreparedBody pm(bm), pf(bf);
     // Placement: a near-rigid center with non-representable perturbations,
     // so that intervals are not exact points, and a radius near the value
     // where pairs switch between cleared and not cleared.
@@ -89,13 +89,15 @@ BOOST_AUTO_TEST_CASE(predicates_fast_filtered_exact) {
     for (ContactKind kind : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
       const FeatureTable& X = kind == ContactKind::VertexFace ? pm.vertices : kind == ContactKind::EdgeEdge ? pm.edges : pm.faces;
       const FeatureTable& Y = kind == ContactKind::VertexFace ? pf.faces : kind == ContactKind::EdgeEdge ? pf.edges : pf.vertices;
+      const auto& Xe = kind == ContactKind::VertexFace ? pm.exact().vertices : kind == ContactKind::EdgeEdge ? pm.exact().edges : pm.exact().faces;
+      const auto& Ye = kind == ContactKind::VertexFace ? pf.exact().faces : kind == ContactKind::EdgeEdge ? pf.exact().edges : pf.exact().vertices;
       for (std::size_t i = 0; i < X.size(); ++i)
         for (std::size_t j = 0; j < Y.size(); ++j) {
           ++total;
-          const CGAL::Sign exact = contact_sign<Exact>(kind, X.exact[i], Y.exact[j], pe);
+          const CGAL::Sign exact = contact_sign<Exact>(kind, Xe[i], Ye[j], pe);
           FilterCounters counters;
           const CGAL::Sign filt = filtered([&] { return contact_sign<Interval>(kind, X.interval[i], Y.interval[j], pi); },
-                                           [&] { return contact_sign<Exact>(kind, X.exact[i], Y.exact[j], pe); }, counters);
+                                           [&] { return contact_sign<Exact>(kind, Xe[i], Ye[j], pe); }, counters);
           fallbacks += static_cast<int>(counters.exact_fallbacks);
           const CGAL::Sign fast = contact_sign<double>(kind, X.approx[i], Y.approx[j], pd);
           if (filt != exact) {
@@ -128,20 +130,20 @@ BOOST_AUTO_TEST_CASE(touching_orbit_boundary_is_never_cleared) {
   std::array<Vec3E, 3> tm{Vec3E{0, 0, 1}, Vec3E{1, 0, 2}, Vec3E{0, 1, 2}};
   Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
   bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
-  const PreparedBody pm = prepare_body(bm), pf = prepare_body(bf);
+  const PreparedBody pm(bm), pf(bf);
   // R^2 rho(v0)^2 = 1 exactly: the fat vertex touches the plane z = 0.
-  const Exact rho2 = pm.metric->rho2(tm[0]);
+  const Exact rho2 = pm.exact_metric().rho2(tm[0]);
   Placement<Exact> pe;
   pe.g1 = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   pe.r2 = Exact(1) / rho2;
-  BOOST_CHECK(contact_sign<Exact>(ContactKind::VertexFace, pm.vertices.exact[0], pf.faces.exact[0], pe) == CGAL::ZERO);
+  BOOST_CHECK(contact_sign<Exact>(ContactKind::VertexFace, pm.exact().vertices[0], pf.exact().faces[0], pe) == CGAL::ZERO);
   Placement<Interval> pi;
   for (int e = 0; e < 12; ++e) pi.g1[e] = to_interval(pe.g1[e]);
   pi.r2 = to_interval(pe.r2);
   FilterCounters counters;
   const CGAL::Sign f = filtered(
       [&] { return contact_sign<Interval>(ContactKind::VertexFace, pm.vertices.interval[0], pf.faces.interval[0], pi); },
-      [&] { return contact_sign<Exact>(ContactKind::VertexFace, pm.vertices.exact[0], pf.faces.exact[0], pe); },
+      [&] { return contact_sign<Exact>(ContactKind::VertexFace, pm.exact().vertices[0], pf.exact().faces[0], pe); },
       counters);
   BOOST_CHECK(f == CGAL::ZERO);
   BOOST_CHECK_EQUAL(counters.exact_fallbacks, 1u);  // the filter cannot decide a zero

@@ -114,7 +114,7 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
     if (collinear(tm[0], tm[1], tm[2]) || collinear(tf[0], tf[1], tf[2])) continue;
     Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
     bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
-    const PreparedBody pm = prepare_body(bm), pf = prepare_body(bf);
+    const PreparedBody pm(bm), pf(bf);
     Placement<Exact> pe;
     for (auto& e : pe.g1) e = r.q(-4, 4, 4);
     pe.g1[0] += 1; pe.g1[5] += 1; pe.g1[10] += 1;
@@ -127,7 +127,7 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
       const Vec3E gx = apply_map(pe.g1, x);
       Exact d2 = 0;
       for (int i = 0; i < 3; ++i) d2 += (gx[i] - y[i]) * (gx[i] - y[i]);
-      return d2 - pe.r2 * pm.metric->rho2(x);
+      return d2 - pe.r2 * pm.exact_metric().rho2(x);
     };
     const int n = 8;
     auto check_pair = [&](ContactKind kind, const FeatureGeometry<Exact>& X, const FeatureGeometry<Exact>& Y,
@@ -151,18 +151,18 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
       BOOST_CHECK(f == s);
     };
     // Vertex 0 of the moving triangle against the fixed face.
-    check_pair(ContactKind::VertexFace, pm.vertices.exact[0], pf.faces.exact[0], pm.vertices.interval[0],
+    check_pair(ContactKind::VertexFace, pm.exact().vertices[0], pf.exact().faces[0], pm.vertices.interval[0],
                pf.faces.interval[0], [&](const Exact& a, const Exact& b) {
                  return std::pair{tm[0], a + b <= 1 ? on_triangle(tf, a, b) : on_triangle(tf, Exact(1) - a, Exact(1) - b)};
                });
     // Moving face against fixed vertex 0.
-    check_pair(ContactKind::FaceVertex, pm.faces.exact[0], pf.vertices.exact[0], pm.faces.interval[0],
+    check_pair(ContactKind::FaceVertex, pm.exact().faces[0], pf.exact().vertices[0], pm.faces.interval[0],
                pf.vertices.interval[0], [&](const Exact& a, const Exact& b) {
                  return std::pair{a + b <= 1 ? on_triangle(tm, a, b) : on_triangle(tm, Exact(1) - a, Exact(1) - b), tf[0]};
                });
     // Edge 0 against edge 0 (edges are p0->p1 of the respective triangles).
-    const auto& em = pm.edges.exact[0];
-    const auto& ef = pf.edges.exact[0];
+    const auto& em = pm.exact().edges[0];
+    const auto& ef = pf.exact().edges[0];
     check_pair(ContactKind::EdgeEdge, em, ef, pm.edges.interval[0], pf.edges.interval[0],
                [&](const Exact& a, const Exact& b) {
                  Vec3E x, y;

@@ -116,7 +116,7 @@ BOOST_AUTO_TEST_CASE(interval_halves_enclose_the_exact_halves) {
 BOOST_AUTO_TEST_CASE(ball_contains_the_piece) {
   Rng r(4);
   const Metric metric = some_metric();
-  const MetricData data(metric);
+  const MetricData data = metric_data_of(metric);
   int checked = 0;
   for (int iter = 0; iter < 20; ++iter) {
     const Motion m = random_motion(r, 1 + iter % 5, true);
