@@ -3,7 +3,10 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
 
+#include <cmath>
+#include <limits>
 #include <variant>
+#include <vector>
 
 namespace tmcert {
 
@@ -71,8 +74,65 @@ Simplex canonical(const Simplex& s) {
   return canonical(Simplex{2, {s.p[bi], s.p[bj], s.p[bj]}});
 }
 
+namespace {
+
+std::optional<Vec3E> construct_common_point(const Simplex& a, const Simplex& b);
+
+}  // namespace
+
 std::optional<Vec3E> common_point(const Simplex& a_in, const Simplex& b_in) {
   const Simplex a = canonical(a_in), b = canonical(b_in);
+  std::optional<Vec3E> p = construct_common_point(a, b);
+  // Independent confirmation with exact predicates.
+  if (p && (!point_in(*p, a) || !point_in(*p, b))) return std::nullopt;
+  return p;
+}
+
+bool certainly_disjoint(const SimplexI& a, const SimplexI& b) {
+  using V = std::array<double, 3>;
+  auto mid = [](const std::array<Interval, 3>& x) { return V{CGAL::to_double(x[0]), CGAL::to_double(x[1]), CGAL::to_double(x[2])}; };
+  auto diff = [](const V& x, const V& y) { return V{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+  auto cross = [](const V& x, const V& y) {
+    return V{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+  };
+  // Candidate axes from approximate geometry (a fixed axis needs no rigour).
+  V pa[3], pb[3];
+  for (int i = 0; i < a.count; ++i) pa[i] = mid(a.p[i]);
+  for (int i = 0; i < b.count; ++i) pb[i] = mid(b.p[i]);
+  std::vector<V> edges_a, edges_b, axes = {V{1, 0, 0}, V{0, 1, 0}, V{0, 0, 1}};
+  for (int i = 0; i < a.count; ++i)
+    for (int j = i + 1; j < a.count; ++j) edges_a.push_back(diff(pa[j], pa[i]));
+  for (int i = 0; i < b.count; ++i)
+    for (int j = i + 1; j < b.count; ++j) edges_b.push_back(diff(pb[j], pb[i]));
+  if (a.count == 3) axes.push_back(cross(edges_a[0], edges_a[1]));
+  if (b.count == 3) axes.push_back(cross(edges_b[0], edges_b[1]));
+  for (const V& e : edges_a)
+    for (const V& f : edges_b) axes.push_back(cross(e, f));
+  for (const V& n : axes) {
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
+    // Projection range of a simplex; false when a bound is NaN (std::min
+    // and std::max would silently drop it).
+    auto range = [&](const SimplexI& s, double& lo, double& hi) {
+      lo = std::numeric_limits<double>::infinity();
+      hi = -lo;
+      for (int i = 0; i < s.count; ++i) {
+        const Interval d = s.p[i][0] * n[0] + s.p[i][1] * n[1] + s.p[i][2] * n[2];
+        if (std::isnan(d.inf()) || std::isnan(d.sup())) return false;
+        lo = std::min(lo, d.inf());
+        hi = std::max(hi, d.sup());
+      }
+      return true;
+    };
+    double alo, ahi, blo, bhi;
+    if (!range(a, alo, ahi) || !range(b, blo, bhi)) continue;
+    if (ahi < blo || bhi < alo) return true;
+  }
+  return false;
+}
+
+namespace {
+
+std::optional<Vec3E> construct_common_point(const Simplex& a, const Simplex& b) {
   if (a.count == 1) return point_in(a.p[0], b);
   if (b.count == 1) return point_in(b.p[0], a);
   const Segment sa(to_point(a.p[0]), to_point(a.p[1]));
@@ -83,5 +143,7 @@ std::optional<Vec3E> common_point(const Simplex& a_in, const Simplex& b_in) {
   if (b.count == 2) return intersect(sb, ta);
   return intersect(ta, Triangle(to_point(b.p[0]), to_point(b.p[1]), to_point(b.p[2])));
 }
+
+}  // namespace
 
 }  // namespace tmcert

@@ -23,7 +23,21 @@ struct Simplex {
 Simplex canonical(const Simplex& s);
 
 // A point common to both closed simplices, computed exactly, or nothing when
-// they are disjoint.
+// they are disjoint.  The point is re-checked to lie on both (exact has_on
+// tests), so a reported point never rests on construction code alone.
 std::optional<Vec3E> common_point(const Simplex& a, const Simplex& b);
+
+// The same simplex with interval coordinates (enclosures).
+struct SimplexI {
+  int count = 1;
+  std::array<std::array<Interval, 3>, 3> p;
+};
+
+// Filter for the static test: true only when the two simplices are proven
+// disjoint by a separating axis (coordinate axes, triangle normals, cross
+// products of edges, all rounded to doubles: any fixed axis will do) with
+// interval projections.  false means "not proven", never "they touch".
+// Call under RoundingGuard.
+bool certainly_disjoint(const SimplexI& a, const SimplexI& b);
 
 }  // namespace tmcert

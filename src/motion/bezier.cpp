@@ -18,22 +18,36 @@ HomogeneousCurve<Exact, 1> homogeneous_curve(const Motion& motion) {
 
 namespace {
 
-Exact binomial(int n, int k) {
-  Exact r = 1;
-  for (int i = 1; i <= k; ++i) r = r * Exact(n - k + i) / Exact(i);
-  return r;
+// Binomial coefficients as exact integers (Pascal's triangle, no division).
+std::vector<std::vector<CGAL::Gmpz>> binomials(int n) {
+  std::vector<std::vector<CGAL::Gmpz>> c(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    c[i].assign(i + 1, CGAL::Gmpz(1));
+    for (int k = 1; k < i; ++k) c[i][k] = c[i - 1][k - 1] + c[i - 1][k];
+  }
+  return c;
 }
 
 // Bernstein coefficients of the product of two polynomials given by their
 // Bernstein coefficients (degrees n and m):
 //   c_k = sum_{i+j=k} C(n,i) C(m,j) / C(n+m,k) a_i b_j.
-// A positive combination: positive inputs give positive outputs.
-std::vector<Exact> bernstein_product(const std::vector<Exact>& a, const std::vector<Exact>& b) {
+// A positive combination: positive inputs give positive outputs.  A factor
+// of degree 0 is a plain scaling.
+std::vector<Exact> bernstein_product(const std::vector<Exact>& a, const std::vector<Exact>& b,
+                                     const std::vector<std::vector<CGAL::Gmpz>>& binom) {
   const int n = static_cast<int>(a.size()) - 1, m = static_cast<int>(b.size()) - 1;
+  if (m == 0) {
+    if (b[0] == 1) return a;
+    std::vector<Exact> c(a);
+    for (Exact& x : c) x *= b[0];
+    return c;
+  }
   std::vector<Exact> c(n + m + 1, Exact(0));
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= m; ++j) c[i + j] += binomial(n, i) * binomial(m, j) * a[i] * b[j];
-  for (int k = 0; k <= n + m; ++k) c[k] /= binomial(n + m, k);
+  for (int i = 0; i <= n; ++i) {
+    if (a[i] == 0) continue;
+    for (int j = 0; j <= m; ++j) c[i + j] += Exact(binom[n][i] * binom[m][j]) * a[i] * b[j];
+  }
+  for (int k = 0; k <= n + m; ++k) c[k] /= Exact(binom[n + m][k]);
   return c;
 }
 
@@ -47,6 +61,7 @@ HomogeneousCurve<Exact, 2> joint_curve(const Motion& first, const Motion& second
   const Motion* motions[2] = {&first, &second};
   const bool polynomial = constant_weights(first) && constant_weights(second);
   const int n1 = first.degree(), n2 = second.degree();
+  const auto binom = binomials(n1 + n2);
   // Per block: the polynomial each coordinate's numerator is multiplied by,
   // and the common weight.
   std::vector<Exact> weight;
@@ -59,7 +74,7 @@ HomogeneousCurve<Exact, 2> joint_curve(const Motion& first, const Motion& second
     factor[0].assign(n - n1 + 1, Exact(1));
     factor[1].assign(n - n2 + 1, Exact(1));
   } else {
-    weight = bernstein_product(first.weights, second.weights);
+    weight = bernstein_product(first.weights, second.weights, binom);
     factor[0] = second.weights;
     factor[1] = first.weights;
   }
@@ -69,8 +84,8 @@ HomogeneousCurve<Exact, 2> joint_curve(const Motion& first, const Motion& second
     for (int e = 0; e < 12; ++e) {
       std::vector<Exact> numerator(m.control_points.size());
       for (std::size_t k = 0; k < numerator.size(); ++k)
-        numerator[k] = (polynomial ? Exact(1) : m.weights[k]) * m.control_points[k][e];
-      const std::vector<Exact> product = bernstein_product(numerator, factor[b]);
+        numerator[k] = polynomial ? m.control_points[k][e] : m.weights[k] * m.control_points[k][e];
+      const std::vector<Exact> product = bernstein_product(numerator, factor[b], binom);
       for (std::size_t k = 0; k < c.size(); ++k) c[k][12 * b + e] = product[k];
     }
   }
@@ -170,16 +185,21 @@ BallD<B> bounding_ball(const HomogeneousCurve<Interval, B>& piece, const Metrics
   double r2 = 0;
   for (const HomogeneousPoint<Interval, B>& h : piece) {
     Interval s(0);
+    const Interval inv_w = Interval(1) / h[W];  // encloses 1/w: P = N * (1/w) is enclosed
     for (int b = 0; b < B; ++b) {
       const std::array<Interval, 16>& g = metrics[b]->g_interval;
       for (int row = 0; row < 3; ++row) {
         Interval d[4];
         for (int c = 0; c < 4; ++c) {
           const int e = 12 * b + 4 * row + c;
-          d[c] = h[e] / h[W] - Interval(ball.center[e]);
+          d[c] = h[e] * inv_w - Interval(ball.center[e]);
         }
-        for (int r = 0; r < 4; ++r)
-          for (int c = 0; c < 4; ++c) s += d[r] * g[4 * r + c] * d[c];
+        // d^T G d with G symmetric: diagonal plus twice the upper triangle.
+        for (int r = 0; r < 4; ++r) {
+          Interval t = g[5 * r] * d[r];
+          for (int c = r + 1; c < 4; ++c) t += Interval(2) * g[4 * r + c] * d[c];
+          s += d[r] * t;
+        }
       }
     }
     const double sup = s.sup();

@@ -315,6 +315,7 @@ SweptBox swept_box(const Body& body) {
     imaps.push_back(im);
   }
   SweptBox box;
+  bool nan = false;
   box.lo.fill(std::numeric_limits<double>::infinity());
   box.hi.fill(-std::numeric_limits<double>::infinity());
   auto add_point = [&](const Vec3E& x) {
@@ -323,6 +324,7 @@ SweptBox swept_box(const Body& body) {
     for (const auto& m : imaps)
       for (int i = 0; i < 3; ++i) {
         const Interval y = m[4 * i] * xi[0] + m[4 * i + 1] * xi[1] + m[4 * i + 2] * xi[2] + m[4 * i + 3];
+        if (std::isnan(y.inf()) || std::isnan(y.sup())) nan = true;  // std::min would drop it
         box.lo[i] = std::min(box.lo[i], y.inf());
         box.hi[i] = std::max(box.hi[i], y.sup());
       }
@@ -334,7 +336,7 @@ SweptBox swept_box(const Body& body) {
     add_point(s[1]);
   }
   for (const Vec3E& x : body.points) add_point(x);
-  box.valid = true;
+  box.valid = !nan;
   for (int i = 0; i < 3; ++i)
     if (!std::isfinite(box.lo[i]) || !std::isfinite(box.hi[i]) || !(box.lo[i] <= box.hi[i])) box.valid = false;
   return box;

@@ -237,6 +237,7 @@ struct Check {
   const PreparedBody& other;     // body 2: fixed (B = 1) or moving (B = 2)
   bool swapped;                  // the check names body 2 first
   const HomogeneousCurve<Exact, B>& curve;
+  HomogeneousCurve<Interval, B> root_interval;  // encloses `curve`
   const Motion& motion;          // body 1's: the parameter interval
   double eps2;                   // epsilon^2 for the stop test (a tolerance)
   double rho2_sum;               // max rho1^2 (+ max rho2^2): the fat size per unit R^2
@@ -253,15 +254,72 @@ struct Check {
     result.verdict = Verdict::Collision;
   }
 
-  // Both bodies' parts placed exactly at curve parameter u.
+  // The configuration at curve parameter u: interval maps first (cheap),
+  // exact only for simplex pairs the interval filter cannot separate.
   std::optional<StaticHit> static_test(const Exact& u, const std::set<std::pair<int, int>>* only) {
-    const std::vector<StaticPart> placed = transformed_parts(moving, evaluate<B>(curve, u, 0));
-    if constexpr (B == 2) {
-      const std::vector<StaticPart> placed_other = transformed_parts(other, evaluate<B>(curve, u, 1));
-      return first_hit(placed, placed_other, only, result.stats);
-    } else {
-      return first_hit(placed, other.parts, only, result.stats);
+    std::array<std::array<Interval, 12>, B> maps;
+    {
+      RoundingGuard guard;
+      const Interval ui = to_interval(u), vi = Interval(1) - ui;
+      HomogeneousCurve<Interval, B> work = root_interval;
+      constexpr std::size_t W = kHomogeneousSize<B> - 1;
+      for (std::size_t level = 1; level < work.size(); ++level)
+        for (std::size_t k = 0; k + level < work.size(); ++k)
+          for (std::size_t e = 0; e <= W; ++e) work[k][e] = vi * work[k][e] + ui * work[k + 1][e];
+      for (int b = 0; b < B; ++b)
+        for (int e = 0; e < 12; ++e) maps[b][e] = work[0][12 * b + e] / work[0][W];
     }
+    auto placed = [](const Simplex& s, const std::array<Interval, 12>* m) {
+      SimplexI out;
+      out.count = s.count;
+      for (int k = 0; k < s.count; ++k) {
+        const std::array<Interval, 3> x = {to_interval(s.p[k][0]), to_interval(s.p[k][1]), to_interval(s.p[k][2])};
+        if (!m) { out.p[k] = x; continue; }
+        for (int i = 0; i < 3; ++i)
+          out.p[k][i] = (*m)[4 * i] * x[0] + (*m)[4 * i + 1] * x[1] + (*m)[4 * i + 2] * x[2] + (*m)[4 * i + 3];
+      }
+      return out;
+    };
+    struct Candidate { int pi, si, pj, sj; };
+    std::vector<Candidate> candidates;
+    {
+      RoundingGuard guard;
+      for (std::size_t i = 0; i < moving.parts.size(); ++i)
+        for (std::size_t j = 0; j < other.parts.size(); ++j) {
+          if (only && !only->count({static_cast<int>(i), static_cast<int>(j)})) continue;
+          const auto& A = moving.parts[i].simplices;
+          const auto& Bs = other.parts[j].simplices;
+          for (std::size_t si = 0; si < A.size(); ++si) {
+            const SimplexI a = placed(A[si], &maps[0]);
+            for (std::size_t sj = 0; sj < Bs.size(); ++sj) {
+              const SimplexI b = placed(Bs[sj], B == 2 ? &maps[B - 1] : nullptr);
+              if (!certainly_disjoint(a, b))
+                candidates.push_back({static_cast<int>(i), static_cast<int>(si), static_cast<int>(j), static_cast<int>(sj)});
+            }
+          }
+        }
+    }
+    if (candidates.empty()) return std::nullopt;
+    const Mat34E m1 = evaluate<B>(curve, u, 0);
+    std::optional<Mat34E> m2;
+    if constexpr (B == 2) m2 = evaluate<B>(curve, u, 1);
+    auto exact_placed = [](Simplex s, const Mat34E* m) {
+      if (m)
+        for (int k = 0; k < s.count; ++k) {
+          Vec3E r;
+          for (int i = 0; i < 3; ++i)
+            r[i] = (*m)[4 * i] * s.p[k][0] + (*m)[4 * i + 1] * s.p[k][1] + (*m)[4 * i + 2] * s.p[k][2] + (*m)[4 * i + 3];
+          s.p[k] = r;
+        }
+      return s;
+    };
+    for (const Candidate& c : candidates) {
+      ++result.stats.static_tests;
+      const Simplex a = exact_placed(moving.parts[c.pi].simplices[c.si], &m1);
+      const Simplex b = exact_placed(other.parts[c.pj].simplices[c.sj], m2 ? &*m2 : nullptr);
+      if (auto p = common_point(a, b)) return StaticHit{c.pi, c.pj, *p};
+    }
+    return std::nullopt;
   }
 
   // Exact static test of the configuration at curve parameter u, restricted
@@ -449,11 +507,11 @@ CheckResult run_check(int a, int b, const PreparedBody& pa, const PreparedBody& 
   const Motion& motion = *moving.body->motion;
   const double eps = CGAL::to_double(options.epsilon);
   if (!other.moving) {
-    Check<1> check{moving, other, swapped, moving.curve, motion, eps * eps, moving.max_rho2, options, result};
+    Check<1> check{moving, other, swapped, moving.curve, enclose(moving.curve), motion, eps * eps, moving.max_rho2, options, result};
     check.run();
   } else {
     const HomogeneousCurve<Exact, 2> joint = joint_curve(motion, *other.body->motion);
-    Check<2> check{moving, other, false, joint, motion, eps * eps, moving.max_rho2 + other.max_rho2, options, result};
+    Check<2> check{moving, other, false, joint, enclose(joint), motion, eps * eps, moving.max_rho2 + other.max_rho2, options, result};
     check.run();
   }
   if (result.verdict != Verdict::Collision)
