@@ -121,6 +121,8 @@ const char* kind_name(Node::Kind kind) {
 // the call stack; the nesting limit also bounds the recursion of Node's
 // destructor.  On error a callback stores the message and returns false,
 // which stops the parse.
+constexpr char kNumberMark = '\x01';
+
 class TreeBuilder {
  public:
   using json = nlohmann::json;
@@ -152,6 +154,9 @@ class TreeBuilder {
     return add_number(std::move(text));
   }
   bool string(std::string& value) {
+    // A number token too large for the reader's double, marked by
+    // quote_overflowing_numbers: still a number, with its exact text.
+    if (value.size() > 1 && value[0] == kNumberMark) return add_number(value.substr(1));
     Node node;
     node.kind = Node::Kind::String;
     node.text = std::move(value);
@@ -255,10 +260,12 @@ class TreeBuilder {
   std::string error_;
 };
 
-// A JSON number such as 1e400 is valid JSON and means an exact rational, but
-// the reader converts every number to double on the way and stops at an
-// overflow.  Such tokens are quoted before reading: a string holding a
-// decimal means the same exact number in a scene.
+// A JSON number such as 1e400 (or a 400-digit integer) is valid JSON and
+// means an exact rational, but the reader converts every number to double on
+// the way and stops at an overflow.  Such tokens are turned into strings
+// behind a control character (U+0001, kNumberMark) before reading, and the
+// tree builder turns them back into numbers with their exact text: so they
+// stay numbers (a name cannot be 1e400).
 std::string quote_overflowing_numbers(const std::string& text) {
   std::string out;
   out.reserve(text.size());
@@ -277,8 +284,7 @@ std::string quote_overflowing_numbers(const std::string& text) {
       std::size_t j = i;
       while (j < text.size() && std::strchr("+-0123456789.eE", text[j]) != nullptr) ++j;
       const std::string token = text.substr(i, j - i);
-      const bool has_exponent = token.find_first_of("eE") != std::string::npos;
-      if (has_exponent && std::isinf(std::strtod(token.c_str(), nullptr))) out += '"' + token + '"';
+      if (std::isinf(std::strtod(token.c_str(), nullptr))) out += "\"\\u0001" + token + '"';
       else out += token;
       i = j;
       continue;
@@ -735,6 +741,10 @@ class SceneReader {
 
     if (const Node* solid = find(obj, "solid")) {
       if (solid->kind != Node::Kind::Boolean) fail(member_path(path, "solid"), "expected true or false");
+      // Inside-counts-as-contact needs a closed surface and an exact
+      // containment test (the meshes issue); accepting it silently would
+      // certify "safe" for a body moving inside a solid.
+      if (solid->boolean) fail(member_path(path, "solid"), "solid bodies are not supported yet");
       b.solid = solid->boolean;
     }
     if (const Node* mass = find(obj, "mass")) {

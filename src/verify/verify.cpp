@@ -537,6 +537,14 @@ const PreparedBody& Verifier::prepared(int body) const {
 }
 
 CheckResult Verifier::check(int a, int b) const {
+  const Body& x = scene_.bodies[a];
+  const Body& y = scene_.bodies[b];
+  const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
+  // The joint curve pairs the motions by curve parameter: that is the same
+  // instant only when the scene intervals agree.
+  if (mx && my && (x.motion->t0 != y.motion->t0 || x.motion->t1 != y.motion->t1))
+    throw InputError(scene_.source + ": checks: [\"" + x.name + "\", \"" + y.name +
+                     "\"]: two moving bodies must share their motion interval");
   if (disjoint(boxes_[a], boxes_[b])) {
     // Certified prefilter: the boxes hold everything the bodies sweep.
     CheckResult result;

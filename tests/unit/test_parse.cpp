@@ -144,13 +144,16 @@ BOOST_AUTO_TEST_CASE(scene_settings) {
              200);
 }
 
-BOOST_AUTO_TEST_CASE(annotations_and_solid_are_accepted) {
+BOOST_AUTO_TEST_CASE(annotations_and_solid_false_are_accepted) {
   const Scene s = read_scene(kHead + R"("_note": 1, "comment": "x", "bodies": [
-      {"name": "a", "comment": "c", "_id": [1], "solid": true, "points": [[0,0,0]],
+      {"name": "a", "comment": "c", "_id": [1], "solid": false, "points": [[0,0,0]],
        "mass": {"_m": 0, "points": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "weights": [1,1,1,1]},
        "motion": {"type": "rational_bezier", "comment": "m", "control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]]]}}]})");
-  BOOST_TEST(s.bodies[0].solid);
+  BOOST_TEST(!s.bodies[0].solid);
   BOOST_TEST(!read_scene(scene_of(R"({"name": "a", "points": [[0,0,0]]})")).bodies[0].solid);
+  // Solid bodies need the containment test of the meshes issue: refused,
+  // never silently treated as a surface (that would certify a false "safe").
+  expect_error(scene_of(R"({"name": "a", "points": [[0,0,0]], "solid": true})"), "bodies[0].solid", "not supported");
 }
 
 // ---------------------------------------------------------------- masses
@@ -307,6 +310,12 @@ BOOST_AUTO_TEST_CASE(json_errors) {
     const Scene big = read_scene(scene_of(R"({"name": "a", "points": [[0,0,1e400]], "_s": "1e999 \" [1e999]"})"));
     BOOST_TEST(big.bodies[0].points[0][2] == Exact(p10));
     BOOST_TEST(read_scene(scene_of(R"({"name": "a", "points": [[0,0,-2.5E+400]]})")).bodies[0].points[0][2] < Exact(0));
+    // A 400-digit integer without exponent, too.
+    const std::string digits = "1" + std::string(400, '0');
+    BOOST_TEST(read_scene(scene_of(R"({"name": "a", "points": [[0,0,)" + digits + "]]}")).bodies[0].points[0][2] ==
+               Exact(p10));
+    // Still a number: not accepted where a string is required.
+    expect_error(scene_of(R"({"name": 1e400, "points": [[0,0,0]]})"), "bodies[0].name", "");
   }
   BOOST_TEST(read_scene(scene_of(R"({"name": "a", "points": [[0,0,"1e400"]]})")).bodies[0].points[0][2] > Exact(1));
 }
