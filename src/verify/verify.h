@@ -6,6 +6,7 @@
 #include "src/scene/model.h"
 
 #include <cstdint>
+#include <ostream>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -22,6 +23,8 @@ enum class StopReason { Epsilon, Depth, Limit };
 const char* to_string(Verdict v);
 const char* to_string(KernelKind k);
 const char* to_string(StopReason r);
+
+inline std::ostream& operator<<(std::ostream& out, Verdict v) { return out << to_string(v); }
 
 struct VerifyOptions {
   KernelKind kernel = KernelKind::Filtered;
