@@ -141,6 +141,11 @@ double metric_distance2(const Affine<B>& p, const Affine<B>& q, const Metrics<B>
 // better of their centroid and the midpoint of their farthest pair.
 template <int B>
 Affine<B> choose_center(const std::vector<Affine<B>>& pts, const Metrics<B>& metrics) {
+  if (pts.size() <= 2) {  // a segment (or point): its midpoint is the best center
+    Affine<B> c;
+    for (int e = 0; e < 12 * B; ++e) c[e] = 0.5 * (pts.front()[e] + pts.back()[e]);
+    return c;
+  }
   Affine<B> centroid{};
   for (const Affine<B>& p : pts)
     for (int e = 0; e < 12 * B; ++e) centroid[e] += p[e] / static_cast<double>(pts.size());

@@ -318,34 +318,110 @@ SweptBox swept_box(const Body& body) {
   bool nan = false;
   box.lo.fill(std::numeric_limits<double>::infinity());
   box.hi.fill(-std::numeric_limits<double>::infinity());
+  std::vector<Vec3E> all;
+  for (const auto& poly : body.polygons) all.insert(all.end(), poly.begin(), poly.end());
+  for (const auto& s : body.segments) all.insert(all.end(), s.begin(), s.end());
+  all.insert(all.end(), body.points.begin(), body.points.end());
+  const bool keep = all.size() <= static_cast<std::size_t>(kSweptPointsMax);
+  if (keep) {
+    box.vertices = static_cast<int>(all.size());
+    box.points.resize(all.size() * imaps.size());
+  }
+  int vertex = 0;
   auto add_point = [&](const Vec3E& x) {
     const Vec3<Interval> xi = enclose3(x);
     RoundingGuard guard;
-    for (const auto& m : imaps)
+    for (std::size_t k = 0; k < imaps.size(); ++k) {
+      const auto& m = imaps[k];
       for (int i = 0; i < 3; ++i) {
         const Interval y = m[4 * i] * xi[0] + m[4 * i + 1] * xi[1] + m[4 * i + 2] * xi[2] + m[4 * i + 3];
         if (std::isnan(y.inf()) || std::isnan(y.sup())) nan = true;  // std::min would drop it
         box.lo[i] = std::min(box.lo[i], y.inf());
         box.hi[i] = std::max(box.hi[i], y.sup());
+        if (keep) box.points[k * all.size() + vertex][i] = y;
       }
+    }
+    ++vertex;
   };
-  for (const auto& poly : body.polygons)
-    for (const Vec3E& x : poly) add_point(x);
-  for (const auto& s : body.segments) {
-    add_point(s[0]);
-    add_point(s[1]);
-  }
-  for (const Vec3E& x : body.points) add_point(x);
+  for (const Vec3E& x : all) add_point(x);
   box.valid = !nan;
   for (int i = 0; i < 3; ++i)
     if (!std::isfinite(box.lo[i]) || !std::isfinite(box.hi[i]) || !(box.lo[i] <= box.hi[i])) box.valid = false;
   return box;
 }
 
+namespace {
+
+using V3 = std::array<double, 3>;
+
+V3 mid(const std::array<Interval, 3>& x) { return {CGAL::to_double(x[0]), CGAL::to_double(x[1]), CGAL::to_double(x[2])}; }
+V3 minus(const V3& x, const V3& y) { return {x[0] - y[0], x[1] - y[1], x[2] - y[2]}; }
+V3 cross(const V3& x, const V3& y) {
+  return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+}
+
+// Projection range of interval points on a fixed axis; false on NaN.
+bool project(const std::vector<std::array<Interval, 3>>& pts, const V3& n, double& lo, double& hi) {
+  lo = std::numeric_limits<double>::infinity();
+  hi = -lo;
+  for (const auto& p : pts) {
+    const Interval d = p[0] * n[0] + p[1] * n[1] + p[2] * n[2];
+    if (std::isnan(d.inf()) || std::isnan(d.sup())) return false;
+    lo = std::min(lo, d.inf());
+    hi = std::max(hi, d.sup());
+  }
+  return true;
+}
+
+// Candidate axes from approximate geometry (any fixed axis is sound): for
+// each pose, the edges of each body, their cross products across bodies and
+// each body's triangle normals; and the line between the hulls' centroids.
+bool separated_hulls(const SweptBox& a, const SweptBox& b) {
+  const std::size_t poses_a = a.points.size() / a.vertices, poses_b = b.points.size() / b.vertices;
+  std::vector<V3> axes;
+  auto edges = [](const SweptBox& s, std::size_t k) {
+    std::vector<V3> e;
+    for (int i = 0; i < s.vertices; ++i)
+      for (int j = i + 1; j < s.vertices; ++j)
+        e.push_back(minus(mid(s.points[k * s.vertices + j]), mid(s.points[k * s.vertices + i])));
+    return e;
+  };
+  for (std::size_t k : {std::size_t(0), poses_a - 1})
+    for (std::size_t l : {std::size_t(0), poses_b - 1}) {
+      const std::vector<V3> ea = edges(a, k), eb = edges(b, l);
+      for (const V3& x : ea)
+        for (const V3& y : eb) axes.push_back(cross(x, y));
+      if (ea.size() >= 3) axes.push_back(cross(ea[0], ea[1]));
+      if (eb.size() >= 3) axes.push_back(cross(eb[0], eb[1]));
+      // A moving vertex against the other body's edges: its path direction.
+      if (a.vertices == 1 && poses_a > 1)
+        for (const V3& y : eb) axes.push_back(cross(minus(mid(a.points.back()), mid(a.points.front())), y));
+      if (b.vertices == 1 && poses_b > 1)
+        for (const V3& x : ea) axes.push_back(cross(minus(mid(b.points.back()), mid(b.points.front())), x));
+    }
+  V3 ca{0, 0, 0}, cb{0, 0, 0};
+  for (const auto& p : a.points) { const V3 m = mid(p); for (int i = 0; i < 3; ++i) ca[i] += m[i]; }
+  for (const auto& p : b.points) { const V3 m = mid(p); for (int i = 0; i < 3; ++i) cb[i] += m[i]; }
+  for (int i = 0; i < 3; ++i) { ca[i] /= a.points.size(); cb[i] /= b.points.size(); }
+  axes.push_back(minus(cb, ca));
+  RoundingGuard guard;
+  for (const V3& n : axes) {
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+    double alo, ahi, blo, bhi;
+    if (!project(a.points, n, alo, ahi) || !project(b.points, n, blo, bhi)) continue;
+    if (ahi < blo || bhi < alo) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 bool disjoint(const SweptBox& a, const SweptBox& b) {
   if (!a.valid || !b.valid) return false;
   for (int i = 0; i < 3; ++i)
     if (a.hi[i] < b.lo[i] || b.hi[i] < a.lo[i]) return true;
+  if (a.vertices > 0 && b.vertices > 0) return separated_hulls(a, b);
   return false;
 }
 

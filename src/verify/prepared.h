@@ -73,14 +73,24 @@ class PreparedBody {
 // of its motion: the hull of all vertices under all affine control points
 // (convex hull property), computed with outward rounding.  `valid` is false
 // when a bound is not finite.
+// For small bodies (at most kSweptPointsMax vertices, such as the points,
+// segments and triangles of continuous-collision queries) the images of the
+// vertices under every control point are kept too: their convex hull holds
+// everything the body sweeps, and a separating axis between two such hulls
+// clears a check without any further work.
 struct SweptBox {
   std::array<double, 3> lo{}, hi{};
   bool valid = false;
+  int vertices = 0;                                  // per pose, 0 when not kept
+  std::vector<std::array<Interval, 3>> points;       // pose-major: points[k * vertices + v]
 };
+
+constexpr int kSweptPointsMax = 4;
 
 SweptBox swept_box(const Body& body);
 
-// True when the boxes are certainly disjoint: the bodies never touch.
+// True when the bodies certainly never touch: their boxes are disjoint, or
+// (for small bodies) a plane separates the hulls of their swept points.
 bool disjoint(const SweptBox& a, const SweptBox& b);
 
 // The static parts transformed exactly by an affine map.

@@ -225,10 +225,23 @@ std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, const std::
 
 // ------------------------------------------------------------------ search
 
+// The deepest subdivision level: a node's parameter interval is
+// [index, index + 1] / 2^depth with a 64-bit index.
+constexpr int kDepthCap = 62;
+
 struct Node {
-  Exact u0, u1;  // curve parameters, dyadic
+  std::uint64_t index;  // the piece is [index, index + 1] / 2^depth of the curve parameter
   int depth;
   std::vector<PairRef> alive;
+
+  Exact u0() const { return at(index); }
+  Exact u1() const { return at(index + 1); }
+  Exact mid() const { return (u0() + u1()) / 2; }
+  Exact at(std::uint64_t k) const {
+    CGAL::Gmpz den;
+    mpz_setbit(den.mpz(), static_cast<mp_bitcnt_t>(depth));
+    return Exact(CGAL::Gmpz(static_cast<unsigned long>(k)), den);
+  }
 };
 
 template <int B>
@@ -336,7 +349,7 @@ struct Check {
   }
 
   void record(const Node& n, StopReason reason) {
-    const Exact t0 = scene_t(n.u0), t1 = scene_t(n.u1);
+    const Exact t0 = scene_t(n.u0()), t1 = scene_t(n.u1());
     if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
       result.undecided.back().t1 = t1;
     else
@@ -351,7 +364,8 @@ struct Check {
       typename Policy::Piece piece;
     };
     std::vector<Item> stack;
-    stack.push_back({Node{Exact(0), Exact(1), 0, all_pairs(moving, other)}, policy.root()});
+    stack.push_back({Node{0, 0, all_pairs(moving, other)}, policy.root()});
+    const int max_depth = std::min(options.max_depth, kDepthCap);
     CheckStats& stats = result.stats;
     while (!stack.empty()) {
       Item item = std::move(stack.back());
@@ -372,14 +386,14 @@ struct Check {
       }
       if (node.alive.empty()) continue;  // cleared on the whole piece
       std::optional<StopReason> stop;
-      if (node.depth >= options.max_depth) stop = StopReason::Depth;
+      if (node.depth >= max_depth) stop = StopReason::Depth;
       else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
       if (stop) {
-        const Exact mid = (node.u0 + node.u1) / 2;
-        const Exact end = node.u1;
+        const Exact mid = node.mid();
+        const Exact end = node.u1();
         for (const Exact* u : {&mid, &end}) {
           if (try_witness(*u, node.alive)) {
-            const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0);
+            const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
             result.first_contact = std::pair{lo, scene_t(*u)};
             return;
           }
@@ -387,8 +401,8 @@ struct Check {
         record(node, *stop);
         continue;
       }
-      Item left{Node{node.u0, (node.u0 + node.u1) / 2, node.depth + 1, node.alive}, {}};
-      Item right{Node{left.node.u1, node.u1, node.depth + 1, std::move(node.alive)}, {}};
+      Item left{Node{2 * node.index, node.depth + 1, node.alive}, {}};
+      Item right{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}};
       policy.split(item.piece, left.piece, right.piece);
       stack.push_back(std::move(right));
       stack.push_back(std::move(left));  // parameter order: left first
