@@ -378,12 +378,8 @@ struct Check {
       ++stats.nodes;
       stats.max_depth = std::max(stats.max_depth, node.depth);
       typename Policy::Ball ball = policy.ball(item.piece);
-      if (ball.valid()) {
-        std::vector<PairRef> still;
-        for (const PairRef& p : node.alive)
-          if (policy.test(ball, p, stats) != CGAL::POSITIVE) still.push_back(p);
-        node.alive.swap(still);
-      }
+      if (ball.valid())  // keep the pairs not cleared on this piece
+        std::erase_if(node.alive, [&](const PairRef& p) { return policy.test(ball, p, stats) == CGAL::POSITIVE; });
       if (node.alive.empty()) continue;  // cleared on the whole piece
       std::optional<StopReason> stop;
       if (node.depth >= max_depth) stop = StopReason::Depth;
