@@ -56,7 +56,8 @@ Row run(const QuerySet& set, double fraction, std::map<std::string, Row>* by_kin
     const auto start = std::chrono::steady_clock::now();
     const CheckResult r = verifier.check(q.body_a, q.body_b);
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-    for (Row* target : {&row, by_kind ? &(*by_kind)[q.kind] : nullptr}) {
+    Row* group = by_kind ? &(*by_kind)[q.collides ? "~all colliding" : "~all non-colliding"] : nullptr;
+    for (Row* target : {&row, by_kind ? &(*by_kind)[q.kind] : nullptr, group}) {
       if (!target) continue;
       Row& t = *target;
       ++t.queries;

@@ -97,6 +97,9 @@ int main(int argc, char** argv) {
   } catch (const tmcert::InputError& e) {
     std::cerr << "tmcert: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const tmcert::ResourceLimit& e) {
+    std::cerr << "tmcert: resource limit: " << e.what() << "\n";
+    return kExitInternal;
   } catch (const std::bad_alloc&) {
     std::cerr << "tmcert: out of memory\n";
     return kExitInternal;

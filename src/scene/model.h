@@ -19,6 +19,13 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A resource limit that leaves no honest answer (exit code 4); a limit that
+// still allows an honest "undecided" is reported as such instead.
+class ResourceLimit : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // A convex planar polygon with vertices in order (no three consecutive
 // vertices collinear, at least 3), cut exactly from input polygon `polygon`.
 struct ConvexPiece {

@@ -68,8 +68,20 @@ const FeatureTable& other_table(const PreparedBody& b, ContactKind k) {
 
 // The three contact types over all features: complete for the first contact
 // after a contact-free start (proofs/contact-tests.md).
+// Without a hierarchy every pair is carried: refuse sizes whose lists could
+// not be held (about 1.2 GB at the limit) rather than thrash.
+constexpr std::size_t kMaxPairs = 100'000'000;
+
 std::vector<PairRef> all_pairs(const PreparedBody& m, const PreparedBody& f) {
+  std::size_t total = 0;
+  for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex})
+    total += moving_table(m, k).size() * other_table(f, k).size();
+  if (total > kMaxPairs)
+    throw ResourceLimit("check of \"" + m.body->name + "\" and \"" + f.body->name + "\": " + std::to_string(total) +
+                        " feature pairs exceed the limit of " + std::to_string(kMaxPairs) +
+                        " (bodies this large need the bounding-volume hierarchy of a later version)");
   std::vector<PairRef> pairs;
+  pairs.reserve(total);
   for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
     const std::size_t nx = moving_table(m, k).size(), ny = other_table(f, k).size();
     for (std::size_t i = 0; i < nx; ++i)

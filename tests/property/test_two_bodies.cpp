@@ -1,0 +1,1132 @@
+// Property tests of the guarantee for two moving bodies (DESIGN.md section 3:
+// one joint curve in R^24 with the product metric), and of the verdict's
+// invariance under swapping the bodies of a check, a rational rotation of the
+// world, a translation by 10^6 and a scaling by 10^-6, plus degenerate linear
+// per-vertex motions (bench/ccd_queries.h's linear_body).
+//
+//  (a2)  both bodies move (random rational Bezier motions of degree 1-3,
+//        random positive weights; triangle, parallelogram, segment or point
+//        each); a contact is built at a known rational time t*: never
+//        `safe` (filtered and exact kernels); first_contact starts at or
+//        before t*; a collision's witness lies exactly on both bodies.
+//  (b2)  every control-point image of every vertex of body 1 lies on the
+//        positive side of the oblique plane n.x = 0, n = (2,3,6)/7, at
+//        distance >= m/2, body 2's on the negative side: clearance m, so
+//        `safe` at epsilon = m/4.
+//  (swap) verify_check(s, a, b) and verify_check(s, b, a) agree.
+//  (rotation) a rational rotation of the world keeps every verdict.
+//  (degenerate) a triangle collapsing to a segment, a segment shrinking to a
+//        point, coplanar motions, parallel edges, zero motion: known truth
+//        by construction.
+//  (scale) translation by 10^6 and scaling by 10^-6 keep the verdicts of
+//        (b2) scenes and of scenes in contact at the start.
+//
+// Every scene is built in C++ from exact rationals; the oracle (rational
+// Bezier evaluation, point in triangle / on segment) is written here,
+// independently of the library.  Default masses are computed as the parser
+// does (a single point's offsets use the scene's size), so the scene printed
+// in a failure log (tmcert-scene/1 JSON) is the scene that was verified.
+//
+// Replay a failure with RC_PARAMS="seed=N" (printed at the start of the run)
+// or with the RC_PARAMS="reproduce=..." line printed on failure, e.g.
+//   RC_PARAMS="seed=N" tmcert_property --run_test=two_bodies/NAME
+
+#include <rapidcheck/boost_test.h>
+
+#include "bench/ccd_queries.h"
+#include "kernels/number_types.h"
+#include "src/metric/metric.h"
+#include "src/scene/model.h"
+#include "src/verify/verify.h"
+
+#include <boost/test/unit_test.hpp>
+#include <rapidcheck.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace tmcert;
+
+namespace {
+
+// ------------------------------------------------------------------ exact geometry (the oracle)
+
+Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3E add(const Vec3E& a, const Vec3E& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3E mul(const Exact& s, const Vec3E& a) { return {s * a[0], s * a[1], s * a[2]}; }
+Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3E cross(const Vec3E& a, const Vec3E& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+Vec3E lerp(const Vec3E& a, const Vec3E& b, const Exact& t) { return add(mul(1 - t, a), mul(t, b)); }
+
+Vec3E place(const Mat34E& m, const Vec3E& x) {
+  Vec3E r;
+  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+  return r;
+}
+
+// The composition w o m of affine maps (x -> w(m(x))).
+Mat34E compose(const Mat34E& w, const Mat34E& m) {
+  Mat34E out;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) {
+      Exact s = c == 3 ? w[4 * r + 3] : Exact(0);
+      for (int k = 0; k < 3; ++k) s += w[4 * r + k] * m[4 * k + c];
+      out[4 * r + c] = s;
+    }
+  return out;
+}
+
+const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+Mat34E translation(const Exact& x, const Exact& y, const Exact& z) { return {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z}; }
+
+// The rational Bezier motion at scene parameter t, exactly: de Casteljau on
+// the homogeneous points (w_k P_k, w_k).
+Mat34E eval_motion(const Motion& m, const Exact& t) {
+  const Exact u = (t - m.t0) / (m.t1 - m.t0);
+  const std::size_t n = m.control_points.size();
+  std::vector<std::array<Exact, 13>> h(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int e = 0; e < 12; ++e) h[k][e] = m.weights[k] * m.control_points[k][e];
+    h[k][12] = m.weights[k];
+  }
+  for (std::size_t level = 1; level < n; ++level)
+    for (std::size_t k = 0; k + level < n; ++k)
+      for (int e = 0; e < 13; ++e) h[k][e] = (1 - u) * h[k][e] + u * h[k + 1][e];
+  Mat34E out;
+  for (int e = 0; e < 12; ++e) out[e] = h[0][e] / h[0][12];
+  return out;
+}
+
+bool on_segment(const Vec3E& p, const Vec3E& a, const Vec3E& b) {
+  if (a == b) return p == a;
+  const Vec3E ab = sub(b, a), ap = sub(p, a);
+  return is_zero(cross(ab, ap)) && dot(ap, ab) >= 0 && dot(sub(p, b), sub(a, b)) >= 0;
+}
+
+// p in the closed triangle abc, which may be degenerate.
+bool in_triangle(const Vec3E& p, const Vec3E& a, const Vec3E& b, const Vec3E& c) {
+  const Vec3E n = cross(sub(b, a), sub(c, a));
+  if (is_zero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, a, c);
+  if (dot(n, sub(p, a)) != 0) return false;
+  return dot(cross(sub(b, a), sub(p, a)), n) >= 0 && dot(cross(sub(c, b), sub(p, b)), n) >= 0 &&
+         dot(cross(sub(a, c), sub(p, c)), n) >= 0;
+}
+
+bool nondegenerate(const std::vector<Vec3E>& tri) { return !is_zero(cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]))); }
+
+// The separating plane of the clearance scenes: n.x = 0 with the rational
+// unit normal n = (2,3,6)/7 (oblique: no coordinate box separates its sides
+// in general), and two directions in that plane.
+const Vec3E kNormal = {Exact(2, 7), Exact(3, 7), Exact(6, 7)};
+const Vec3E kInPlane1 = {3, -2, 0};
+const Vec3E kInPlane2 = {0, 2, -1};
+
+// ------------------------------------------------------------------ scenes
+
+std::vector<Vec3E> body_vertices(const Body& b) {
+  std::vector<Vec3E> v;
+  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
+  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
+  v.insert(v.end(), b.points.begin(), b.points.end());
+  return v;
+}
+
+// Default masses exactly as the parser computes them (src/scene/parse.cpp):
+// the fallback size of a single point is the extent of every body's
+// vertices in its own frame.
+void rebuild_masses(Scene& s) {
+  std::optional<Vec3E> lo, hi;
+  for (const Body& b : s.bodies)
+    for (const Vec3E& p : body_vertices(b)) {
+      if (!lo) { lo = p; hi = p; }
+      for (int a = 0; a < 3; ++a) {
+        (*lo)[a] = std::min((*lo)[a], p[a]);
+        (*hi)[a] = std::max((*hi)[a], p[a]);
+      }
+    }
+  Exact size = 0;
+  if (lo)
+    for (int a = 0; a < 3; ++a) size = std::max(size, (*hi)[a] - (*lo)[a]);
+  if (size == 0) size = 1;
+  for (Body& b : s.bodies)
+    if (b.mass_is_default) b.mass = default_mass(body_vertices(b), size);
+}
+
+Body make_body(const std::string& name, const std::vector<std::vector<Vec3E>>& polygons) {
+  Body b;
+  b.name = name;
+  b.polygons = polygons;
+  for (std::size_t i = 0; i < polygons.size(); ++i) b.pieces.push_back(ConvexPiece{static_cast<int>(i), polygons[i]});
+  b.mass = default_mass(body_vertices(b), Exact(1));
+  b.mass_is_default = true;
+  return b;
+}
+
+Scene make_scene(Body one, Body two, const Exact& epsilon) {
+  Scene s;
+  s.source = "property";
+  s.bodies = {std::move(one), std::move(two)};
+  s.epsilon = epsilon;
+  s.max_depth = 30;
+  s.checks = {{0, 1}};
+  rebuild_masses(s);
+  return s;
+}
+
+std::string str(const Exact& q) { return to_string(q); }
+std::string str(const Vec3E& v) {
+  return "[\"" + str(v[0]) + "\", \"" + str(v[1]) + "\", \"" + str(v[2]) + "\"]";
+}
+
+// The scene as a tmcert-scene/1 document (for failure logs: save it and run
+// `tmcert verify` on it).
+std::string describe(const Scene& s) {
+  std::ostringstream o;
+  o << "{ \"format\": \"tmcert-scene/1\", \"epsilon\": \"" << (s.epsilon ? str(*s.epsilon) : "?")
+    << "\", \"max_depth\": " << s.max_depth << ", \"bodies\": [\n";
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const Body& b = s.bodies[i];
+    o << "  { \"name\": \"" << b.name << "\"";
+    if (!b.polygons.empty()) {
+      o << ", \"polygons\": [";
+      for (std::size_t p = 0; p < b.polygons.size(); ++p) {
+        o << (p ? ", " : "") << "[";
+        for (std::size_t k = 0; k < b.polygons[p].size(); ++k) o << (k ? ", " : "") << str(b.polygons[p][k]);
+        o << "]";
+      }
+      o << "]";
+    }
+    if (!b.segments.empty()) {
+      o << ", \"segments\": [";
+      for (std::size_t k = 0; k < b.segments.size(); ++k)
+        o << (k ? ", " : "") << "[" << str(b.segments[k][0]) << ", " << str(b.segments[k][1]) << "]";
+      o << "]";
+    }
+    if (!b.points.empty()) {
+      o << ", \"points\": [";
+      for (std::size_t k = 0; k < b.points.size(); ++k) o << (k ? ", " : "") << str(b.points[k]);
+      o << "]";
+    }
+    if (b.motion) {
+      const Motion& m = *b.motion;
+      o << ",\n    \"motion\": { \"type\": \"rational_bezier\", \"interval\": [\"" << str(m.t0) << "\", \"" << str(m.t1)
+        << "\"],\n      \"control_points\": [";
+      for (std::size_t k = 0; k < m.control_points.size(); ++k) {
+        o << (k ? ",\n        " : "") << "[";
+        for (int r = 0; r < 3; ++r) {
+          o << (r ? ", " : "") << "[";
+          for (int c = 0; c < 4; ++c) o << (c ? ", " : "") << "\"" << str(m.control_points[k][4 * r + c]) << "\"";
+          o << "]";
+        }
+        o << "]";
+      }
+      o << "],\n      \"weights\": [";
+      for (std::size_t k = 0; k < m.weights.size(); ++k) o << (k ? ", " : "") << "\"" << str(m.weights[k]) << "\"";
+      o << "] }";
+    }
+    o << " }" << (i + 1 < s.bodies.size() ? "," : "") << "\n";
+  }
+  o << "], \"checks\": [";
+  for (std::size_t c = 0; c < s.checks.size(); ++c)
+    o << (c ? ", " : "") << "[\"" << s.bodies[s.checks[c].first].name << "\", \"" << s.bodies[s.checks[c].second].name
+      << "\"]";
+  o << "] }";
+  return o.str();
+}
+
+std::string describe(const CheckResult& r) {
+  std::ostringstream o;
+  o << "verdict " << to_string(r.verdict);
+  if (r.first_contact) o << ", first_contact [" << str(r.first_contact->first) << ", " << str(r.first_contact->second) << "]";
+  if (r.witness)
+    o << ", witness t=" << str(r.witness->t) << " (" << r.witness->features[0] << " / " << r.witness->features[1]
+      << ") point " << str(r.witness->point);
+  o << ", undecided intervals " << r.undecided.size();
+  if (!r.undecided.empty())
+    o << " (first [" << str(r.undecided.front().t0) << ", " << str(r.undecided.front().t1) << "] "
+      << to_string(r.undecided.front().reason) << ")";
+  o << ", nodes " << r.stats.nodes << ", depth " << r.stats.max_depth << (r.stats.prefiltered ? ", prefiltered" : "")
+    << ", " << r.stats.seconds << " s";
+  return o.str();
+}
+
+std::string work_label(const CheckResult& r) {
+  if (r.stats.prefiltered) return "prefiltered";
+  const std::uint64_t n = r.stats.nodes;
+  return n <= 1 ? "nodes 0-1" : n <= 16 ? "nodes 2-16" : n <= 256 ? "nodes 17-256" : n <= 4096 ? "nodes 257-4096" : "nodes > 4096";
+}
+
+std::string stop_label(const CheckResult& r) {
+  if (r.verdict == Verdict::Collision && r.stats.nodes == 0) return "collision (start check)";
+  if (r.verdict != Verdict::Undecided || r.undecided.empty()) return to_string(r.verdict);
+  return std::string("undecided (") + to_string(r.undecided.front().reason) + ")";
+}
+
+// ------------------------------------------------------------------ the witness oracle
+
+Mat34E pose_at(const Body& b, const Exact& t) {
+  if (!b.motion) return kIdentity;
+  return b.motion->control_points.size() == 1 ? b.motion->control_points[0] : eval_motion(*b.motion, t);
+}
+
+bool is_moving(const Body& b) { return b.motion && b.motion->control_points.size() >= 2; }
+
+bool body_contains(const Body& b, const Exact& t, const Vec3E& p) {
+  const Mat34E pose = pose_at(b, t);
+  for (const ConvexPiece& piece : b.pieces)
+    for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k)
+      if (in_triangle(p, place(pose, piece.vertices[0]), place(pose, piece.vertices[k]),
+                      place(pose, piece.vertices[k + 1])))
+        return true;
+  for (const auto& seg : b.segments)
+    if (on_segment(p, place(pose, seg[0]), place(pose, seg[1]))) return true;
+  for (const Vec3E& x : b.points)
+    if (place(pose, x) == p) return true;
+  return false;
+}
+
+// Empty when the result is consistent with the guarantee as far as can be
+// checked without knowing the truth.  Both bodies may move (then over the
+// same interval).
+std::string consistency_problem(const Scene& s, int a, int b, const CheckResult& r) {
+  if (r.bodies[0] != a || r.bodies[1] != b) return "result names the wrong bodies";
+  if (r.verdict == Verdict::Safe) {
+    if (r.first_contact) return "safe with a first_contact bracket";
+    if (r.witness) return "safe with a witness";
+    if (!r.undecided.empty()) return "safe with undecided intervals";
+    return "";
+  }
+  const Body& mb = is_moving(s.bodies[a]) ? s.bodies[a] : s.bodies[b];
+  const Exact t0 = mb.motion ? mb.motion->t0 : Exact(0), t1 = mb.motion ? mb.motion->t1 : Exact(1);
+  if (!r.first_contact) return "non-safe verdict without first_contact";
+  const auto& [lo, hi] = *r.first_contact;
+  if (lo < t0 || hi > t1 || lo > hi) return "first_contact outside the motion interval";
+  for (const UndecidedInterval& u : r.undecided)
+    if (u.t0 < t0 || u.t1 > t1 || u.t0 >= u.t1) return "undecided interval malformed or outside the motion";
+  if (r.verdict == Verdict::Undecided) {
+    if (r.witness) return "undecided with a witness";
+    if (r.undecided.empty()) return "undecided without undecided intervals";
+    if (r.undecided.front().t0 != lo) return "first_contact lower end is not the first undecided interval's";
+    return "";
+  }
+  if (!r.witness) return "collision without witness";
+  const Witness& w = *r.witness;
+  if (w.t < lo || w.t > hi) return "witness time outside first_contact";
+  if (w.features[0].rfind(s.bodies[a].name + " ", 0) != 0 || w.features[1].rfind(s.bodies[b].name + " ", 0) != 0)
+    return "witness features do not name the check's bodies in order";
+  if (!body_contains(s.bodies[a], w.t, w.point)) return "witness point not on body " + s.bodies[a].name;
+  if (!body_contains(s.bodies[b], w.t, w.point)) return "witness point not on body " + s.bodies[b].name;
+  return "";
+}
+
+// ------------------------------------------------------------------ generators (inside properties)
+
+// An integer in [lo, hi], uniform whatever rapidcheck's current size.
+template <class T>
+T uniform(T lo, T hi) {
+  return *rc::gen::resize(100, rc::gen::inRange(lo, static_cast<T>(hi + 1)));
+}
+
+// A rational in [lo, hi] with denominator 1, 2, 3, 4, 5, 8 or 16.
+Exact pick(double lo, double hi) {
+  const int den = *rc::gen::element(1, 2, 4, 8, 16, 3, 5);
+  const long n_lo = static_cast<long>(std::ceil(lo * den)), n_hi = static_cast<long>(std::floor(hi * den));
+  if (n_lo > n_hi) return Exact(lo);
+  return Exact(static_cast<int>(uniform(n_lo, n_hi)), den);
+}
+
+Vec3E pick_point(double lo, double hi) { return {pick(lo, hi), pick(lo, hi), pick(lo, hi)}; }
+
+std::vector<Vec3E> pick_triangle(double lo, double hi) {
+  std::vector<Vec3E> t = {pick_point(lo, hi), pick_point(lo, hi), pick_point(lo, hi)};
+  RC_PRE(nondegenerate(t));
+  return t;
+}
+
+std::vector<Exact> pick_weights(int count) {
+  std::vector<Exact> w;
+  for (int k = 0; k < count; ++k) w.push_back(pick(0.25, 4));
+  return w;
+}
+
+std::pair<Exact, Exact> pick_interval() {
+  const Exact t0 = pick(-1, 1);
+  return {t0, t0 + pick(0.25, 2)};
+}
+
+Mat34E pick_affine(double a_range, double t_range) {
+  Mat34E m;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m[4 * r + c] = pick(-a_range, a_range);
+    m[4 * r + 3] = pick(-t_range, t_range);
+  }
+  return m;
+}
+
+// A random motion of degree 1..3 (random affine control points, random
+// positive weights) over the given interval.
+Motion pick_motion(const std::pair<Exact, Exact>& interval, double a_range, double t_range) {
+  Motion m;
+  std::tie(m.t0, m.t1) = interval;
+  const int count = uniform(2, 4);
+  for (int k = 0; k < count; ++k) m.control_points.push_back(pick_affine(a_range, t_range));
+  m.weights = pick_weights(count);
+  return m;
+}
+
+Vec3E barycentric_point(const std::vector<Vec3E>& v) {
+  std::vector<int> w;
+  int total = 0;
+  for (std::size_t j = 0; j < v.size(); ++j) total += w.emplace_back(uniform(0, 4));
+  if (total == 0) total = w[0] = 1;
+  Vec3E q = {0, 0, 0};
+  for (std::size_t j = 0; j < v.size(); ++j)
+    for (int c = 0; c < 3; ++c) q[c] += Exact(w[j]) * v[j][c];
+  for (int c = 0; c < 3; ++c) q[c] /= Exact(total);
+  return q;
+}
+
+// A triangle, a parallelogram, or (when lower_dim) a segment or a point, in
+// [lo, hi]^3 (the parallelogram reaches a bit beyond), and the vertices
+// whose convex hull is its point set.
+std::pair<Body, std::vector<Vec3E>> pick_shape(const std::string& name, double lo, double hi, bool lower_dim) {
+  const int kind = uniform(0, lower_dim ? 3 : 1);
+  Body b;
+  std::vector<Vec3E> v;
+  if (kind == 0) {
+    v = pick_triangle(lo, hi);
+    b = make_body(name, {v});
+  } else if (kind == 1) {
+    v = pick_triangle(lo, hi);
+    v.push_back({v[0][0] + v[2][0] - v[1][0], v[0][1] + v[2][1] - v[1][1], v[0][2] + v[2][2] - v[1][2]});
+    b = make_body(name, {v});
+  } else if (kind == 2) {
+    v = {pick_point(lo, hi), pick_point(lo, hi)};
+    RC_PRE(v[0] != v[1]);
+    b = make_body(name, {});
+    b.segments.push_back({v[0], v[1]});
+  } else {
+    v = {pick_point(lo, hi)};
+    b = make_body(name, {});
+    b.points.push_back(v[0]);
+  }
+  return {b, v};
+}
+
+VerifyOptions options_for(const Exact& epsilon, KernelKind kernel, std::uint64_t max_nodes = 20000) {
+  VerifyOptions o;
+  o.kernel = kernel;
+  o.epsilon = epsilon;
+  o.max_depth = 30;
+  o.max_nodes = max_nodes;
+  return o;
+}
+
+Exact pow10(int e) {
+  Exact r = 1;
+  for (int i = 0; i < (e < 0 ? -e : e); ++i) r *= 10;
+  return e < 0 ? 1 / r : r;
+}
+
+// Shifts the translation of control point P along kNormal so that the
+// images of `verts` lie on side `sign` of the plane n.x = 0 at distance
+// >= level, with equality + extra for the closest one.
+void push_to_side(Mat34E& P, const std::vector<Vec3E>& verts, int sign, const Exact& level, const Exact& extra) {
+  std::optional<Exact> extreme;
+  for (const Vec3E& v : verts) {
+    const Exact h = dot(kNormal, place(P, v));
+    if (!extreme || (sign > 0 ? h < *extreme : h > *extreme)) extreme = h;
+  }
+  const Exact shift = Exact(sign) * (level + extra) - *extreme;  // kNormal is a unit vector
+  for (int r = 0; r < 3; ++r) P[4 * r + 3] += shift * kNormal[r];
+}
+
+// A point on side `sign` of the plane n.x = 0 at distance level + extra.
+Vec3E point_on_side(int sign, const Exact& level, const Exact& extra, double range = 1) {
+  const Vec3E x = pick_point(-range, range);
+  return add(x, mul(Exact(sign) * (level + extra) - dot(kNormal, x), kNormal));
+}
+
+// ------------------------------------------------------------------ scene kinds
+
+struct Case {
+  Scene scene;
+  std::string kind;
+  std::optional<Exact> t_star;  // a contact time by construction (not necessarily the first)
+  bool safe = false;            // clearance by construction
+  std::string note;
+};
+
+// (a2) Both bodies move; body "one"'s chosen point p coincides with body
+// "two"'s chosen point q at t* (t* = t0 when at_start).
+Case contact2_case(bool at_start) {
+  const auto interval = pick_interval();
+  auto [one, hull1] = pick_shape("one", -1, 1, true);
+  auto [two, hull2] = pick_shape("two", -1, 1, true);
+  Motion m1 = pick_motion(interval, 2, 6), m2 = pick_motion(interval, 2, 6);
+  const Exact s = at_start ? Exact(0) : pick(0, 1);
+  const Exact t_star = interval.first + s * (interval.second - interval.first);
+  const Vec3E p = *rc::gen::arbitrary<bool>() ? hull1[uniform(std::size_t(0), hull1.size() - 1)] : barycentric_point(hull1);
+  const Vec3E q = *rc::gen::arbitrary<bool>() ? hull2[uniform(std::size_t(0), hull2.size() - 1)] : barycentric_point(hull2);
+  const Vec3E x1 = place(eval_motion(m1, t_star), p), x2 = place(eval_motion(m2, t_star), q);
+  // A constant translation added to every control point translates the
+  // whole rational curve by it (the weights are normalised).
+  for (Mat34E& c : m1.control_points)
+    for (int r = 0; r < 3; ++r) c[4 * r + 3] += x2[r] - x1[r];
+  RC_ASSERT(place(eval_motion(m1, t_star), p) == place(eval_motion(m2, t_star), q));  // the construction itself
+  one.motion = m1;
+  two.motion = m2;
+  const Exact epsilon = *rc::gen::element(Exact(1, 16), Exact(1, 100), Exact(1, 1000));
+  Case c{make_scene(one, two, epsilon), at_start ? "contact2 at start" : "contact2", t_star, false, ""};
+  c.note = "contact at t* = " + str(t_star) + ": point " + str(p) + " of one at point " + str(q) + " of two, at " +
+           str(place(eval_motion(m2, t_star), q));
+  return c;
+}
+
+// (b2) Both bodies move; body one's vertex images under every control point
+// have n.x >= m/2, body two's n.x <= -m/2 (equality at one control point
+// each): by the convex hull property the bodies keep distance >= m.
+Case clearance2_case() {
+  const Exact m = pick(0.25, 2) / *rc::gen::element(1, 1, 4, 8);  // 1/32 .. 2
+  const auto interval = pick_interval();
+  auto [one, hull1] = pick_shape("one", -1, 1, true);
+  auto [two, hull2] = pick_shape("two", -1, 1, true);
+  Motion motions[2];
+  for (int b = 0; b < 2; ++b) {
+    motions[b] = pick_motion(interval, 2, 3);
+    const int tight = uniform(0, motions[b].degree());
+    for (int k = 0; k <= motions[b].degree(); ++k)
+      push_to_side(motions[b].control_points[k], b == 0 ? hull1 : hull2, b == 0 ? 1 : -1, m / 2,
+                   k == tight ? Exact(0) : pick(0, 1));
+  }
+  one.motion = motions[0];
+  two.motion = motions[1];
+  Case c{make_scene(one, two, m / 4), "clearance2", std::nullopt, true, "clearance m = " + str(m)};
+  return c;
+}
+
+// One moving body against a fixed one (plain, or under a constant possibly
+// singular pose): a contact at t* or a clearance m.
+Case fixed_case() {
+  const bool contact = *rc::gen::arbitrary<bool>();
+  const auto interval = pick_interval();
+  auto [fixed, fixed_hull] = pick_shape("fixed", -2, 2, true);
+  auto [mover, hull] = pick_shape("mover", -1, 1, true);
+  const bool posed = *rc::gen::element(false, false, true);
+  Mat34E pose = posed ? pick_affine(2, 1) : kIdentity;
+  Motion motion = pick_motion(interval, 2, contact ? 6 : 3);
+  const Exact m = pick(0.25, 2) / *rc::gen::element(1, 1, 4, 8);
+  if (!contact) {
+    const int tight = uniform(0, motion.degree());
+    for (int k = 0; k <= motion.degree(); ++k)
+      push_to_side(motion.control_points[k], hull, 1, m / 2, k == tight ? Exact(0) : pick(0, 1));
+    push_to_side(pose, fixed_hull, -1, m / 2, Exact(0));
+  }
+  if (posed) {
+    Motion p;
+    p.t0 = interval.first;
+    p.t1 = interval.second;
+    p.control_points = {pose};
+    p.weights = {1};
+    fixed.motion = p;
+  } else if (pose != kIdentity) {  // a translation only: move the coordinates
+    const Vec3E d = {pose[3], pose[7], pose[11]};
+    for (auto& poly : fixed.polygons)
+      for (Vec3E& v : poly) v = add(v, d);
+    for (ConvexPiece& piece : fixed.pieces)
+      for (Vec3E& v : piece.vertices) v = add(v, d);
+    for (auto& seg : fixed.segments)
+      for (Vec3E& v : seg) v = add(v, d);
+    for (Vec3E& v : fixed.points) v = add(v, d);
+  }
+  for (Vec3E& v : fixed_hull) v = place(pose, v);  // world coordinates
+  std::optional<Exact> t_star;
+  std::string note = "clearance m = " + str(m);
+  if (contact) {
+    const Exact s = pick(0, 1);
+    t_star = interval.first + s * (interval.second - interval.first);
+    const Vec3E p = *rc::gen::arbitrary<bool>() ? hull[uniform(std::size_t(0), hull.size() - 1)] : barycentric_point(hull);
+    const Vec3E q = barycentric_point(fixed_hull);
+    const Vec3E x = place(eval_motion(motion, *t_star), p);
+    for (Mat34E& c : motion.control_points)
+      for (int r = 0; r < 3; ++r) c[4 * r + 3] += q[r] - x[r];
+    RC_ASSERT(place(eval_motion(motion, *t_star), p) == q);
+    note = "contact at t* = " + str(*t_star) + ": point " + str(p) + " of mover at " + str(q);
+  }
+  mover.motion = motion;
+  const Exact epsilon = contact ? *rc::gen::element(Exact(1, 16), Exact(1, 100), Exact(1, 1000)) : m / 4;
+  Scene scene = make_scene(mover, fixed, epsilon);
+  if (*rc::gen::arbitrary<bool>()) {  // the fixed body first in the scene
+    std::swap(scene.bodies[0], scene.bodies[1]);
+  }
+  return Case{scene, contact ? "fixed contact" : "fixed clearance", t_star, !contact, note};
+}
+
+// ------------------------------------------------------------------ transformations
+
+// Applies the affine world map W to the scene: moving (and posed) bodies'
+// control points [A | a] -> W o [A | a]; plain fixed bodies' coordinates
+// x -> W x (W must keep polygons valid: a rotation or a translation here).
+Scene world_mapped(const Scene& s, const Mat34E& W) {
+  Scene out = s;
+  for (Body& b : out.bodies) {
+    if (b.motion) {
+      for (Mat34E& p : b.motion->control_points) p = compose(W, p);
+      continue;
+    }
+    for (auto& poly : b.polygons)
+      for (Vec3E& v : poly) v = place(W, v);
+    for (ConvexPiece& piece : b.pieces)
+      for (Vec3E& v : piece.vertices) v = place(W, v);
+    for (auto& seg : b.segments)
+      for (Vec3E& v : seg) v = place(W, v);
+    for (Vec3E& v : b.points) v = place(W, v);
+  }
+  rebuild_masses(out);
+  return out;
+}
+
+// A change of unit: every length times f (coordinates in every body's own
+// frame, translation columns, epsilon); linear parts are unitless.
+Scene scaled(const Scene& s, const Exact& f) {
+  Scene out = s;
+  for (Body& b : out.bodies) {
+    for (auto& poly : b.polygons)
+      for (Vec3E& v : poly) v = mul(f, v);
+    for (ConvexPiece& piece : b.pieces)
+      for (Vec3E& v : piece.vertices) v = mul(f, v);
+    for (auto& seg : b.segments)
+      for (Vec3E& v : seg) v = mul(f, v);
+    for (Vec3E& v : b.points) v = mul(f, v);
+    if (b.motion)
+      for (Mat34E& p : b.motion->control_points)
+        for (int r = 0; r < 3; ++r) p[4 * r + 3] *= f;
+  }
+  if (out.epsilon) *out.epsilon *= f;
+  rebuild_masses(out);
+  return out;
+}
+
+// The rotation of the unit quaternion q / |q| (q = (a, b, c, d) integers):
+// rational entries over n = a^2 + b^2 + c^2 + d^2.
+Mat34E rotation(long a, long b, long c, long d) {
+  const Exact n = Exact(a * a + b * b + c * c + d * d);
+  auto e = [&](long v) { return Exact(v) / n; };
+  return {e(a * a + b * b - c * c - d * d), e(2 * (b * c - a * d)), e(2 * (b * d + a * c)), 0,
+          e(2 * (b * c + a * d)), e(a * a - b * b + c * c - d * d), e(2 * (c * d - a * b)), 0,
+          e(2 * (b * d - a * c)), e(2 * (c * d + a * b)), e(a * a - b * b - c * c + d * d), 0};
+}
+
+bool is_rotation(const Mat34E& R) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Exact s = 0;
+      for (int k = 0; k < 3; ++k) s += R[4 * i + k] * R[4 * j + k];
+      if (s != (i == j ? 1 : 0)) return false;
+    }
+  const Vec3E r0 = {R[0], R[1], R[2]}, r1 = {R[4], R[5], R[6]}, r2 = {R[8], R[9], R[10]};
+  return dot(cross(r0, r1), r2) == 1 && R[3] == 0 && R[7] == 0 && R[11] == 0;
+}
+
+// ------------------------------------------------------------------ checking
+
+// Runs check (a, b) and asserts consistency and the truth known by
+// construction.
+CheckResult run_and_check(const Case& c, int a, int b, KernelKind kernel, std::uint64_t max_nodes,
+                          const std::string& label) {
+  const Scene& s = c.scene;
+  const CheckResult r = verify_check(s, a, b, options_for(*s.epsilon, kernel, max_nodes));
+  RC_LOG() << label << " [" << c.kind << "] " << c.note << "\n" << describe(s) << "\ncheck (" << s.bodies[a].name
+           << ", " << s.bodies[b].name << "), kernel " << to_string(kernel) << ": " << describe(r) << "\n";
+  const std::string problem = consistency_problem(s, a, b, r);
+  RC_LOG() << "consistency: " << (problem.empty() ? "ok" : problem) << "\n";
+  RC_ASSERT(problem == "");
+  if (c.safe) RC_ASSERT(r.verdict == Verdict::Safe);
+  if (c.t_star) {
+    RC_ASSERT(r.verdict != Verdict::Safe);
+    RC_ASSERT(r.first_contact->first <= *c.t_star);  // everything before it is certified contact-free
+  }
+  return r;
+}
+
+// (swap) Both orders of a check agree; a collision's witness is a real
+// contact, so the other order's certified-free prefix ends at or before it.
+void check_orders_agree(const CheckResult& x, const CheckResult& y) {
+  RC_ASSERT(x.verdict == y.verdict);
+  if (x.verdict == Verdict::Collision) RC_ASSERT(y.first_contact->first <= x.witness->t);
+  if (y.verdict == Verdict::Collision) RC_ASSERT(x.first_contact->first <= y.witness->t);
+  if (x.verdict != Verdict::Safe) RC_ASSERT(x.first_contact->first == y.first_contact->first);
+}
+
+template <typename Testable>
+void check_limited(Testable&& testable, int max_success) {
+  using namespace rc::detail;
+  const auto& tc = boost::unit_test::framework::current_test_case();
+  TestMetadata metadata;
+  metadata.id = tc.full_name();
+  metadata.description = tc.p_name;
+  TestParams params = configuration().testParams;
+  params.maxSuccess = std::max(1, std::min(params.maxSuccess, max_success));
+  const auto result = checkTestable(std::forward<Testable>(testable), metadata, params);
+  BOOST_CHECK(true);
+  if (result.template is<SuccessResult>()) {
+    if (!result.template get<SuccessResult>().distribution.empty()) {
+      std::cout << "- " << metadata.description << std::endl;
+      printResultMessage(result, std::cout);
+      std::cout << std::endl;
+    }
+  } else {
+    std::ostringstream ss;
+    ss << "\n";
+    printResultMessage(result, ss);
+    BOOST_FAIL(ss.str());
+  }
+}
+
+int configured_cases() { return rc::detail::configuration().testParams.maxSuccess; }
+
+// ------------------------------------------------------------------ degenerate linear motions
+
+using bench::linear_body;
+
+// Vertices at time t* (given) moving with velocities v: their positions at
+// t = 0 and t = 1.
+void around(const std::vector<Vec3E>& x, const std::vector<Vec3E>& v, const Exact& t_star, std::vector<Vec3E>& p0,
+            std::vector<Vec3E>& p1) {
+  p0.clear();
+  p1.clear();
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    p0.push_back(sub(x[i], mul(t_star, v[i])));
+    p1.push_back(add(x[i], mul(1 - t_star, v[i])));
+  }
+}
+
+std::vector<Vec3E> at_time(const std::vector<Vec3E>& p0, const std::vector<Vec3E>& p1, const Exact& t) {
+  std::vector<Vec3E> out;
+  for (std::size_t i = 0; i < p0.size(); ++i) out.push_back(lerp(p0[i], p1[i], t));
+  return out;
+}
+
+Vec3E pick_velocity(bool planar) {
+  Vec3E v = pick_point(-2, 2);
+  if (planar) v[2] = 0;
+  return v;
+}
+
+// A contact time: anywhere in [0, 1], often at an end (where a collapse
+// happens).
+Exact pick_contact_time() { return *rc::gen::element(pick(0, 1), pick(0, 1), Exact(1), Exact(0)); }
+
+const char* kDegenerateKinds[] = {"collapsing triangle", "shrinking segment", "coplanar", "parallel edges",
+                                  "zero motion", "both motionless"};
+
+// Builds one degenerate case of the given kind (0..5), in contact at a
+// rational time or separated by an oblique plane with margin m at both ends.
+Case degenerate_case(int kind, bool contact) {
+  std::vector<Vec3E> a0, a1, b0, b1;  // body one ("a") and body two ("b") vertices at t = 0 and 1
+  const Exact m = pick(0.25, 2) / *rc::gen::element(1, 4, 8);
+  std::optional<Exact> t_star;
+  if (contact) t_star = pick_contact_time();
+  std::optional<Vec3E> target;  // the common point at t* (contact cases)
+  Vec3E separating = kNormal;   // the plane's normal (separated cases)
+  std::string note;
+  auto side = [&](int sign, bool tight = false) { return point_on_side(sign, m / 2, tight ? Exact(0) : pick(0, 1)); };
+  switch (kind) {
+    case 0: {  // a triangle whose third vertex moves onto the line of the other two at t = 1, a moving point
+      const Exact alpha = contact ? pick(-1, 2) : pick(0, 1);
+      if (contact) {
+        b0 = pick_triangle(-1, 1);
+        const Vec3E u = pick_point(-1, 1), w = pick_point(-1, 1);
+        RC_PRE(u != w);
+        b1 = {u, w, lerp(u, w, alpha)};
+        target = barycentric_point(at_time(b0, b1, *t_star));
+        around({*target}, {pick_velocity(false)}, *t_star, a0, a1);
+      } else {
+        b0 = {side(-1), side(-1), side(-1)};
+        RC_PRE(nondegenerate(b0));
+        const Vec3E u = side(-1, true), w = side(-1, *rc::gen::arbitrary<bool>());
+        RC_PRE(u != w);
+        b1 = {u, w, lerp(u, w, alpha)};
+        // At t = 1 the point is right above the collapsed segment, at n.x = m/2.
+        const Vec3E mid = lerp(u, w, pick(0, 1));
+        a0 = {side(1)};
+        a1 = {add(mid, mul(m / 2 - dot(kNormal, mid), kNormal))};
+      }
+      note = "third vertex onto the line at t = 1, alpha = " + str(alpha);
+      break;
+    }
+    case 1: {  // a segment shrinking to a point at t = 1, against a moving point or segment
+      const bool other_segment = *rc::gen::arbitrary<bool>();
+      if (contact) {
+        const Vec3E u = pick_point(-1, 1), w = pick_point(-1, 1);
+        RC_PRE(u != w);
+        const Vec3E z = pick_point(-1, 1);
+        b0 = {u, w};
+        b1 = {z, z};
+        target = barycentric_point(at_time(b0, b1, *t_star));
+        std::vector<Vec3E> x = {*target};
+        if (other_segment) {
+          const Vec3E dir = pick_point(-1, 1);
+          RC_PRE(!is_zero(dir));
+          const Exact s = pick(0, 1);
+          x = {sub(*target, mul(s, dir)), add(*target, mul(1 - s, dir))};
+        }
+        std::vector<Vec3E> v;
+        for (std::size_t i = 0; i < x.size(); ++i) v.push_back(pick_velocity(false));
+        around(x, v, *t_star, a0, a1);
+      } else {
+        b0 = {side(-1), side(-1)};
+        RC_PRE(b0[0] != b0[1]);
+        const Vec3E z = side(-1, true);
+        b1 = {z, z};
+        a0 = {side(1)};
+        a1 = {add(z, mul(m, kNormal))};  // right above the shrunk point at t = 1
+        if (other_segment) {
+          a0.push_back(side(1));
+          a1.push_back(side(1));
+        }
+      }
+      note = "segment shrinks to a point at t = 1";
+      break;
+    }
+    case 2: {  // everything in the plane z = 0: a triangle and a point, or two segments
+      const bool edges = *rc::gen::arbitrary<bool>();
+      auto flat = [](Vec3E v) { v[2] = 0; return v; };
+      const Vec3E n2 = {Exact(3, 5), Exact(4, 5), 0};  // separating direction within the plane
+      auto flat_side = [&](int sign, bool tight = false) {
+        const Vec3E x = flat(pick_point(-1, 1));
+        return add(x, mul(Exact(sign) * (m / 2 + (tight ? Exact(0) : pick(0, 1))) - dot(n2, x), n2));
+      };
+      const std::size_t nb = edges ? 2 : 3, na = edges ? 2 : 1;
+      if (contact) {
+        for (std::size_t i = 0; i < nb; ++i) {
+          b0.push_back(flat(pick_point(-1, 1)));
+          b1.push_back(flat(pick_point(-1, 1)));
+        }
+        target = barycentric_point(at_time(b0, b1, *t_star));
+        std::vector<Vec3E> x = {*target};
+        if (edges) {
+          const Vec3E dir = flat(pick_point(-1, 1));
+          RC_PRE(!is_zero(dir));
+          const Exact s = pick(0, 1);
+          x = {sub(*target, mul(s, dir)), add(*target, mul(1 - s, dir))};
+        }
+        std::vector<Vec3E> v;
+        for (std::size_t i = 0; i < na; ++i) v.push_back(pick_velocity(true));
+        around(x, v, *t_star, a0, a1);
+        RC_PRE(edges ? a0[0] != a0[1] || a1[0] != a1[1] : true);
+      } else {
+        separating = n2;
+        const int tight = uniform(0, 1);
+        for (std::size_t i = 0; i < nb; ++i) {
+          b0.push_back(flat_side(-1, tight == 0 && i == 0));
+          b1.push_back(flat_side(-1, tight == 1 && i == 0));
+        }
+        for (std::size_t i = 0; i < na; ++i) {
+          a0.push_back(flat_side(1, tight == 0 && i == 0));
+          a1.push_back(flat_side(1, tight == 1 && i == 0));
+        }
+      }
+      if (!edges) RC_PRE(nondegenerate(b0) || nondegenerate(b1));
+      note = edges ? "coplanar segments" : "coplanar triangle and point";
+      break;
+    }
+    case 3: {  // two segments parallel to one direction throughout
+      Vec3E d;
+      if (contact) {
+        d = pick_point(-1, 1);
+        RC_PRE(!is_zero(d));
+        // At t*: a = [c - s1 d, c + s2 d], b = [c - r1 d, c + r2 d] on one line, sharing c.
+        const Vec3E c = pick_point(-1, 1);
+        target = c;
+        const Exact s1 = pick(0, 1), s2 = pick(0, 1), r1 = pick(0, 1), r2 = pick(0, 1);
+        RC_PRE(s1 + s2 > 0 && r1 + r2 > 0);
+        const std::vector<Vec3E> xa = {sub(c, mul(s1, d)), add(c, mul(s2, d))};
+        const std::vector<Vec3E> xb = {sub(c, mul(r1, d)), add(c, mul(r2, d))};
+        // Each segment translates, its ends also sliding along d (it stays parallel to d).
+        const Vec3E va = pick_velocity(false), vb = pick_velocity(false);
+        const Exact sa = pick(-1, 1), sb = pick(-1, 1);
+        around(xa, {va, add(va, mul(sa, d))}, *t_star, a0, a1);
+        around(xb, {vb, add(vb, mul(sb, d))}, *t_star, b0, b1);
+        RC_PRE(a0[0] != a0[1] && b0[0] != b0[1]);
+      } else {
+        d = add(mul(pick(-1, 1), kInPlane1), mul(pick(-1, 1), kInPlane2));  // parallel to the separating plane
+        RC_PRE(!is_zero(d));
+        const Exact la0 = pick(0.25, 1), la1 = pick(0.25, 1), lb0 = pick(0.25, 1), lb1 = pick(0.25, 1);
+        const Vec3E pa0 = side(1, true), pa1 = side(1), pb0 = side(-1, true), pb1 = side(-1);
+        a0 = {pa0, add(pa0, mul(la0, d))};
+        a1 = {pa1, add(pa1, mul(la1, d))};
+        b0 = {pb0, add(pb0, mul(lb0, d))};
+        b1 = {pb1, add(pb1, mul(lb1, d))};
+      }
+      note = "edges parallel to " + str(d);
+      break;
+    }
+    case 4: {  // one body does not move (p0 == p1), the other does
+      const bool triangle_still = *rc::gen::arbitrary<bool>();
+      if (contact) {
+        const std::vector<Vec3E> tri = pick_triangle(-1, 1);
+        if (triangle_still) {
+          b0 = b1 = tri;
+          target = barycentric_point(tri);
+          around({*target}, {pick_velocity(false)}, *t_star, a0, a1);
+        } else {
+          std::vector<Vec3E> v = {pick_velocity(false), pick_velocity(false), pick_velocity(false)};
+          around(tri, v, *t_star, b0, b1);
+          target = barycentric_point(tri);  // the point's fixed place, on the triangle at t*
+          a0 = a1 = {*target};
+        }
+      } else {
+        b0 = {side(-1, true), side(-1), side(-1)};
+        RC_PRE(nondegenerate(b0));
+        b1 = triangle_still ? b0 : std::vector<Vec3E>{side(-1), side(-1, true), side(-1)};
+        a0 = {side(1, true)};
+        a1 = triangle_still ? std::vector<Vec3E>{side(1)} : a0;
+      }
+      note = triangle_still ? "the triangle stands still" : "the point stands still";
+      break;
+    }
+    default: {  // neither moves (p0 == p1 for both): touching or separated
+      if (contact) {
+        t_star = Exact(0);
+        b0 = b1 = pick_triangle(-1, 1);
+        target = barycentric_point(b0);
+        if (*rc::gen::arbitrary<bool>()) {
+          a0 = a1 = {*target};
+        } else {  // a segment through a point of the triangle
+          const Vec3E dir = pick_point(-1, 1);
+          RC_PRE(!is_zero(dir));
+          const Exact s = pick(0, 1);
+          a0 = a1 = {sub(*target, mul(s, dir)), add(*target, mul(1 - s, dir))};
+        }
+      } else {
+        b0 = b1 = {side(-1, true), side(-1), side(-1)};
+        RC_PRE(nondegenerate(b0));
+        a0 = a1 = {side(1, true), side(1)};
+        RC_PRE(a0[0] != a0[1]);
+      }
+      note = "no motion at all";
+      break;
+    }
+  }
+  const Exact epsilon = contact ? *rc::gen::element(Exact(1, 16), Exact(1, 100), Exact(1, 1000)) : m / 4;
+  Scene s;
+  s.source = "property";
+  s.bodies = {linear_body("a", a0, a1), linear_body("b", b0, b1)};
+  s.epsilon = epsilon;
+  s.max_depth = 30;
+  s.checks = {{0, 1}};
+  rebuild_masses(s);
+  Case c{s, std::string(kDegenerateKinds[kind]) + (contact ? " contact" : " separated"), t_star, !contact, note};
+  if (contact) c.note += ", contact at t* = " + str(*t_star);
+  else c.note += ", clearance m = " + str(m);
+  // The construction itself: a common point at t*, or every vertex on its
+  // side with margin at both ends (then at every time: linear motion).
+  if (contact) {
+    c.note += ", common point " + str(*target);
+    RC_ASSERT(body_contains(c.scene.bodies[0], *t_star, *target));
+    RC_ASSERT(body_contains(c.scene.bodies[1], *t_star, *target));
+  } else {
+    for (const auto* v : {&a0, &a1})
+      for (const Vec3E& p : *v) RC_ASSERT(dot(separating, p) >= m / 2);
+    for (const auto* v : {&b0, &b1})
+      for (const Vec3E& p : *v) RC_ASSERT(dot(separating, p) <= -m / 2);
+  }
+  return c;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(two_bodies)
+
+// ------------------------------------------------------------------ (a2)
+
+namespace {
+void contact2_never_safe(KernelKind kernel, std::uint64_t max_nodes) {
+  const Case c = contact2_case(false);
+  const bool swap = *rc::gen::arbitrary<bool>();
+  const CheckResult r = run_and_check(c, swap ? 1 : 0, swap ? 0 : 1, kernel, max_nodes, "a2");
+  RC_TAG(stop_label(r), work_label(r));
+}
+}  // namespace
+
+RC_BOOST_PROP(a2_contact_at_known_time_is_never_safe_filtered, ()) { contact2_never_safe(KernelKind::Filtered, 20000); }
+
+BOOST_AUTO_TEST_CASE(a2_contact_at_known_time_is_never_safe_exact) {
+  check_limited([] { contact2_never_safe(KernelKind::Exact, 5000); }, std::max(1, configured_cases() / 4));
+}
+
+// ------------------------------------------------------------------ (b2)
+
+RC_BOOST_PROP(b2_clearance_m_is_safe_for_epsilon_m_over_4, ()) {
+  const Case c = clearance2_case();
+  const CheckResult r = run_and_check(c, 0, 1, KernelKind::Filtered, 20000, "b2");
+  RC_TAG(stop_label(r), work_label(r));
+}
+
+BOOST_AUTO_TEST_CASE(b2_clearance_m_is_safe_for_epsilon_m_over_4_exact) {
+  check_limited(
+      [] {
+        const Case c = clearance2_case();
+        const CheckResult r = run_and_check(c, 0, 1, KernelKind::Exact, 20000, "b2 exact");
+        RC_TAG(stop_label(r), work_label(r));
+      },
+      std::max(1, configured_cases() / 4));
+}
+
+// ------------------------------------------------------------------ (swap)
+
+namespace {
+Case any_case() {
+  switch (uniform(0, 3)) {
+    case 0: return contact2_case(false);
+    case 1: return clearance2_case();
+    case 2: return contact2_case(true);
+    default: return fixed_case();
+  }
+}
+}  // namespace
+
+RC_BOOST_PROP(swapping_the_bodies_of_a_check_keeps_the_verdict, ()) {
+  const Case c = any_case();
+  const CheckResult ab = run_and_check(c, 0, 1, KernelKind::Filtered, 20000, "order (0, 1)");
+  const CheckResult ba = run_and_check(c, 1, 0, KernelKind::Filtered, 20000, "order (1, 0)");
+  RC_TAG(c.kind, stop_label(ab));
+  check_orders_agree(ab, ba);
+}
+
+// ------------------------------------------------------------------ (rotation)
+
+RC_BOOST_PROP(rational_rotation_of_the_world_keeps_every_verdict, ()) {
+  const Case c = any_case();
+  long q[4];
+  for (long& e : q) e = uniform(-3L, 3L);
+  RC_PRE(q[0] != 0 || q[1] != 0 || q[2] != 0 || q[3] != 0);
+  const Mat34E R = rotation(q[0], q[1], q[2], q[3]);
+  RC_ASSERT(is_rotation(R));
+  Case rotated = c;
+  rotated.scene = world_mapped(c.scene, R);
+  rotated.note += " (rotated by the quaternion (" + std::to_string(q[0]) + ", " + std::to_string(q[1]) + ", " +
+                  std::to_string(q[2]) + ", " + std::to_string(q[3]) + "))";
+  const CheckResult r0 = run_and_check(c, 0, 1, KernelKind::Filtered, 20000, "original");
+  const CheckResult r1 = run_and_check(rotated, 0, 1, KernelKind::Filtered, 20000, "rotated");
+  RC_TAG(c.kind, stop_label(r0));
+  RC_ASSERT(r0.verdict == r1.verdict);
+}
+
+// ------------------------------------------------------------------ (degenerate)
+
+namespace {
+void degenerate_known_truth(KernelKind kernel) {
+  const int kind = uniform(0, 5);
+  const bool contact = *rc::gen::arbitrary<bool>();
+  const Case c = degenerate_case(kind, contact);
+  const bool swap = *rc::gen::arbitrary<bool>();
+  const CheckResult r = run_and_check(c, swap ? 1 : 0, swap ? 0 : 1, kernel, 20000, "degenerate");
+  RC_TAG(c.kind, stop_label(r));
+  if (kind == 5 && contact) {  // touching throughout: the start check
+    RC_ASSERT(r.verdict == Verdict::Collision);
+    RC_ASSERT(r.witness->t == 0);
+  }
+}
+}  // namespace
+
+RC_BOOST_PROP(degenerate_linear_motions_have_their_known_truth_filtered, ()) {
+  degenerate_known_truth(KernelKind::Filtered);
+}
+
+BOOST_AUTO_TEST_CASE(degenerate_linear_motions_have_their_known_truth_exact) {
+  check_limited([] { degenerate_known_truth(KernelKind::Exact); }, std::max(1, configured_cases() / 2));
+}
+
+// ------------------------------------------------------------------ (scale)
+
+RC_BOOST_PROP(translation_by_1e6_and_scaling_by_1e_6_keep_the_verdicts, ()) {
+  const bool clearance = *rc::gen::arbitrary<bool>();
+  const Case c = clearance ? clearance2_case() : contact2_case(true);
+  const Exact big = pow10(6);
+  const Vec3E d = {*rc::gen::element(1, -1) * big, *rc::gen::element(1, -1) * big, *rc::gen::element(1, -1) * big};
+  Case variants[3] = {c, c, c};
+  variants[1].scene = world_mapped(c.scene, translation(d[0], d[1], d[2]));
+  variants[1].note += " (translated by " + str(d) + ")";
+  variants[2].scene = scaled(c.scene, pow10(-6));
+  variants[2].note += " (lengths scaled by 10^-6)";
+  const Exact t0 = c.scene.bodies[0].motion->t0;
+  for (int v = 0; v < 3; ++v) {
+    const CheckResult r = run_and_check(variants[v], 0, 1, KernelKind::Filtered, 20000, "variant " + std::to_string(v));
+    if (v == 0) RC_TAG(c.kind, stop_label(r));
+    RC_ASSERT(r.verdict == (clearance ? Verdict::Safe : Verdict::Collision));
+    if (!clearance) {
+      RC_ASSERT(r.witness->t == t0);
+      RC_ASSERT(r.first_contact->first == t0);
+      RC_ASSERT(r.first_contact->second == t0);
+    }
+  }
+}
+
+// ------------------------------------------------------------------ deterministic cases
+
+BOOST_AUTO_TEST_CASE(two_segments_crossing_head_on_and_passing_apart) {
+  // Segment a (along z, |z| <= 1) moves in +x, segment b (along y, at height
+  // dz) in -x; they pass x = 0 together at t = 1/2 only: they meet at
+  // (0, 0, dz) when dz = 0, and keep clearance 1 when dz = 2.
+  for (const Exact dz : {Exact(0), Exact(2)}) {
+    Scene s;
+    s.source = "deterministic";
+    s.bodies = {linear_body("a", {{-2, 0, -1}, {-2, 0, 1}}, {{2, 0, -1}, {2, 0, 1}}),
+                linear_body("b", {{2, -1, dz}, {2, 1, dz}}, {{-2, -1, dz}, {-2, 1, dz}})};
+    s.epsilon = Exact(1, 1000);
+    s.max_depth = 30;
+    s.checks = {{0, 1}};
+    rebuild_masses(s);
+    for (KernelKind kernel : {KernelKind::Filtered, KernelKind::Exact})
+      for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 0}}) {
+        const CheckResult r = verify_check(s, a, b, options_for(*s.epsilon, kernel));
+        BOOST_TEST_INFO("dz = " << str(dz) << ", " << to_string(kernel) << ", order (" << a << ", " << b
+                                << "): " << describe(r));
+        BOOST_TEST(consistency_problem(s, a, b, r) == "");
+        if (dz == 0) {
+          BOOST_REQUIRE((r.verdict == Verdict::Collision));
+          BOOST_TEST(r.witness->t == Exact(1, 2));
+          BOOST_TEST((r.witness->point == Vec3E{0, 0, 0}));
+          BOOST_TEST(r.first_contact->first <= Exact(1, 2));
+          BOOST_TEST(r.first_contact->first > 0);
+        } else {
+          BOOST_TEST((r.verdict == Verdict::Safe));
+        }
+      }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_oracle_itself) {
+  // Rotation matrices from integer quaternions are rotations.
+  BOOST_TEST(is_rotation(rotation(1, 2, 2, 4)));
+  BOOST_TEST(is_rotation(rotation(0, 0, 0, 3)));
+  BOOST_TEST(is_rotation(rotation(-3, 1, 0, 2)));
+  BOOST_TEST(!is_rotation(translation(1, 0, 0)));
+  // The oblique normal is a unit vector, perpendicular to the in-plane directions.
+  BOOST_TEST(dot(kNormal, kNormal) == Exact(1));
+  BOOST_TEST(dot(kNormal, kInPlane1) == Exact(0));
+  BOOST_TEST(dot(kNormal, kInPlane2) == Exact(0));
+  // compose: (W o M)(x) = W(M(x)).
+  const Mat34E W = {1, 2, 0, 1, 0, 1, 3, -1, 2, 0, 1, Exact(1, 2)};
+  const Mat34E M = {0, 1, 0, 2, 1, 0, 1, 0, 0, 0, 2, -3};
+  const Vec3E x = {Exact(1, 3), -2, 5};
+  BOOST_TEST((place(compose(W, M), x) == place(W, place(M, x))));
+  // linear_body: vertex i at p0[i] at t = 0 and p1[i] at t = 1, linearly.
+  const Body b = linear_body("t", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{2, 0, 0}, {2, 2, 0}, {2, 0, 2}});
+  BOOST_TEST((place(eval_motion(*b.motion, Exact(1, 2)), {1, 0, 0}) == Vec3E{Exact(3, 2), 1, 0}));
+  BOOST_TEST(body_contains(b, 1, {2, 1, 1}));
+  BOOST_TEST(!body_contains(b, 1, {2, 2, 2}));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
