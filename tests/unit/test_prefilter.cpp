@@ -1,0 +1,91 @@
+// The certified prefilter (swept boxes and separating axes between the hulls
+// of swept vertex images) and the node budget: neither may ever turn into a
+// false "safe".
+#include "bench/ccd_queries.h"
+#include "src/verify/prepared.h"
+#include "src/verify/verify.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <random>
+
+using namespace tmcert;
+
+namespace {
+
+// The body placed at curve parameter u, exactly, as simplices.
+std::vector<Simplex> placed(const Body& body, const Exact& u) {
+  const PreparedBody p(body);
+  const Mat34E m = body.motion ? evaluate<1>(homogeneous_curve(*body.motion), u) : Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  std::vector<Simplex> out;
+  for (const StaticPart& part : transformed_parts(p, m)) out.insert(out.end(), part.simplices.begin(), part.simplices.end());
+  return out;
+}
+
+bool touch_at(const Body& a, const Body& b, const Exact& u) {
+  for (const Simplex& s : placed(a, u))
+    for (const Simplex& t : placed(b, u))
+      if (common_point(s, t)) return true;
+  return false;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(prefilter)
+
+// Whenever the prefilter claims "never touch", no sampled parameter (and no
+// generated contact time) shows a contact; and it does clear a good share.
+BOOST_AUTO_TEST_CASE(disjoint_hulls_never_touch) {
+  bench::QueryGenerator generator(99);
+  const bench::QuerySet set = generator.generate(600);
+  int cleared = 0;
+  for (const bench::Query& q : set.queries) {
+    const Body& a = set.scene.bodies[q.body_a];
+    const Body& b = set.scene.bodies[q.body_b];
+    if (!disjoint(swept_box(a), swept_box(b))) continue;
+    ++cleared;
+    BOOST_TEST_CONTEXT(q.kind) {
+      BOOST_TEST(!q.collides);
+      for (int k = 0; k <= 8; ++k) BOOST_TEST(!touch_at(a, b, Exact(k, 8)));
+    }
+  }
+  BOOST_TEST(cleared > 100);
+}
+
+BOOST_AUTO_TEST_CASE(touching_bodies_are_never_prefiltered) {
+  // Every generated contact (built at a known time) must pass the filter.
+  bench::QueryGenerator generator(5);
+  const bench::QuerySet set = generator.generate(600);
+  int contacts = 0;
+  for (const bench::Query& q : set.queries) {
+    if (!q.contact_time) continue;
+    ++contacts;
+    BOOST_TEST(!disjoint(swept_box(set.scene.bodies[q.body_a]), swept_box(set.scene.bodies[q.body_b])));
+  }
+  BOOST_TEST(contacts > 100);
+}
+
+// A tiny node budget ends the search as "undecided" with reason "limit",
+// never "safe".
+BOOST_AUTO_TEST_CASE(node_budget_is_undecided_not_safe) {
+  bench::QueryGenerator generator(7);
+  const bench::QuerySet set = generator.generate(200);
+  VerifyOptions options;
+  options.epsilon = Exact(1, 1000000);
+  options.max_nodes = 3;
+  const Verifier verifier(set.scene, options);
+  int limited = 0;
+  for (const bench::Query& q : set.queries) {
+    const CheckResult r = verifier.check(q.body_a, q.body_b);
+    bool hit_limit = false;
+    for (const UndecidedInterval& u : r.undecided) hit_limit |= u.reason == StopReason::Limit;
+    if (hit_limit) {
+      ++limited;
+      BOOST_TEST(r.verdict != Verdict::Safe);
+    }
+    if (q.collides) BOOST_TEST(r.verdict != Verdict::Safe);
+  }
+  BOOST_TEST(limited > 20);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
