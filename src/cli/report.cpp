@@ -29,9 +29,13 @@ nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
                 {"predicate_calls", s.contact.calls},
                 {"exact_fallbacks", s.contact.exact_fallbacks},
                 {"vertex_face_calls", s.by_kind[0].calls},
+                {"vertex_face_exact", s.by_kind[0].exact_fallbacks},
                 {"edge_edge_calls", s.by_kind[1].calls},
+                {"edge_edge_exact", s.by_kind[1].exact_fallbacks},
                 {"face_vertex_calls", s.by_kind[2].calls},
-                {"static_tests", s.static_tests},
+                {"face_vertex_exact", s.by_kind[2].exact_fallbacks},
+                {"exact_static_tests", s.static_tests},
+                {"prefiltered", s.prefiltered},
                 {"seconds", s.seconds}};
   return j;
 }

@@ -1,25 +1,33 @@
 // Property tests of the guarantee for two moving bodies (DESIGN.md section 3:
-// one joint curve in R^24 with the product metric), and of the verdict's
+// one joint curve in R^24 with the product metric), of the verdict's
 // invariance under swapping the bodies of a check, a rational rotation of the
-// world, a translation by 10^6 and a scaling by 10^-6, plus degenerate linear
-// per-vertex motions (bench/ccd_queries.h's linear_body).
+// world, a translation by 10^6 and a scaling by 10^-6, and of degenerate
+// linear per-vertex motions (bench/ccd_queries.h's linear_body).
 //
 //  (a2)  both bodies move (random rational Bezier motions of degree 1-3,
 //        random positive weights; triangle, parallelogram, segment or point
-//        each); a contact is built at a known rational time t*: never
-//        `safe` (filtered and exact kernels); first_contact starts at or
-//        before t*; a collision's witness lies exactly on both bodies.
-//  (b2)  every control-point image of every vertex of body 1 lies on the
-//        positive side of the oblique plane n.x = 0, n = (2,3,6)/7, at
-//        distance >= m/2, body 2's on the negative side: clearance m, so
-//        `safe` at epsilon = m/4.
-//  (swap) verify_check(s, a, b) and verify_check(s, b, a) agree.
-//  (rotation) a rational rotation of the world keeps every verdict.
-//  (degenerate) a triangle collapsing to a segment, a segment shrinking to a
-//        point, coplanar motions, parallel edges, zero motion: known truth
-//        by construction.
-//  (scale) translation by 10^6 and scaling by 10^-6 keep the verdicts of
-//        (b2) scenes and of scenes in contact at the start.
+//        each); one motion is shifted so that a chosen point of one body is
+//        at a chosen point of the other at a rational time t*: never `safe`
+//        (filtered and exact kernels); first_contact starts at or before t*;
+//        a collision's witness lies exactly on both bodies at its time.
+//  (b2)  relative to a drift both bodies share, every control-point image of
+//        every vertex of body 1 has n.x >= m/2, n = (2,3,6)/7, and body 2's
+//        n.x <= -m/2: clearance m, so `safe` at epsilon = m/4 (and m/2).
+//        The drift and a degree elevation / weight scaling of one motion
+//        keep the certified prefilter from deciding alone (the search runs).
+//  (swap) verify_check(s, a, b) and verify_check(s, b, a) agree: verdict,
+//        first_contact's lower end, and each witness is at or after the
+//        other order's certified-free prefix.
+//  (rotation) a rational rotation (from an integer quaternion) of the world
+//        keeps every verdict.
+//  (degenerate) a triangle collapsing to a segment at t = 1, a segment
+//        shrinking to a point, coplanar motions, parallel edges, zero motion
+//        (p0 == p1) for one or both bodies: contact at a rational time =>
+//        never safe; separated by a plane with margin m at both ends =>
+//        safe at epsilon = m/4.
+//  (scale) translation by 10^6 and scaling by 10^-6 (epsilon scaled) keep
+//        the verdicts of (b2) scenes (safe) and of (a2) scenes in contact at
+//        the start (collision at t0).
 //
 // Every scene is built in C++ from exact rationals; the oracle (rational
 // Bezier evaluation, point in triangle / on segment) is written here,
@@ -27,8 +35,10 @@
 // does (a single point's offsets use the scene's size), so the scene printed
 // in a failure log (tmcert-scene/1 JSON) is the scene that was verified.
 //
-// Replay a failure with RC_PARAMS="seed=N" (printed at the start of the run)
-// or with the RC_PARAMS="reproduce=..." line printed on failure, e.g.
+// Each property runs a multiple of rapidcheck's max_success (default 100):
+// 400 % for the cheap filtered ones, 50 % for the exact kernel; about 6 s in
+// Release.  Replay a failure with RC_PARAMS="seed=N" (printed at the start
+// of the run) or with the RC_PARAMS="reproduce=..." line printed on failure:
 //   RC_PARAMS="seed=N" tmcert_property --run_test=two_bodies/NAME
 
 #include <rapidcheck/boost_test.h>
@@ -472,7 +482,8 @@ Case contact2_case(bool at_start) {
   const auto interval = pick_interval();
   auto [one, hull1] = pick_shape("one", -1, 1, true);
   auto [two, hull2] = pick_shape("two", -1, 1, true);
-  Motion m1 = pick_motion(interval, 2, 6), m2 = pick_motion(interval, 2, 6);
+  const double a_range = *rc::gen::element(1.0, 2.0);
+  Motion m1 = pick_motion(interval, a_range, 6), m2 = pick_motion(interval, a_range, 6);
   const Exact s = at_start ? Exact(0) : pick(0, 1);
   const Exact t_star = interval.first + s * (interval.second - interval.first);
   const Vec3E p = *rc::gen::arbitrary<bool>() ? hull1[uniform(std::size_t(0), hull1.size() - 1)] : barycentric_point(hull1);
@@ -492,26 +503,101 @@ Case contact2_case(bool at_start) {
   return c;
 }
 
-// (b2) Both bodies move; body one's vertex images under every control point
-// have n.x >= m/2, body two's n.x <= -m/2 (equality at one control point
-// each): by the convex hull property the bodies keep distance >= m.
-Case clearance2_case() {
+// Degree elevation of a rational Bezier motion (the same curve, one degree
+// higher): homogeneous points H'_i = (i/(n+1)) H_{i-1} + (1 - i/(n+1)) H_i.
+Motion elevated(const Motion& m) {
+  const int n = m.degree();
+  Motion out = m;
+  out.control_points.assign(n + 2, Mat34E{});
+  out.weights.assign(n + 2, Exact(0));
+  for (int i = 0; i <= n + 1; ++i) {
+    const Exact a = Exact(i, n + 1), b = 1 - a;
+    Exact w = 0;
+    std::array<Exact, 12> h;
+    h.fill(Exact(0));
+    if (i > 0) {
+      w += a * m.weights[i - 1];
+      for (int e = 0; e < 12; ++e) h[e] += a * m.weights[i - 1] * m.control_points[i - 1][e];
+    }
+    if (i <= n) {
+      w += b * m.weights[i];
+      for (int e = 0; e < 12; ++e) h[e] += b * m.weights[i] * m.control_points[i][e];
+    }
+    out.weights[i] = w;
+    for (int e = 0; e < 12; ++e) out.control_points[i][e] = h[e] / w;
+  }
+  return out;
+}
+
+// (b2) Both bodies move.  Relative to a drift T(t) that both share, body
+// one's vertex images under every control point have n.x >= m/2 and body
+// two's n.x <= -m/2 (equality at one control point each): by the convex
+// hull property, at every t body one - T(t) and body two - T(t) lie on
+// opposite sides with margin, so the bodies keep distance >= m.
+//
+// With a drift ("drift"): both motions have the same degree and weights,
+// control point k of each is its relative control point plus the drift's
+// translation tau_k (large, across the plane too), so T(t) is the same
+// rational curve for both.  Then one motion may be degree-elevated (up to
+// degree 3) and its weights scaled by a constant (the same curves, written
+// differently: degrees and weights of the two motions differ).  The hulls
+// of the control-point images then overlap, so the certified prefilter
+// (boxes and separating axes over control-point images) cannot decide and
+// the joint-curve search must.  Without ("plain"): no drift, the relative
+// motions as they are (often cleared by the prefilter alone).
+//
+// Relative translations lie along the plane before the push; both bodies
+// follow one common line in it (control point k near A + (k/n) D), so they
+// travel side by side.  Epsilon m/4, or m/eps_divisor when given.
+Case clearance2_case(int eps_divisor = 4) {
   const Exact m = pick(0.25, 2) / *rc::gen::element(1, 1, 4, 8);  // 1/32 .. 2
   const auto interval = pick_interval();
   auto [one, hull1] = pick_shape("one", -1, 1, true);
   auto [two, hull2] = pick_shape("two", -1, 1, true);
+  const bool drift = *rc::gen::element(true, true, true, true, false);
+  auto in_plane = [](double range) { return add(mul(pick(-range, range), kInPlane1), mul(pick(-range, range), kInPlane2)); };
+  const Vec3E A = in_plane(1), D = in_plane(1);
   Motion motions[2];
+  motions[0] = pick_motion(interval, *rc::gen::element(1, 2), 0);
+  const int n0 = motions[0].degree();
+  std::vector<Vec3E> tau;
+  for (int k = 0; k <= n0; ++k) tau.push_back(pick_point(-6, 6));
   for (int b = 0; b < 2; ++b) {
-    motions[b] = pick_motion(interval, 2, 3);
-    const int tight = uniform(0, motions[b].degree());
-    for (int k = 0; k <= motions[b].degree(); ++k)
+    if (b == 1) {
+      motions[1] = pick_motion(interval, *rc::gen::element(1, 2), 0);
+      if (drift) {  // the same degree and weights as body one's
+        motions[1].control_points.resize(n0 + 1, motions[1].control_points[0]);
+        for (int k = 0; k <= n0; ++k) motions[1].control_points[k] = pick_affine(1, 0);
+        motions[1].weights = motions[0].weights;
+      }
+    }
+    const int n = motions[b].degree();
+    for (int k = 0; k <= n; ++k) {
+      const Vec3E t = add(add(A, mul(Exact(k, n), D)), in_plane(0.25));
+      for (int r = 0; r < 3; ++r) motions[b].control_points[k][4 * r + 3] = t[r];
+    }
+    const int tight = uniform(0, n);
+    for (int k = 0; k <= n; ++k)
       push_to_side(motions[b].control_points[k], b == 0 ? hull1 : hull2, b == 0 ? 1 : -1, m / 2,
                    k == tight ? Exact(0) : pick(0, 1));
+    if (drift)
+      for (int k = 0; k <= n; ++k)
+        for (int r = 0; r < 3; ++r) motions[b].control_points[k][4 * r + 3] += tau[k][r];
+  }
+  std::string note = "clearance m = " + str(m);
+  if (drift) {
+    const int b = uniform(0, 1);
+    const int times = uniform(0, 3 - n0);
+    for (int i = 0; i < times; ++i) motions[b] = elevated(motions[b]);
+    const Exact scale = pick(0.25, 4);
+    for (Exact& w : motions[b].weights) w *= scale;
+    note += ", common drift; motion of body " + std::to_string(b + 1) + " elevated " + std::to_string(times) +
+            " times, weights scaled by " + str(scale);
   }
   one.motion = motions[0];
   two.motion = motions[1];
-  Case c{make_scene(one, two, m / 4), "clearance2", std::nullopt, true, "clearance m = " + str(m)};
-  return c;
+  return Case{make_scene(one, two, m / eps_divisor), drift ? "clearance2 drift" : "clearance2 plain", std::nullopt, true,
+              note};
 }
 
 // One moving body against a fixed one (plain, or under a constant possibly
@@ -667,15 +753,19 @@ void check_orders_agree(const CheckResult& x, const CheckResult& y) {
   if (x.verdict != Verdict::Safe) RC_ASSERT(x.first_contact->first == y.first_contact->first);
 }
 
+// Runs a property as the current Boost test case with `percent` % of the
+// configured number of cases (RC_PARAMS="max_success=N", default 100; at
+// least one case), under the configured seed and reproduce settings,
+// reporting like RC_BOOST_PROP.
 template <typename Testable>
-void check_limited(Testable&& testable, int max_success) {
+void check_cases(Testable&& testable, int percent) {
   using namespace rc::detail;
   const auto& tc = boost::unit_test::framework::current_test_case();
   TestMetadata metadata;
   metadata.id = tc.full_name();
   metadata.description = tc.p_name;
   TestParams params = configuration().testParams;
-  params.maxSuccess = std::max(1, std::min(params.maxSuccess, max_success));
+  params.maxSuccess = std::max(1, static_cast<int>(static_cast<long>(params.maxSuccess) * percent / 100));
   const auto result = checkTestable(std::forward<Testable>(testable), metadata, params);
   BOOST_CHECK(true);
   if (result.template is<SuccessResult>()) {
@@ -691,8 +781,6 @@ void check_limited(Testable&& testable, int max_success) {
     BOOST_FAIL(ss.str());
   }
 }
-
-int configured_cases() { return rc::detail::configuration().testParams.maxSuccess; }
 
 // ------------------------------------------------------------------ degenerate linear motions
 
@@ -756,9 +844,10 @@ Case degenerate_case(int kind, bool contact) {
         const Vec3E u = side(-1, true), w = side(-1, *rc::gen::arbitrary<bool>());
         RC_PRE(u != w);
         b1 = {u, w, lerp(u, w, alpha)};
-        // At t = 1 the point is right above the collapsed segment, at n.x = m/2.
-        const Vec3E mid = lerp(u, w, pick(0, 1));
-        a0 = {side(1)};
+        // At t = 1 the point is right above the collapsed segment, at n.x = m/2;
+        // at t = 0 anywhere on its side, or right above the triangle.
+        const Vec3E mid = lerp(u, w, pick(0, 1)), over = barycentric_point(b0);
+        a0 = {*rc::gen::arbitrary<bool>() ? side(1) : add(over, mul(m / 2 - dot(kNormal, over), kNormal))};
         a1 = {add(mid, mul(m / 2 - dot(kNormal, mid), kNormal))};
       }
       note = "third vertex onto the line at t = 1, alpha = " + str(alpha);
@@ -788,8 +877,11 @@ Case degenerate_case(int kind, bool contact) {
         RC_PRE(b0[0] != b0[1]);
         const Vec3E z = side(-1, true);
         b1 = {z, z};
-        a0 = {side(1)};
-        a1 = {add(z, mul(m, kNormal))};  // right above the shrunk point at t = 1
+        // At t = 1 right above the shrunk point; at t = 0 anywhere on its
+        // side, or right above the segment.
+        const Vec3E over = barycentric_point(b0);
+        a0 = {*rc::gen::arbitrary<bool>() ? side(1) : add(over, mul(m / 2 - dot(kNormal, over), kNormal))};
+        a1 = {add(z, mul(m, kNormal))};
         if (other_segment) {
           a0.push_back(side(1));
           a1.push_back(side(1));
@@ -823,7 +915,7 @@ Case degenerate_case(int kind, bool contact) {
         std::vector<Vec3E> v;
         for (std::size_t i = 0; i < na; ++i) v.push_back(pick_velocity(true));
         around(x, v, *t_star, a0, a1);
-        RC_PRE(edges ? a0[0] != a0[1] || a1[0] != a1[1] : true);
+        if (edges) RC_PRE(a0[0] != a0[1] || a1[0] != a1[1]);
       } else {
         separating = n2;
         const int tight = uniform(0, 1);
@@ -918,6 +1010,26 @@ Case degenerate_case(int kind, bool contact) {
       break;
     }
   }
+  // The construction itself (separated): every vertex on its side with
+  // margin at both ends, so at every time (the motion is linear).
+  if (!contact) {
+    for (const auto* v : {&a0, &a1})
+      for (const Vec3E& p : *v) RC_ASSERT(dot(separating, p) >= m / 2);
+    for (const auto* v : {&b0, &b1})
+      for (const Vec3E& p : *v) RC_ASSERT(dot(separating, p) <= -m / 2);
+    // A drift t * delta common to both bodies keeps the relative geometry
+    // (so the clearance) but crosses the plane: the certified prefilter
+    // (boxes and separating axes over the end positions) can no longer
+    // decide alone.
+    if (kind <= 3 && *rc::gen::element(true, true, false)) {
+      // Across the plane (so that the sweeps overlap), and along it.
+      Vec3E delta = add(mul(pick(-4, 4), separating), pick_point(-2, 2));
+      if (kind == 2) delta[2] = 0;
+      for (auto* v : {&a1, &b1})
+        for (Vec3E& p : *v) p = add(p, delta);
+      note += ", common drift " + str(delta);
+    }
+  }
   const Exact epsilon = contact ? *rc::gen::element(Exact(1, 16), Exact(1, 100), Exact(1, 1000)) : m / 4;
   Scene s;
   s.source = "property";
@@ -929,17 +1041,11 @@ Case degenerate_case(int kind, bool contact) {
   Case c{s, std::string(kDegenerateKinds[kind]) + (contact ? " contact" : " separated"), t_star, !contact, note};
   if (contact) c.note += ", contact at t* = " + str(*t_star);
   else c.note += ", clearance m = " + str(m);
-  // The construction itself: a common point at t*, or every vertex on its
-  // side with margin at both ends (then at every time: linear motion).
+  // The construction itself (contact): a common point at t*.
   if (contact) {
     c.note += ", common point " + str(*target);
     RC_ASSERT(body_contains(c.scene.bodies[0], *t_star, *target));
     RC_ASSERT(body_contains(c.scene.bodies[1], *t_star, *target));
-  } else {
-    for (const auto* v : {&a0, &a1})
-      for (const Vec3E& p : *v) RC_ASSERT(dot(separating, p) >= m / 2);
-    for (const auto* v : {&b0, &b1})
-      for (const Vec3E& p : *v) RC_ASSERT(dot(separating, p) <= -m / 2);
   }
   return c;
 }
@@ -948,44 +1054,30 @@ Case degenerate_case(int kind, bool contact) {
 
 BOOST_AUTO_TEST_SUITE(two_bodies)
 
-// ------------------------------------------------------------------ (a2)
-
 namespace {
-void contact2_never_safe(KernelKind kernel, std::uint64_t max_nodes) {
+
+// The certified kernels, the filtered one mostly; the exact one with a
+// smaller node budget (it is slower per node).
+KernelKind pick_kernel() { return *rc::gen::element(KernelKind::Filtered, KernelKind::Filtered, KernelKind::Filtered, KernelKind::Exact); }
+std::uint64_t node_budget(KernelKind k) { return k == KernelKind::Exact ? 5000 : 20000; }
+
+// (a2)
+void contact2_never_safe(KernelKind kernel) {
   const Case c = contact2_case(false);
   const bool swap = *rc::gen::arbitrary<bool>();
-  const CheckResult r = run_and_check(c, swap ? 1 : 0, swap ? 0 : 1, kernel, max_nodes, "a2");
-  RC_TAG(stop_label(r), work_label(r));
-}
-}  // namespace
-
-RC_BOOST_PROP(a2_contact_at_known_time_is_never_safe_filtered, ()) { contact2_never_safe(KernelKind::Filtered, 20000); }
-
-BOOST_AUTO_TEST_CASE(a2_contact_at_known_time_is_never_safe_exact) {
-  check_limited([] { contact2_never_safe(KernelKind::Exact, 5000); }, std::max(1, configured_cases() / 4));
-}
-
-// ------------------------------------------------------------------ (b2)
-
-RC_BOOST_PROP(b2_clearance_m_is_safe_for_epsilon_m_over_4, ()) {
-  const Case c = clearance2_case();
-  const CheckResult r = run_and_check(c, 0, 1, KernelKind::Filtered, 20000, "b2");
+  const CheckResult r = run_and_check(c, swap ? 1 : 0, swap ? 0 : 1, kernel, node_budget(kernel), "a2");
   RC_TAG(stop_label(r), work_label(r));
 }
 
-BOOST_AUTO_TEST_CASE(b2_clearance_m_is_safe_for_epsilon_m_over_4_exact) {
-  check_limited(
-      [] {
-        const Case c = clearance2_case();
-        const CheckResult r = run_and_check(c, 0, 1, KernelKind::Exact, 20000, "b2 exact");
-        RC_TAG(stop_label(r), work_label(r));
-      },
-      std::max(1, configured_cases() / 4));
+// (b2)
+void clearance2_safe(KernelKind kernel, int eps_divisor) {
+  const Case c = clearance2_case(eps_divisor);
+  const CheckResult r = run_and_check(c, 0, 1, kernel, 20000, "b2");
+  RC_TAG(c.kind, stop_label(r), work_label(r));
 }
 
-// ------------------------------------------------------------------ (swap)
-
-namespace {
+// Any of the scene kinds with a known truth: (a2), (b2), (a2) in contact at
+// the start, one moving body against a fixed one.
 Case any_case() {
   switch (uniform(0, 3)) {
     case 0: return contact2_case(false);
@@ -994,83 +1086,129 @@ Case any_case() {
     default: return fixed_case();
   }
 }
-}  // namespace
 
-RC_BOOST_PROP(swapping_the_bodies_of_a_check_keeps_the_verdict, ()) {
-  const Case c = any_case();
-  const CheckResult ab = run_and_check(c, 0, 1, KernelKind::Filtered, 20000, "order (0, 1)");
-  const CheckResult ba = run_and_check(c, 1, 0, KernelKind::Filtered, 20000, "order (1, 0)");
-  RC_TAG(c.kind, stop_label(ab));
-  check_orders_agree(ab, ba);
-}
-
-// ------------------------------------------------------------------ (rotation)
-
-RC_BOOST_PROP(rational_rotation_of_the_world_keeps_every_verdict, ()) {
-  const Case c = any_case();
-  long q[4];
-  for (long& e : q) e = uniform(-3L, 3L);
-  RC_PRE(q[0] != 0 || q[1] != 0 || q[2] != 0 || q[3] != 0);
-  const Mat34E R = rotation(q[0], q[1], q[2], q[3]);
-  RC_ASSERT(is_rotation(R));
-  Case rotated = c;
-  rotated.scene = world_mapped(c.scene, R);
-  rotated.note += " (rotated by the quaternion (" + std::to_string(q[0]) + ", " + std::to_string(q[1]) + ", " +
-                  std::to_string(q[2]) + ", " + std::to_string(q[3]) + "))";
-  const CheckResult r0 = run_and_check(c, 0, 1, KernelKind::Filtered, 20000, "original");
-  const CheckResult r1 = run_and_check(rotated, 0, 1, KernelKind::Filtered, 20000, "rotated");
-  RC_TAG(c.kind, stop_label(r0));
-  RC_ASSERT(r0.verdict == r1.verdict);
-}
-
-// ------------------------------------------------------------------ (degenerate)
-
-namespace {
+// (degenerate)
 void degenerate_known_truth(KernelKind kernel) {
   const int kind = uniform(0, 5);
   const bool contact = *rc::gen::arbitrary<bool>();
   const Case c = degenerate_case(kind, contact);
   const bool swap = *rc::gen::arbitrary<bool>();
   const CheckResult r = run_and_check(c, swap ? 1 : 0, swap ? 0 : 1, kernel, 20000, "degenerate");
-  RC_TAG(c.kind, stop_label(r));
+  RC_TAG(c.kind, stop_label(r), r.stats.prefiltered ? "prefiltered" : "searched");
   if (kind == 5 && contact) {  // touching throughout: the start check
     RC_ASSERT(r.verdict == Verdict::Collision);
     RC_ASSERT(r.witness->t == 0);
   }
 }
+
 }  // namespace
 
-RC_BOOST_PROP(degenerate_linear_motions_have_their_known_truth_filtered, ()) {
-  degenerate_known_truth(KernelKind::Filtered);
+// ------------------------------------------------------------------ (a2)
+
+BOOST_AUTO_TEST_CASE(a2_contact_at_known_time_is_never_safe_filtered) {
+  check_cases([] { contact2_never_safe(KernelKind::Filtered); }, 400);
+}
+
+BOOST_AUTO_TEST_CASE(a2_contact_at_known_time_is_never_safe_exact) {
+  check_cases([] { contact2_never_safe(KernelKind::Exact); }, 50);
+}
+
+// ------------------------------------------------------------------ (b2)
+
+BOOST_AUTO_TEST_CASE(b2_clearance_m_is_safe_for_epsilon_m_over_4_filtered) {
+  check_cases([] { clearance2_safe(KernelKind::Filtered, 4); }, 400);
+}
+
+BOOST_AUTO_TEST_CASE(b2_clearance_m_is_safe_for_epsilon_m_over_4_exact) {
+  check_cases([] { clearance2_safe(KernelKind::Exact, 4); }, 50);
+}
+
+// DESIGN.md section 6 claims safe for every epsilon <= m/2; for two moving
+// bodies the same bound holds (the fattening R sqrt(rho1^2 + rho2^2) is what
+// the stop test compares with epsilon, and the centers' images are then
+// more than m - epsilon apart).  Checked at epsilon = m/2 exactly.
+BOOST_AUTO_TEST_CASE(b2_clearance_m_is_safe_for_epsilon_m_over_2) {
+  check_cases([] { clearance2_safe(KernelKind::Filtered, 2); }, 200);
+}
+
+// ------------------------------------------------------------------ (swap)
+
+BOOST_AUTO_TEST_CASE(swapping_the_bodies_of_a_check_keeps_the_verdict) {
+  check_cases(
+      [] {
+        const Case c = any_case();
+        const KernelKind kernel = pick_kernel();
+        const CheckResult ab = run_and_check(c, 0, 1, kernel, node_budget(kernel), "order (0, 1)");
+        const CheckResult ba = run_and_check(c, 1, 0, kernel, node_budget(kernel), "order (1, 0)");
+        RC_TAG(c.kind, stop_label(ab));
+        check_orders_agree(ab, ba);
+      },
+      300);
+}
+
+// ------------------------------------------------------------------ (rotation)
+
+BOOST_AUTO_TEST_CASE(rational_rotation_of_the_world_keeps_every_verdict) {
+  check_cases(
+      [] {
+        const Case c = any_case();
+        long q[4];
+        for (long& e : q) e = uniform(-3L, 3L);
+        RC_PRE(q[0] != 0 || q[1] != 0 || q[2] != 0 || q[3] != 0);
+        const Mat34E R = rotation(q[0], q[1], q[2], q[3]);
+        RC_ASSERT(is_rotation(R));
+        Case rotated = c;
+        rotated.scene = world_mapped(c.scene, R);
+        rotated.note += " (rotated by the quaternion (" + std::to_string(q[0]) + ", " + std::to_string(q[1]) + ", " +
+                        std::to_string(q[2]) + ", " + std::to_string(q[3]) + "))";
+        const KernelKind kernel = pick_kernel();
+        const CheckResult r0 = run_and_check(c, 0, 1, kernel, node_budget(kernel), "original");
+        const CheckResult r1 = run_and_check(rotated, 0, 1, kernel, node_budget(kernel), "rotated");
+        RC_TAG(c.kind, stop_label(r0));
+        RC_ASSERT(r0.verdict == r1.verdict);
+      },
+      300);
+}
+
+// ------------------------------------------------------------------ (degenerate)
+
+BOOST_AUTO_TEST_CASE(degenerate_linear_motions_have_their_known_truth_filtered) {
+  check_cases([] { degenerate_known_truth(KernelKind::Filtered); }, 500);
 }
 
 BOOST_AUTO_TEST_CASE(degenerate_linear_motions_have_their_known_truth_exact) {
-  check_limited([] { degenerate_known_truth(KernelKind::Exact); }, std::max(1, configured_cases() / 2));
+  check_cases([] { degenerate_known_truth(KernelKind::Exact); }, 200);
 }
 
 // ------------------------------------------------------------------ (scale)
 
-RC_BOOST_PROP(translation_by_1e6_and_scaling_by_1e_6_keep_the_verdicts, ()) {
-  const bool clearance = *rc::gen::arbitrary<bool>();
-  const Case c = clearance ? clearance2_case() : contact2_case(true);
-  const Exact big = pow10(6);
-  const Vec3E d = {*rc::gen::element(1, -1) * big, *rc::gen::element(1, -1) * big, *rc::gen::element(1, -1) * big};
-  Case variants[3] = {c, c, c};
-  variants[1].scene = world_mapped(c.scene, translation(d[0], d[1], d[2]));
-  variants[1].note += " (translated by " + str(d) + ")";
-  variants[2].scene = scaled(c.scene, pow10(-6));
-  variants[2].note += " (lengths scaled by 10^-6)";
-  const Exact t0 = c.scene.bodies[0].motion->t0;
-  for (int v = 0; v < 3; ++v) {
-    const CheckResult r = run_and_check(variants[v], 0, 1, KernelKind::Filtered, 20000, "variant " + std::to_string(v));
-    if (v == 0) RC_TAG(c.kind, stop_label(r));
-    RC_ASSERT(r.verdict == (clearance ? Verdict::Safe : Verdict::Collision));
-    if (!clearance) {
-      RC_ASSERT(r.witness->t == t0);
-      RC_ASSERT(r.first_contact->first == t0);
-      RC_ASSERT(r.first_contact->second == t0);
-    }
-  }
+BOOST_AUTO_TEST_CASE(translation_by_1e6_and_scaling_by_1e_6_keep_the_verdicts) {
+  check_cases(
+      [] {
+        const bool clearance = *rc::gen::arbitrary<bool>();
+        const Case c = clearance ? clearance2_case() : contact2_case(true);
+        const Exact big = pow10(6);
+        const Vec3E d = {*rc::gen::element(1, -1) * big, *rc::gen::element(1, -1) * big,
+                         *rc::gen::element(1, -1) * big};
+        Case variants[3] = {c, c, c};
+        variants[1].scene = world_mapped(c.scene, translation(d[0], d[1], d[2]));
+        variants[1].note += " (translated by " + str(d) + ")";
+        variants[2].scene = scaled(c.scene, pow10(-6));
+        variants[2].note += " (lengths scaled by 10^-6)";
+        const Exact t0 = c.scene.bodies[0].motion->t0;
+        for (int v = 0; v < 3; ++v) {
+          const CheckResult r =
+              run_and_check(variants[v], 0, 1, KernelKind::Filtered, 20000, "variant " + std::to_string(v));
+          if (v == 0) RC_TAG(c.kind, stop_label(r));
+          RC_ASSERT(r.verdict == (clearance ? Verdict::Safe : Verdict::Collision));
+          if (!clearance) {
+            RC_ASSERT(r.witness->t == t0);
+            RC_ASSERT(r.first_contact->first == t0);
+            RC_ASSERT(r.first_contact->second == t0);
+          }
+        }
+      },
+      200);
 }
 
 // ------------------------------------------------------------------ deterministic cases
