@@ -4,6 +4,7 @@
 #include <CGAL/intersections.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <limits>
 #include <variant>
 #include <vector>
@@ -40,7 +41,9 @@ template <class A, class B>
 std::optional<Vec3E> intersect(const A& a, const B& b) {
   if (!CGAL::do_intersect(a, b)) return std::nullopt;
   auto result = CGAL::intersection(a, b);
-  if (!result) return std::nullopt;  // cannot happen after do_intersect
+  // The predicate said they meet: a missing construction must not read as
+  // "no contact" (at the start check that could end in a false "safe").
+  if (!result) throw std::logic_error("exact static test: intersection predicate and construction disagree");
   return boost::apply_visitor(AnyPoint(), *result);
 }
 
@@ -83,8 +86,10 @@ std::optional<Vec3E> construct_common_point(const Simplex& a, const Simplex& b);
 std::optional<Vec3E> common_point(const Simplex& a_in, const Simplex& b_in) {
   const Simplex a = canonical(a_in), b = canonical(b_in);
   std::optional<Vec3E> p = construct_common_point(a, b);
-  // Independent confirmation with exact predicates.
-  if (p && (!point_in(*p, a) || !point_in(*p, b))) return std::nullopt;
+  // Independent confirmation with exact predicates; a disagreement is an
+  // internal error (exit 4), never "no contact" and never a witness.
+  if (p && (!point_in(*p, a) || !point_in(*p, b)))
+    throw std::logic_error("exact static test: constructed common point is not on both simplices");
   return p;
 }
 

@@ -58,16 +58,16 @@ std::vector<std::array<double, N>> approximate(const std::vector<std::array<Exac
 template <class NT, std::size_t N>
 void split_half(const std::vector<std::array<NT, N>>& c, std::vector<std::array<NT, N>>& left,
                 std::vector<std::array<NT, N>>& right) {
+  // In place on `right`: after level L its entries 0..n-2-L hold the L+1-th
+  // de Casteljau column and entry n-1-L is final.
   const std::size_t n = c.size();
-  std::vector<std::array<NT, N>> work(c);
+  right = c;
   left.resize(n);
-  right.resize(n);
   const NT half(0.5);
   for (std::size_t level = 0; level < n; ++level) {
-    left[level] = work[0];
-    right[n - 1 - level] = work[n - 1 - level];
+    left[level] = right[0];
     for (std::size_t k = 0; k + 1 < n - level; ++k)
-      for (std::size_t e = 0; e < N; ++e) work[k][e] = (work[k][e] + work[k + 1][e]) * half;
+      for (std::size_t e = 0; e < N; ++e) right[k][e] = (right[k][e] + right[k + 1][e]) * half;
   }
 }
 

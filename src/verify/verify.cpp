@@ -478,6 +478,8 @@ Exact default_epsilon(const Scene& scene) {
 }
 
 void require_supported(const Scene& scene) {
+  for (const Body& b : scene.bodies)
+    if (b.solid) throw InputError(scene.source + ": body \"" + b.name + "\": solid bodies are not supported yet");
   // Nothing to check would be reported "safe" vacuously: a user who forgot
   // the motion or the checks must hear about it instead.
   if (scene.checks.empty())
@@ -562,6 +564,12 @@ CheckResult Verifier::check(int a, int b) const {
   const Body& x = scene_.bodies[a];
   const Body& y = scene_.bodies[b];
   const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
+  // A solid's inside counts as contact: that needs an exact containment
+  // test this version does not have, so it refuses rather than treat the
+  // solid as its surface (which could certify a false "safe").
+  for (const Body* body : {&x, &y})
+    if (body->solid)
+      throw InputError(scene_.source + ": body \"" + body->name + "\": solid bodies are not supported yet");
   // The joint curve pairs the motions by curve parameter: that is the same
   // instant only when the scene intervals agree.
   if (mx && my && (x.motion->t0 != y.motion->t0 || x.motion->t1 != y.motion->t1))

@@ -89,3 +89,19 @@ BOOST_AUTO_TEST_CASE(node_budget_is_undecided_not_safe) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(refusals)
+
+// A solid body built in C++ (the parser refuses it) is refused by the
+// verifier too: treating it as its surface could certify a false "safe".
+BOOST_AUTO_TEST_CASE(solid_bodies_are_refused_by_the_verifier) {
+  bench::QueryGenerator generator(1);
+  bench::QuerySet set = generator.generate(2);
+  set.scene.bodies[set.queries[0].body_b].solid = true;
+  VerifyOptions options;
+  options.epsilon = Exact(1, 1000);
+  BOOST_CHECK_THROW(verify_check(set.scene, set.queries[0].body_a, set.queries[0].body_b, options), InputError);
+  BOOST_CHECK_THROW(require_supported(set.scene), InputError);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
