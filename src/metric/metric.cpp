@@ -1,6 +1,7 @@
 #include "src/metric/metric.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace tmcert {
 
@@ -139,6 +140,29 @@ MassDistribution default_mass(const std::vector<Vec3E>& vertices, const Exact& f
     for (int a = 0; a < 3; ++a) { add(a, 1); add(a, -1); }
   }
   return mass;
+}
+
+Exact default_mass_fallback_size(const std::vector<Body>& bodies) {
+  std::optional<Vec3E> lo, hi;
+  auto extend = [&](const Vec3E& p) {
+    if (!lo) { lo = p; hi = p; }
+    for (int a = 0; a < 3; ++a) {
+      (*lo)[a] = std::min((*lo)[a], p[a]);
+      (*hi)[a] = std::max((*hi)[a], p[a]);
+    }
+  };
+  for (const Body& b : bodies) {
+    for (const auto& polygon : b.polygons)
+      for (const Vec3E& p : polygon) extend(p);
+    for (const auto& segment : b.segments)
+      for (const Vec3E& p : segment) extend(p);
+    for (const Vec3E& p : b.points) extend(p);
+  }
+  Exact size = 0;
+  if (lo)
+    for (int a = 0; a < 3; ++a) size = std::max(size, (*hi)[a] - (*lo)[a]);
+  if (size == 0) size = 1;
+  return size;
 }
 
 }  // namespace tmcert

@@ -41,4 +41,10 @@ class Metric {
 // always has a positive definite moment matrix.
 MassDistribution default_mass(const std::vector<Vec3E>& vertices, const Exact& fallback_size);
 
+// The `fallback_size` the default masses of a scene use: the largest extent
+// of the bounding box of every body's vertices (polygons, segments and
+// points, each in its body's own frame), or 1 when that is zero or there are
+// none.
+Exact default_mass_fallback_size(const std::vector<Body>& bodies);
+
 }  // namespace tmcert

@@ -849,19 +849,7 @@ class SceneReader {
       v.insert(v.end(), b.points.begin(), b.points.end());
       return v;
     };
-    std::optional<Vec3E> lo, hi;
-    for (const Body& b : scene.bodies)
-      for (const Vec3E& p : vertices_of(b)) {
-        if (!lo) { lo = p; hi = p; }
-        for (int a = 0; a < 3; ++a) {
-          (*lo)[a] = std::min((*lo)[a], p[a]);
-          (*hi)[a] = std::max((*hi)[a], p[a]);
-        }
-      }
-    Exact size = 0;
-    if (lo)
-      for (int a = 0; a < 3; ++a) size = std::max(size, (*hi)[a] - (*lo)[a]);
-    if (size == 0) size = 1;
+    const Exact size = default_mass_fallback_size(scene.bodies);
 
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       Body& b = scene.bodies[i];

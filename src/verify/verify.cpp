@@ -237,6 +237,19 @@ std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, const std::
 
 // ------------------------------------------------------------------ search
 
+// The rational with the smallest denominator in the closed interval
+// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent).
+Exact simplest_between(const Exact& lo, const Exact& hi) {
+  if (lo <= 0 && hi >= 0) return Exact(0);
+  if (hi < 0) return -simplest_between(-hi, -lo);
+  CGAL::Gmpz fl;
+  mpz_fdiv_q(fl.mpz(), lo.numerator().mpz(), lo.denominator().mpz());
+  if (Exact(fl) == lo) return lo;
+  if (Exact(fl + 1) <= hi) return Exact(fl + 1);
+  // Both in (fl, fl + 1): recurse on the reciprocals of the fractional parts.
+  return Exact(fl) + Exact(1) / simplest_between(Exact(1) / (hi - Exact(fl)), Exact(1) / (lo - Exact(fl)));
+}
+
 // The deepest subdivision level: a node's parameter interval is
 // [index, index + 1] / 2^depth with a 64-bit index.
 constexpr int kDepthCap = 62;
@@ -270,6 +283,7 @@ struct Check {
   CheckResult& result;
 
   Exact scene_t(const Exact& u) const { return motion.t0 + u * (motion.t1 - motion.t0); }
+  Exact curve_u(const Exact& t) const { return (t - motion.t0) / (motion.t1 - motion.t0); }
 
   void set_witness(const Exact& u, const StaticHit& hit) {
     const std::string a = moving.body->name + " " + moving.parts[hit.part_moving].name;
@@ -397,9 +411,13 @@ struct Check {
       if (node.depth >= max_depth) stop = StopReason::Depth;
       else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
       if (stop) {
+        // Witness candidates: the midpoint, the end, and the scene time with
+        // the smallest denominator in the piece (a contact at a "round"
+        // rational time, such as 1/3 or 0.137, is found exactly there).
         const Exact mid = node.mid();
         const Exact end = node.u1();
-        for (const Exact* u : {&mid, &end}) {
+        const Exact simple = curve_u(simplest_between(scene_t(node.u0()), scene_t(end)));
+        for (const Exact* u : {&mid, &end, &simple}) {
           if (try_witness(*u, node.alive)) {
             const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
             result.first_contact = std::pair{lo, scene_t(*u)};

@@ -12,43 +12,21 @@
 #include "src/metric/metric.h"
 #include "src/verify/prepared.h"
 #include "src/verify/verify.h"
+#include "tests/support/random_geometry.h"
 
 #include <boost/test/unit_test.hpp>
 
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 
 using namespace tmcert;
+using namespace tmcert::testing;
 
 namespace {
 
 unsigned seed_from_env(unsigned fallback) {
   if (const char* s = std::getenv("TMCERT_SEED")) return static_cast<unsigned>(std::strtoul(s, nullptr, 10));
   return fallback;
-}
-
-struct Rng {
-  std::mt19937 gen;
-  explicit Rng(unsigned seed) : gen(seed) {}
-  double d(int lo, int hi, int den) { return std::uniform_int_distribution<int>(lo, hi)(gen) / double(den); }
-  int i(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen); }
-  double noise() { return std::uniform_real_distribution<double>(-1, 1)(gen); }
-};
-
-Body triangle_body(const std::string& name, const std::array<Vec3E, 3>& t) {
-  Body b;
-  b.name = name;
-  b.polygons = {{t[0], t[1], t[2]}};
-  b.pieces = {ConvexPiece{0, {t[0], t[1], t[2]}}};
-  b.mass = default_mass({t[0], t[1], t[2]}, Exact(1));
-  return b;
-}
-
-bool collinear(const std::array<Vec3E, 3>& t) {
-  const Vec3E u{t[1][0] - t[0][0], t[1][1] - t[0][1], t[1][2] - t[0][2]};
-  const Vec3E v{t[2][0] - t[0][0], t[2][1] - t[0][1], t[2][2] - t[0][2]};
-  return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 && u[0] * v[1] - u[1] * v[0] == 0;
 }
 
 void print_hex(const char* what, const Placement<double>& p) {

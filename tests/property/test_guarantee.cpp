@@ -9,7 +9,10 @@
 // over small denominators), so the facts the properties rely on (a contact at
 // a known time t*, a clearance m, a gap of exactly 10^-17) hold exactly.  The
 // oracle used to check witnesses (rational Bezier evaluation, point in
-// triangle / on segment) is written here independently of the library.
+// triangle / on segment) is written independently of the library, in
+// tests/support/scene_testing.h (shared with test_two_bodies.cpp).  Default
+// masses are computed as the parser does, so the scene printed in a failure
+// log is the scene that was verified.
 //
 // Replay a failure with RC_PARAMS="seed=N" (the seed is printed at the start
 // of the run) or with the RC_PARAMS="reproduce=..." line printed on failure;
@@ -17,330 +20,33 @@
 // RC_PARAMS="max_success=N" changes the number of cases (the exact-kernel
 // properties run half of them).
 
-#include <rapidcheck/boost_test.h>
+#include "tests/support/scene_testing.h"
 
-#include "kernels/number_types.h"
-#include "src/metric/metric.h"
-#include "src/scene/model.h"
-#include "src/verify/verify.h"
-
-#include <boost/test/unit_test.hpp>
-#include <rapidcheck.h>
-
-#include <algorithm>
-#include <cmath>
-#include <iostream>
+#include <array>
 #include <optional>
-#include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace tmcert;
+using namespace tmcert::testing;
 
 namespace {
 
-// ------------------------------------------------------------------ exact geometry (the oracle)
-
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3E cross(const Vec3E& a, const Vec3E& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
-
-Vec3E place(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-
-Mat34E translation(const Exact& x, const Exact& y, const Exact& z) { return {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z}; }
-
-// The rational Bezier motion at scene parameter t, exactly: de Casteljau on
-// the homogeneous points (w_k P_k, w_k).
-Mat34E eval_motion(const Motion& m, const Exact& t) {
-  const Exact u = (t - m.t0) / (m.t1 - m.t0);
-  const std::size_t n = m.control_points.size();
-  std::vector<std::array<Exact, 13>> h(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    for (int e = 0; e < 12; ++e) h[k][e] = m.weights[k] * m.control_points[k][e];
-    h[k][12] = m.weights[k];
-  }
-  for (std::size_t level = 1; level < n; ++level)
-    for (std::size_t k = 0; k + level < n; ++k)
-      for (int e = 0; e < 13; ++e) h[k][e] = (1 - u) * h[k][e] + u * h[k + 1][e];
-  Mat34E out;
-  for (int e = 0; e < 12; ++e) out[e] = h[0][e] / h[0][12];
-  return out;
-}
-
-bool on_segment(const Vec3E& p, const Vec3E& a, const Vec3E& b) {
-  if (a == b) return p == a;
-  const Vec3E ab = sub(b, a), ap = sub(p, a);
-  return is_zero(cross(ab, ap)) && dot(ap, ab) >= 0 && dot(sub(p, b), sub(a, b)) >= 0;
-}
-
-// p in the closed triangle abc, which may be degenerate (a singular affine
-// map flattens it to a segment or a point).
-bool in_triangle(const Vec3E& p, const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  const Vec3E n = cross(sub(b, a), sub(c, a));
-  if (is_zero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, a, c);
-  if (dot(n, sub(p, a)) != 0) return false;
-  return dot(cross(sub(b, a), sub(p, a)), n) >= 0 && dot(cross(sub(c, b), sub(p, b)), n) >= 0 &&
-         dot(cross(sub(a, c), sub(p, c)), n) >= 0;
-}
-
-bool nondegenerate(const std::vector<Vec3E>& tri) { return !is_zero(cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]))); }
-
 // ------------------------------------------------------------------ scenes
-
-std::vector<Vec3E> body_vertices(const Body& b) {
-  std::vector<Vec3E> v;
-  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
-  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
-  v.insert(v.end(), b.points.begin(), b.points.end());
-  return v;
-}
-
-// A body made of convex polygons (each given with no three consecutive
-// vertices collinear), with the default mass distribution.
-Body make_body(const std::string& name, const std::vector<std::vector<Vec3E>>& polygons,
-               std::optional<Motion> motion = std::nullopt) {
-  Body b;
-  b.name = name;
-  b.polygons = polygons;
-  for (std::size_t i = 0; i < polygons.size(); ++i) b.pieces.push_back(ConvexPiece{static_cast<int>(i), polygons[i]});
-  b.mass = default_mass(body_vertices(b), Exact(1));
-  b.mass_is_default = true;
-  b.motion = std::move(motion);
-  return b;
-}
-
-Scene make_scene(Body moving, Body fixed, const Exact& epsilon) {
-  Scene s;
-  s.source = "property";
-  s.bodies = {std::move(moving), std::move(fixed)};
-  s.epsilon = epsilon;
-  s.max_depth = 30;
-  s.checks = {{0, 1}};
-  return s;
-}
 
 std::vector<Vec3E> square_z0(const Exact& h) { return {{-h, -h, 0}, {h, -h, 0}, {h, h, 0}, {-h, h, 0}}; }
 
-std::string str(const Exact& q) { return to_string(q); }
-std::string str(const Vec3E& v) {
-  return "[\"" + str(v[0]) + "\", \"" + str(v[1]) + "\", \"" + str(v[2]) + "\"]";
-}
-
-// The scene as a tmcert-scene/1 document (for failure logs: save it and run
-// `tmcert verify` on it).
-std::string describe(const Scene& s) {
-  std::ostringstream o;
-  o << "{ \"format\": \"tmcert-scene/1\", \"epsilon\": \"" << (s.epsilon ? str(*s.epsilon) : "?")
-    << "\", \"max_depth\": " << s.max_depth << ", \"bodies\": [\n";
-  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    const Body& b = s.bodies[i];
-    o << "  { \"name\": \"" << b.name << "\", \"polygons\": [";
-    for (std::size_t p = 0; p < b.polygons.size(); ++p) {
-      o << (p ? ", " : "") << "[";
-      for (std::size_t k = 0; k < b.polygons[p].size(); ++k) o << (k ? ", " : "") << str(b.polygons[p][k]);
-      o << "]";
-    }
-    o << "]";
-    if (!b.segments.empty()) {
-      o << ", \"segments\": [";
-      for (std::size_t k = 0; k < b.segments.size(); ++k)
-        o << (k ? ", " : "") << "[" << str(b.segments[k][0]) << ", " << str(b.segments[k][1]) << "]";
-      o << "]";
-    }
-    if (!b.points.empty()) {
-      o << ", \"points\": [";
-      for (std::size_t k = 0; k < b.points.size(); ++k) o << (k ? ", " : "") << str(b.points[k]);
-      o << "]";
-    }
-    if (b.motion) {
-      const Motion& m = *b.motion;
-      o << ",\n    \"motion\": { \"type\": \"rational_bezier\", \"interval\": [\"" << str(m.t0) << "\", \"" << str(m.t1)
-        << "\"],\n      \"control_points\": [";
-      for (std::size_t k = 0; k < m.control_points.size(); ++k) {
-        o << (k ? ",\n        " : "") << "[";
-        for (int r = 0; r < 3; ++r) {
-          o << (r ? ", " : "") << "[";
-          for (int c = 0; c < 4; ++c) o << (c ? ", " : "") << "\"" << str(m.control_points[k][4 * r + c]) << "\"";
-          o << "]";
-        }
-        o << "]";
-      }
-      o << "],\n      \"weights\": [";
-      for (std::size_t k = 0; k < m.weights.size(); ++k) o << (k ? ", " : "") << "\"" << str(m.weights[k]) << "\"";
-      o << "] }";
-    }
-    o << " }" << (i + 1 < s.bodies.size() ? "," : "") << "\n";
-  }
-  o << "], \"checks\": [";
-  for (std::size_t c = 0; c < s.checks.size(); ++c)
-    o << (c ? ", " : "") << "[\"" << s.bodies[s.checks[c].first].name << "\", \"" << s.bodies[s.checks[c].second].name
-      << "\"]";
-  o << "] }";
-  return o.str();
-}
-
-std::string describe(const CheckResult& r) {
-  std::ostringstream o;
-  o << "verdict " << to_string(r.verdict);
-  if (r.first_contact) o << ", first_contact [" << str(r.first_contact->first) << ", " << str(r.first_contact->second) << "]";
-  if (r.witness)
-    o << ", witness t=" << str(r.witness->t) << " (" << r.witness->features[0] << " / " << r.witness->features[1]
-      << ") point " << str(r.witness->point);
-  o << ", undecided intervals " << r.undecided.size();
-  if (!r.undecided.empty())
-    o << " (first [" << str(r.undecided.front().t0) << ", " << str(r.undecided.front().t1) << "] "
-      << to_string(r.undecided.front().reason) << ")";
-  o << ", nodes " << r.stats.nodes << ", depth " << r.stats.max_depth << ", " << r.stats.seconds << " s";
-  return o.str();
-}
-
-// A coarse label of the work a check took, for rapidcheck's distribution
-// output (shows that the cases exercise subdivision, not just the root).
-std::string work_label(const CheckResult& r) {
-  const std::uint64_t n = r.stats.nodes;
-  return n <= 1 ? "nodes 0-1" : n <= 16 ? "nodes 2-16" : n <= 256 ? "nodes 17-256" : n <= 4096 ? "nodes 257-4096" : "nodes > 4096";
-}
-
-std::string stop_label(const CheckResult& r) {
-  if (r.verdict == Verdict::Collision && r.stats.nodes == 0) return "collision (start check)";
-  if (r.verdict != Verdict::Undecided || r.undecided.empty()) return to_string(r.verdict);
-  return std::string("undecided (") + to_string(r.undecided.front().reason) + ")";
-}
-
-// ------------------------------------------------------------------ the witness oracle
-
-// The pose of a body at scene parameter t (identity when fixed; a one-point
-// motion is a constant pose).
-Mat34E pose_at(const Body& b, const Exact& t) {
-  if (!b.motion) return kIdentity;
-  return b.motion->control_points.size() == 1 ? b.motion->control_points[0] : eval_motion(*b.motion, t);
-}
-
-bool is_moving(const Body& b) { return b.motion && b.motion->control_points.size() >= 2; }
-
-// Does the body (placed at scene parameter t) contain p?
-bool body_contains(const Body& b, const Exact& t, const Vec3E& p) {
-  const Mat34E pose = pose_at(b, t);
-  for (const ConvexPiece& piece : b.pieces)
-    for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k)
-      if (in_triangle(p, place(pose, piece.vertices[0]), place(pose, piece.vertices[k]),
-                      place(pose, piece.vertices[k + 1])))
-        return true;
-  for (const auto& seg : b.segments)
-    if (on_segment(p, place(pose, seg[0]), place(pose, seg[1]))) return true;
-  for (const Vec3E& x : b.points)
-    if (place(pose, x) == p) return true;
-  return false;
-}
-
-// Empty when the result is consistent with the guarantee as far as can be
-// checked without knowing the truth: a collision has a genuine witness inside
-// its first-contact bracket, a non-safe verdict has a bracket, and so on.
-std::string consistency_problem(const Scene& s, int a, int b, const CheckResult& r) {
-  const Motion& m = *(is_moving(s.bodies[a]) ? s.bodies[a].motion : s.bodies[b].motion);
-  if (r.bodies[0] != a || r.bodies[1] != b) return "result names the wrong bodies";
-  if (r.verdict == Verdict::Safe) {
-    if (r.first_contact) return "safe with a first_contact bracket";
-    if (r.witness) return "safe with a witness";
-    if (!r.undecided.empty()) return "safe with undecided intervals";
-    return "";
-  }
-  if (!r.first_contact) return "non-safe verdict without first_contact";
-  const auto& [lo, hi] = *r.first_contact;
-  if (lo < m.t0 || hi > m.t1 || lo > hi) return "first_contact outside the motion interval";
-  for (const UndecidedInterval& u : r.undecided)
-    if (u.t0 < m.t0 || u.t1 > m.t1 || u.t0 >= u.t1) return "undecided interval malformed or outside the motion";
-  if (r.verdict == Verdict::Undecided) {
-    if (r.witness) return "undecided with a witness";
-    if (r.undecided.empty()) return "undecided without undecided intervals";
-    if (r.undecided.front().t0 != lo) return "first_contact lower end is not the first undecided interval's";
-    return "";
-  }
-  // Collision.
-  if (!r.witness) return "collision without witness";
-  const Witness& w = *r.witness;
-  if (w.t < lo || w.t > hi) return "witness time outside first_contact";
-  if (w.features[0].rfind(s.bodies[a].name + " ", 0) != 0 || w.features[1].rfind(s.bodies[b].name + " ", 0) != 0)
-    return "witness features do not name the check's bodies in order";
-  if (!body_contains(s.bodies[a], w.t, w.point)) return "witness point not on body " + s.bodies[a].name;
-  if (!body_contains(s.bodies[b], w.t, w.point)) return "witness point not on body " + s.bodies[b].name;
-  return "";
-}
-
 // ------------------------------------------------------------------ generators (inside properties)
 
-// An integer in [lo, hi], uniform whatever rapidcheck's current size
-// (gen::inRange alone draws near `lo` while the size is small); shrinks
-// towards lo.
-template <class T>
-T uniform(T lo, T hi) {
-  return *rc::gen::resize(100, rc::gen::inRange(lo, static_cast<T>(hi + 1)));
-}
-
-// A rational in [lo, hi] (lo, hi exact doubles such as 0.25) with a small
-// denominator: 1, 2, 3, 4, 5, 8 or 16.
-Exact pick(double lo, double hi) {
-  const int den = *rc::gen::element(1, 2, 4, 8, 16, 3, 5);
-  const long n_lo = static_cast<long>(std::ceil(lo * den)), n_hi = static_cast<long>(std::floor(hi * den));
-  if (n_lo > n_hi) return Exact(lo);
-  return Exact(static_cast<int>(uniform(n_lo, n_hi)), den);
-}
-
-Vec3E pick_point(double lo, double hi) { return {pick(lo, hi), pick(lo, hi), pick(lo, hi)}; }
-
-std::vector<Vec3E> pick_triangle(double lo, double hi) {
-  std::vector<Vec3E> t = {pick_point(lo, hi), pick_point(lo, hi), pick_point(lo, hi)};
-  RC_PRE(nondegenerate(t));
-  return t;
-}
-
-// Positive weights in [1/4, 4].
-std::vector<Exact> pick_weights(int count) {
-  std::vector<Exact> w;
-  for (int k = 0; k < count; ++k) w.push_back(pick(0.25, 4));
-  return w;
-}
-
-// A motion interval [t0, t1] with t0 in [-1, 1] and length in [1/4, 2].
-std::pair<Exact, Exact> pick_interval() {
-  const Exact t0 = pick(-1, 1);
-  return {t0, t0 + pick(0.25, 2)};
-}
-
-// A random affine (not necessarily rigid or regular) control point.
-Mat34E pick_affine(double a_range, double t_range) {
-  Mat34E m;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) m[4 * r + c] = pick(-a_range, a_range);
-    m[4 * r + 3] = pick(-t_range, t_range);
-  }
-  return m;
-}
-
+// A translation motion of `count` control points over a random interval, x
+// and y in [-xy, xy], z in [-z, z].
 Motion pick_translation_motion(int count, double xy, double z) {
   Motion m;
   std::tie(m.t0, m.t1) = pick_interval();
   for (int k = 0; k < count; ++k) m.control_points.push_back(translation(pick(-xy, xy), pick(-xy, xy), pick(-z, z)));
   m.weights = pick_weights(count);
   return m;
-}
-
-VerifyOptions options_for(const Exact& epsilon, KernelKind kernel, std::uint64_t max_nodes = 20000) {
-  VerifyOptions o;
-  o.kernel = kernel;
-  o.epsilon = epsilon;
-  o.max_depth = 30;
-  o.max_nodes = max_nodes;
-  return o;
 }
 
 // ------------------------------------------------------------------ scene kinds
@@ -409,100 +115,7 @@ Scene sweep_scene() {
   return make_scene(make_body("blade", {tri}, motion), make_body("table", {square_z0(2)}), Exact(1, 100));
 }
 
-// ------------------------------------------------------------------ transformations
-
-Scene translated(const Scene& s, const Vec3E& d) {
-  Scene out = s;
-  for (Body& b : out.bodies) {
-    if (b.motion) {
-      for (Mat34E& p : b.motion->control_points)
-        for (int r = 0; r < 3; ++r) p[4 * r + 3] += d[r];
-      continue;
-    }
-    for (auto& poly : b.polygons)
-      for (Vec3E& v : poly) v = {v[0] + d[0], v[1] + d[1], v[2] + d[2]};
-    for (ConvexPiece& piece : b.pieces)
-      for (Vec3E& v : piece.vertices) v = {v[0] + d[0], v[1] + d[1], v[2] + d[2]};
-    for (auto& seg : b.segments)
-      for (Vec3E& v : seg) v = {v[0] + d[0], v[1] + d[1], v[2] + d[2]};
-    for (Vec3E& v : b.points) v = {v[0] + d[0], v[1] + d[1], v[2] + d[2]};
-    b.mass = default_mass(body_vertices(b), Exact(1));
-  }
-  return out;
-}
-
-// Scales every length by f: coordinates of every body in its own frame,
-// translation columns and epsilon (linear parts are unitless).
-Scene scaled(const Scene& s, const Exact& f) {
-  Scene out = s;
-  for (Body& b : out.bodies) {
-    for (auto& poly : b.polygons)
-      for (Vec3E& v : poly) v = {v[0] * f, v[1] * f, v[2] * f};
-    for (ConvexPiece& piece : b.pieces)
-      for (Vec3E& v : piece.vertices) v = {v[0] * f, v[1] * f, v[2] * f};
-    for (auto& seg : b.segments)
-      for (Vec3E& v : seg) v = {v[0] * f, v[1] * f, v[2] * f};
-    for (Vec3E& v : b.points) v = {v[0] * f, v[1] * f, v[2] * f};
-    b.mass = default_mass(body_vertices(b), Exact(1));
-    if (b.motion)
-      for (Mat34E& p : b.motion->control_points)
-        for (int r = 0; r < 3; ++r) p[4 * r + 3] *= f;
-  }
-  if (out.epsilon) *out.epsilon *= f;
-  return out;
-}
-
-Exact pow10(int e) {
-  Exact r = 1;
-  for (int i = 0; i < (e < 0 ? -e : e); ++i) r *= 10;
-  return e < 0 ? 1 / r : r;
-}
-
 // ------------------------------------------------------------------ property bodies
-
-// A point of the convex hull of `v`: convex weights 0..4 (zeros allowed, so
-// vertices and edge points too).
-Vec3E barycentric_point(const std::vector<Vec3E>& v) {
-  std::vector<int> w;
-  int total = 0;
-  for (std::size_t j = 0; j < v.size(); ++j) total += w.emplace_back(uniform(0, 4));
-  if (total == 0) total = w[0] = 1;
-  Vec3E q = {0, 0, 0};
-  for (std::size_t j = 0; j < v.size(); ++j)
-    for (int c = 0; c < 3; ++c) q[c] += Exact(w[j]) * v[j][c];
-  for (int c = 0; c < 3; ++c) q[c] /= Exact(total);
-  return q;
-}
-
-// A random feature set in [lo, hi]^3 (a parallelogram reaches a bit beyond):
-// a triangle, a parallelogram (a convex quadrilateral face), or, when
-// `lower_dim`, a segment or a single point.  Returns the body (no motion) and
-// the vertices whose convex hull is its point set.
-std::pair<Body, std::vector<Vec3E>> pick_shape(const std::string& name, double lo, double hi, bool lower_dim) {
-  const int kind = uniform(0, lower_dim ? 3 : 1);
-  Body b;
-  std::vector<Vec3E> v;
-  if (kind == 0) {
-    v = pick_triangle(lo, hi);
-    b = make_body(name, {v});
-  } else if (kind == 1) {
-    v = pick_triangle(lo, hi);
-    // v0, v1, v2, v0 + v2 - v1: a parallelogram, vertices in order.
-    v.push_back({v[0][0] + v[2][0] - v[1][0], v[0][1] + v[2][1] - v[1][1], v[0][2] + v[2][2] - v[1][2]});
-    b = make_body(name, {v});
-  } else if (kind == 2) {
-    v = {pick_point(lo, hi), pick_point(lo, hi)};
-    RC_PRE(v[0] != v[1]);
-    b = make_body(name, {});
-    b.segments.push_back({v[0], v[1]});
-  } else {
-    v = {pick_point(lo, hi)};
-    b = make_body(name, {});
-    b.points.push_back(v[0]);
-  }
-  b.mass = default_mass(body_vertices(b), Exact(1));
-  return {b, v};
-}
 
 // (a) A contact built at a known rational time t* is never `safe`.
 void contact_never_safe(KernelKind kernel, std::uint64_t max_nodes) {
@@ -543,7 +156,7 @@ void contact_never_safe(KernelKind kernel, std::uint64_t max_nodes) {
   const CheckResult r = verify_check(scene, a, b, options_for(epsilon, kernel, max_nodes));
   RC_LOG() << describe(scene) << "\ncontact at t* = " << str(t_star) << " (body point " << str(p) << " at " << str(q)
            << ")\nkernel " << to_string(kernel) << ": " << describe(r) << "\n";
-  RC_TAG(stop_label(r), work_label(r));
+  RC_TAG(stop_label(r), nodes_label(r));
   RC_ASSERT(r.verdict != Verdict::Safe);
   const std::string problem = consistency_problem(scene, a, b, r);
   RC_ASSERT(problem == "");
@@ -615,38 +228,23 @@ void touching_never_safe(KernelKind kernel, std::uint64_t max_nodes) {
   const CheckResult r = verify_check(scene, 0, 1, options_for(epsilon, kernel, max_nodes));
   RC_LOG() << describe(scene) << "\ntouching at t* = " << str(t_star) << " (vertex " << low << " at " << str(q)
            << ")\nkernel " << to_string(kernel) << ": " << describe(r) << "\n";
-  RC_TAG(stop_label(r), work_label(r));
+  RC_TAG(stop_label(r), nodes_label(r));
   RC_ASSERT(r.verdict != Verdict::Safe);
   RC_ASSERT(consistency_problem(scene, 0, 1, r) == "");
   RC_ASSERT(r.first_contact->first <= t_star);
   if (r.verdict == Verdict::Collision) RC_ASSERT(r.witness->t == t_star);  // the only contact instant
 }
 
-// Runs a property with at most `max_success` cases (the configured seed and
-// reproduce settings still apply), reporting like RC_BOOST_PROP.
-template <typename Testable>
-void check_limited(Testable&& testable, int max_success) {
-  using namespace rc::detail;
-  const auto& tc = boost::unit_test::framework::current_test_case();
-  TestMetadata metadata;
-  metadata.id = tc.full_name();
-  metadata.description = tc.p_name;
-  TestParams params = configuration().testParams;
-  params.maxSuccess = std::max(1, std::min(params.maxSuccess, max_success));
-  const auto result = checkTestable(std::forward<Testable>(testable), metadata, params);
-  BOOST_CHECK(true);
-  if (result.template is<SuccessResult>()) {
-    if (!result.template get<SuccessResult>().distribution.empty()) {
-      std::cout << "- " << metadata.description << std::endl;
-      printResultMessage(result, std::cout);
-      std::cout << std::endl;
-    }
-  } else {
-    std::ostringstream ss;
-    ss << "\n";
-    printResultMessage(result, ss);
-    BOOST_FAIL(ss.str());
-  }
+// (b) The clearance scene is safe at epsilon = m / eps_divisor (clearance_scene
+// picks m/4 or m/8 when eps_divisor is 0).
+void clearance_is_safe(int eps_divisor) {
+  Exact m;
+  const Scene scene = clearance_scene(m, eps_divisor);
+  const CheckResult r = verify_check(scene, 0, 1, options_for(*scene.epsilon, KernelKind::Filtered));
+  RC_LOG() << describe(scene) << "\nclearance m = " << str(m) << "\n" << describe(r) << "\n";
+  RC_TAG(stop_label(r), nodes_label(r));
+  RC_ASSERT(r.verdict == Verdict::Safe);
+  RC_ASSERT(consistency_problem(scene, 0, 1, r) == "");
 }
 
 }  // namespace
@@ -658,40 +256,22 @@ BOOST_AUTO_TEST_SUITE(guarantee)
 RC_BOOST_PROP(contact_at_known_time_is_never_safe_filtered, ()) { contact_never_safe(KernelKind::Filtered, 20000); }
 
 BOOST_AUTO_TEST_CASE(contact_at_known_time_is_never_safe_exact) {
-  check_limited([] { contact_never_safe(KernelKind::Exact, 20000); },
-                std::max(1, rc::detail::configuration().testParams.maxSuccess / 2));
+  check_cases([] { contact_never_safe(KernelKind::Exact, 20000); }, 50);
 }
 
 RC_BOOST_PROP(touching_at_known_time_is_never_safe_filtered, ()) { touching_never_safe(KernelKind::Filtered, 20000); }
 
 BOOST_AUTO_TEST_CASE(touching_at_known_time_is_never_safe_exact) {
-  check_limited([] { touching_never_safe(KernelKind::Exact, 20000); },
-                std::max(1, rc::detail::configuration().testParams.maxSuccess / 2));
+  check_cases([] { touching_never_safe(KernelKind::Exact, 20000); }, 50);
 }
 
 // ------------------------------------------------------------------ (b)
 
-RC_BOOST_PROP(clearance_m_is_safe_for_epsilon_up_to_m_over_4, ()) {
-  Exact m;
-  const Scene scene = clearance_scene(m);
-  const CheckResult r = verify_check(scene, 0, 1, options_for(*scene.epsilon, KernelKind::Filtered));
-  RC_LOG() << describe(scene) << "\nclearance m = " << str(m) << "\n" << describe(r) << "\n";
-  RC_TAG(stop_label(r), work_label(r));
-  RC_ASSERT(r.verdict == Verdict::Safe);
-  RC_ASSERT(consistency_problem(scene, 0, 1, r) == "");
-}
+RC_BOOST_PROP(clearance_m_is_safe_for_epsilon_up_to_m_over_4, ()) { clearance_is_safe(0); }
 
 // DESIGN.md section 6 claims more: safe for every epsilon <= m/2.  Checked
 // at epsilon = m/2 exactly.
-RC_BOOST_PROP(clearance_m_is_safe_for_epsilon_m_over_2, ()) {
-  Exact m;
-  const Scene scene = clearance_scene(m, 2);
-  const CheckResult r = verify_check(scene, 0, 1, options_for(*scene.epsilon, KernelKind::Filtered));
-  RC_LOG() << describe(scene) << "\nclearance m = " << str(m) << "\n" << describe(r) << "\n";
-  RC_TAG(stop_label(r), work_label(r));
-  RC_ASSERT(r.verdict == Verdict::Safe);
-  RC_ASSERT(consistency_problem(scene, 0, 1, r) == "");
-}
+RC_BOOST_PROP(clearance_m_is_safe_for_epsilon_m_over_2, ()) { clearance_is_safe(2); }
 
 // ------------------------------------------------------------------ (c)
 
@@ -740,7 +320,7 @@ RC_BOOST_PROP(vertex_1e17_above_face_is_never_a_collision, ()) {
   const Scene scene = make_scene(make_body("mover", {tri}, motion), make_body("table", {square_z0(1)}), epsilon);
   const CheckResult r = verify_check(scene, 0, 1, options_for(epsilon, KernelKind::Filtered));
   RC_LOG() << describe(scene) << "\n" << describe(r) << "\n";
-  RC_TAG(stop_label(r), work_label(r));
+  RC_TAG(stop_label(r), nodes_label(r));
   RC_ASSERT(r.verdict != Verdict::Collision);
   RC_ASSERT(consistency_problem(scene, 0, 1, r) == "");
 }

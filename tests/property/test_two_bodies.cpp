@@ -30,10 +30,11 @@
 //        the start (collision at t0).
 //
 // Every scene is built in C++ from exact rationals; the oracle (rational
-// Bezier evaluation, point in triangle / on segment) is written here,
-// independently of the library.  Default masses are computed as the parser
-// does (a single point's offsets use the scene's size), so the scene printed
-// in a failure log (tmcert-scene/1 JSON) is the scene that was verified.
+// Bezier evaluation, point in triangle / on segment) is written
+// independently of the library, in tests/support/scene_testing.h (shared
+// with test_guarantee.cpp).  Default masses are computed as the parser does
+// (a single point's offsets use the scene's size), so the scene printed in a
+// failure log (tmcert-scene/1 JSON) is the scene that was verified.
 //
 // Each property runs a multiple of rapidcheck's max_success (default 100):
 // 400 % for the cheap filtered ones, 50 % for the exact kernel; about 6 s in
@@ -41,97 +42,23 @@
 // of the run) or with the RC_PARAMS="reproduce=..." line printed on failure:
 //   RC_PARAMS="seed=N" tmcert_property --run_test=two_bodies/NAME
 
-#include <rapidcheck/boost_test.h>
+#include "tests/support/scene_testing.h"
 
 #include "bench/ccd_queries.h"
-#include "kernels/number_types.h"
-#include "src/metric/metric.h"
-#include "src/scene/model.h"
-#include "src/verify/verify.h"
 
-#include <boost/test/unit_test.hpp>
-#include <rapidcheck.h>
-
-#include <algorithm>
-#include <cmath>
-#include <iostream>
+#include <array>
 #include <optional>
-#include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 using namespace tmcert;
+using namespace tmcert::testing;
 
 namespace {
 
-// ------------------------------------------------------------------ exact geometry (the oracle)
-
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3E add(const Vec3E& a, const Vec3E& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3E mul(const Exact& s, const Vec3E& a) { return {s * a[0], s * a[1], s * a[2]}; }
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3E cross(const Vec3E& a, const Vec3E& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
-Vec3E lerp(const Vec3E& a, const Vec3E& b, const Exact& t) { return add(mul(1 - t, a), mul(t, b)); }
-
-Vec3E place(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-// The composition w o m of affine maps (x -> w(m(x))).
-Mat34E compose(const Mat34E& w, const Mat34E& m) {
-  Mat34E out;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) {
-      Exact s = c == 3 ? w[4 * r + 3] : Exact(0);
-      for (int k = 0; k < 3; ++k) s += w[4 * r + k] * m[4 * k + c];
-      out[4 * r + c] = s;
-    }
-  return out;
-}
-
-const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-
-Mat34E translation(const Exact& x, const Exact& y, const Exact& z) { return {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z}; }
-
-// The rational Bezier motion at scene parameter t, exactly: de Casteljau on
-// the homogeneous points (w_k P_k, w_k).
-Mat34E eval_motion(const Motion& m, const Exact& t) {
-  const Exact u = (t - m.t0) / (m.t1 - m.t0);
-  const std::size_t n = m.control_points.size();
-  std::vector<std::array<Exact, 13>> h(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    for (int e = 0; e < 12; ++e) h[k][e] = m.weights[k] * m.control_points[k][e];
-    h[k][12] = m.weights[k];
-  }
-  for (std::size_t level = 1; level < n; ++level)
-    for (std::size_t k = 0; k + level < n; ++k)
-      for (int e = 0; e < 13; ++e) h[k][e] = (1 - u) * h[k][e] + u * h[k + 1][e];
-  Mat34E out;
-  for (int e = 0; e < 12; ++e) out[e] = h[0][e] / h[0][12];
-  return out;
-}
-
-bool on_segment(const Vec3E& p, const Vec3E& a, const Vec3E& b) {
-  if (a == b) return p == a;
-  const Vec3E ab = sub(b, a), ap = sub(p, a);
-  return is_zero(cross(ab, ap)) && dot(ap, ab) >= 0 && dot(sub(p, b), sub(a, b)) >= 0;
-}
-
-// p in the closed triangle abc, which may be degenerate.
-bool in_triangle(const Vec3E& p, const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  const Vec3E n = cross(sub(b, a), sub(c, a));
-  if (is_zero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, a, c);
-  if (dot(n, sub(p, a)) != 0) return false;
-  return dot(cross(sub(b, a), sub(p, a)), n) >= 0 && dot(cross(sub(c, b), sub(p, b)), n) >= 0 &&
-         dot(cross(sub(a, c), sub(p, c)), n) >= 0;
-}
-
-bool nondegenerate(const std::vector<Vec3E>& tri) { return !is_zero(cross(sub(tri[1], tri[0]), sub(tri[2], tri[0]))); }
+// ------------------------------------------------------------------ geometry
 
 // The separating plane of the clearance scenes: n.x = 0 with the rational
 // unit normal n = (2,3,6)/7 (oblique: no coordinate box separates its sides
@@ -140,247 +67,7 @@ const Vec3E kNormal = {Exact(2, 7), Exact(3, 7), Exact(6, 7)};
 const Vec3E kInPlane1 = {3, -2, 0};
 const Vec3E kInPlane2 = {0, 2, -1};
 
-// ------------------------------------------------------------------ scenes
-
-std::vector<Vec3E> body_vertices(const Body& b) {
-  std::vector<Vec3E> v;
-  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
-  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
-  v.insert(v.end(), b.points.begin(), b.points.end());
-  return v;
-}
-
-// Default masses exactly as the parser computes them (src/scene/parse.cpp):
-// the fallback size of a single point is the extent of every body's
-// vertices in its own frame.
-void rebuild_masses(Scene& s) {
-  std::optional<Vec3E> lo, hi;
-  for (const Body& b : s.bodies)
-    for (const Vec3E& p : body_vertices(b)) {
-      if (!lo) { lo = p; hi = p; }
-      for (int a = 0; a < 3; ++a) {
-        (*lo)[a] = std::min((*lo)[a], p[a]);
-        (*hi)[a] = std::max((*hi)[a], p[a]);
-      }
-    }
-  Exact size = 0;
-  if (lo)
-    for (int a = 0; a < 3; ++a) size = std::max(size, (*hi)[a] - (*lo)[a]);
-  if (size == 0) size = 1;
-  for (Body& b : s.bodies)
-    if (b.mass_is_default) b.mass = default_mass(body_vertices(b), size);
-}
-
-Body make_body(const std::string& name, const std::vector<std::vector<Vec3E>>& polygons) {
-  Body b;
-  b.name = name;
-  b.polygons = polygons;
-  for (std::size_t i = 0; i < polygons.size(); ++i) b.pieces.push_back(ConvexPiece{static_cast<int>(i), polygons[i]});
-  b.mass = default_mass(body_vertices(b), Exact(1));
-  b.mass_is_default = true;
-  return b;
-}
-
-Scene make_scene(Body one, Body two, const Exact& epsilon) {
-  Scene s;
-  s.source = "property";
-  s.bodies = {std::move(one), std::move(two)};
-  s.epsilon = epsilon;
-  s.max_depth = 30;
-  s.checks = {{0, 1}};
-  rebuild_masses(s);
-  return s;
-}
-
-std::string str(const Exact& q) { return to_string(q); }
-std::string str(const Vec3E& v) {
-  return "[\"" + str(v[0]) + "\", \"" + str(v[1]) + "\", \"" + str(v[2]) + "\"]";
-}
-
-// The scene as a tmcert-scene/1 document (for failure logs: save it and run
-// `tmcert verify` on it).
-std::string describe(const Scene& s) {
-  std::ostringstream o;
-  o << "{ \"format\": \"tmcert-scene/1\", \"epsilon\": \"" << (s.epsilon ? str(*s.epsilon) : "?")
-    << "\", \"max_depth\": " << s.max_depth << ", \"bodies\": [\n";
-  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    const Body& b = s.bodies[i];
-    o << "  { \"name\": \"" << b.name << "\"";
-    if (!b.polygons.empty()) {
-      o << ", \"polygons\": [";
-      for (std::size_t p = 0; p < b.polygons.size(); ++p) {
-        o << (p ? ", " : "") << "[";
-        for (std::size_t k = 0; k < b.polygons[p].size(); ++k) o << (k ? ", " : "") << str(b.polygons[p][k]);
-        o << "]";
-      }
-      o << "]";
-    }
-    if (!b.segments.empty()) {
-      o << ", \"segments\": [";
-      for (std::size_t k = 0; k < b.segments.size(); ++k)
-        o << (k ? ", " : "") << "[" << str(b.segments[k][0]) << ", " << str(b.segments[k][1]) << "]";
-      o << "]";
-    }
-    if (!b.points.empty()) {
-      o << ", \"points\": [";
-      for (std::size_t k = 0; k < b.points.size(); ++k) o << (k ? ", " : "") << str(b.points[k]);
-      o << "]";
-    }
-    if (b.motion) {
-      const Motion& m = *b.motion;
-      o << ",\n    \"motion\": { \"type\": \"rational_bezier\", \"interval\": [\"" << str(m.t0) << "\", \"" << str(m.t1)
-        << "\"],\n      \"control_points\": [";
-      for (std::size_t k = 0; k < m.control_points.size(); ++k) {
-        o << (k ? ",\n        " : "") << "[";
-        for (int r = 0; r < 3; ++r) {
-          o << (r ? ", " : "") << "[";
-          for (int c = 0; c < 4; ++c) o << (c ? ", " : "") << "\"" << str(m.control_points[k][4 * r + c]) << "\"";
-          o << "]";
-        }
-        o << "]";
-      }
-      o << "],\n      \"weights\": [";
-      for (std::size_t k = 0; k < m.weights.size(); ++k) o << (k ? ", " : "") << "\"" << str(m.weights[k]) << "\"";
-      o << "] }";
-    }
-    o << " }" << (i + 1 < s.bodies.size() ? "," : "") << "\n";
-  }
-  o << "], \"checks\": [";
-  for (std::size_t c = 0; c < s.checks.size(); ++c)
-    o << (c ? ", " : "") << "[\"" << s.bodies[s.checks[c].first].name << "\", \"" << s.bodies[s.checks[c].second].name
-      << "\"]";
-  o << "] }";
-  return o.str();
-}
-
-std::string describe(const CheckResult& r) {
-  std::ostringstream o;
-  o << "verdict " << to_string(r.verdict);
-  if (r.first_contact) o << ", first_contact [" << str(r.first_contact->first) << ", " << str(r.first_contact->second) << "]";
-  if (r.witness)
-    o << ", witness t=" << str(r.witness->t) << " (" << r.witness->features[0] << " / " << r.witness->features[1]
-      << ") point " << str(r.witness->point);
-  o << ", undecided intervals " << r.undecided.size();
-  if (!r.undecided.empty())
-    o << " (first [" << str(r.undecided.front().t0) << ", " << str(r.undecided.front().t1) << "] "
-      << to_string(r.undecided.front().reason) << ")";
-  o << ", nodes " << r.stats.nodes << ", depth " << r.stats.max_depth << (r.stats.prefiltered ? ", prefiltered" : "")
-    << ", " << r.stats.seconds << " s";
-  return o.str();
-}
-
-std::string work_label(const CheckResult& r) {
-  if (r.stats.prefiltered) return "prefiltered";
-  const std::uint64_t n = r.stats.nodes;
-  return n <= 1 ? "nodes 0-1" : n <= 16 ? "nodes 2-16" : n <= 256 ? "nodes 17-256" : n <= 4096 ? "nodes 257-4096" : "nodes > 4096";
-}
-
-std::string stop_label(const CheckResult& r) {
-  if (r.verdict == Verdict::Collision && r.stats.nodes == 0) return "collision (start check)";
-  if (r.verdict != Verdict::Undecided || r.undecided.empty()) return to_string(r.verdict);
-  return std::string("undecided (") + to_string(r.undecided.front().reason) + ")";
-}
-
-// ------------------------------------------------------------------ the witness oracle
-
-Mat34E pose_at(const Body& b, const Exact& t) {
-  if (!b.motion) return kIdentity;
-  return b.motion->control_points.size() == 1 ? b.motion->control_points[0] : eval_motion(*b.motion, t);
-}
-
-bool is_moving(const Body& b) { return b.motion && b.motion->control_points.size() >= 2; }
-
-bool body_contains(const Body& b, const Exact& t, const Vec3E& p) {
-  const Mat34E pose = pose_at(b, t);
-  for (const ConvexPiece& piece : b.pieces)
-    for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k)
-      if (in_triangle(p, place(pose, piece.vertices[0]), place(pose, piece.vertices[k]),
-                      place(pose, piece.vertices[k + 1])))
-        return true;
-  for (const auto& seg : b.segments)
-    if (on_segment(p, place(pose, seg[0]), place(pose, seg[1]))) return true;
-  for (const Vec3E& x : b.points)
-    if (place(pose, x) == p) return true;
-  return false;
-}
-
-// Empty when the result is consistent with the guarantee as far as can be
-// checked without knowing the truth.  Both bodies may move (then over the
-// same interval).
-std::string consistency_problem(const Scene& s, int a, int b, const CheckResult& r) {
-  if (r.bodies[0] != a || r.bodies[1] != b) return "result names the wrong bodies";
-  if (r.verdict == Verdict::Safe) {
-    if (r.first_contact) return "safe with a first_contact bracket";
-    if (r.witness) return "safe with a witness";
-    if (!r.undecided.empty()) return "safe with undecided intervals";
-    return "";
-  }
-  const Body& mb = is_moving(s.bodies[a]) ? s.bodies[a] : s.bodies[b];
-  const Exact t0 = mb.motion ? mb.motion->t0 : Exact(0), t1 = mb.motion ? mb.motion->t1 : Exact(1);
-  if (!r.first_contact) return "non-safe verdict without first_contact";
-  const auto& [lo, hi] = *r.first_contact;
-  if (lo < t0 || hi > t1 || lo > hi) return "first_contact outside the motion interval";
-  for (const UndecidedInterval& u : r.undecided)
-    if (u.t0 < t0 || u.t1 > t1 || u.t0 >= u.t1) return "undecided interval malformed or outside the motion";
-  if (r.verdict == Verdict::Undecided) {
-    if (r.witness) return "undecided with a witness";
-    if (r.undecided.empty()) return "undecided without undecided intervals";
-    if (r.undecided.front().t0 != lo) return "first_contact lower end is not the first undecided interval's";
-    return "";
-  }
-  if (!r.witness) return "collision without witness";
-  const Witness& w = *r.witness;
-  if (w.t < lo || w.t > hi) return "witness time outside first_contact";
-  if (w.features[0].rfind(s.bodies[a].name + " ", 0) != 0 || w.features[1].rfind(s.bodies[b].name + " ", 0) != 0)
-    return "witness features do not name the check's bodies in order";
-  if (!body_contains(s.bodies[a], w.t, w.point)) return "witness point not on body " + s.bodies[a].name;
-  if (!body_contains(s.bodies[b], w.t, w.point)) return "witness point not on body " + s.bodies[b].name;
-  return "";
-}
-
 // ------------------------------------------------------------------ generators (inside properties)
-
-// An integer in [lo, hi], uniform whatever rapidcheck's current size.
-template <class T>
-T uniform(T lo, T hi) {
-  return *rc::gen::resize(100, rc::gen::inRange(lo, static_cast<T>(hi + 1)));
-}
-
-// A rational in [lo, hi] with denominator 1, 2, 3, 4, 5, 8 or 16.
-Exact pick(double lo, double hi) {
-  const int den = *rc::gen::element(1, 2, 4, 8, 16, 3, 5);
-  const long n_lo = static_cast<long>(std::ceil(lo * den)), n_hi = static_cast<long>(std::floor(hi * den));
-  if (n_lo > n_hi) return Exact(lo);
-  return Exact(static_cast<int>(uniform(n_lo, n_hi)), den);
-}
-
-Vec3E pick_point(double lo, double hi) { return {pick(lo, hi), pick(lo, hi), pick(lo, hi)}; }
-
-std::vector<Vec3E> pick_triangle(double lo, double hi) {
-  std::vector<Vec3E> t = {pick_point(lo, hi), pick_point(lo, hi), pick_point(lo, hi)};
-  RC_PRE(nondegenerate(t));
-  return t;
-}
-
-std::vector<Exact> pick_weights(int count) {
-  std::vector<Exact> w;
-  for (int k = 0; k < count; ++k) w.push_back(pick(0.25, 4));
-  return w;
-}
-
-std::pair<Exact, Exact> pick_interval() {
-  const Exact t0 = pick(-1, 1);
-  return {t0, t0 + pick(0.25, 2)};
-}
-
-Mat34E pick_affine(double a_range, double t_range) {
-  Mat34E m;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) m[4 * r + c] = pick(-a_range, a_range);
-    m[4 * r + 3] = pick(-t_range, t_range);
-  }
-  return m;
-}
 
 // A random motion of degree 1..3 (random affine control points, random
 // positive weights) over the given interval.
@@ -391,60 +78,6 @@ Motion pick_motion(const std::pair<Exact, Exact>& interval, double a_range, doub
   for (int k = 0; k < count; ++k) m.control_points.push_back(pick_affine(a_range, t_range));
   m.weights = pick_weights(count);
   return m;
-}
-
-Vec3E barycentric_point(const std::vector<Vec3E>& v) {
-  std::vector<int> w;
-  int total = 0;
-  for (std::size_t j = 0; j < v.size(); ++j) total += w.emplace_back(uniform(0, 4));
-  if (total == 0) total = w[0] = 1;
-  Vec3E q = {0, 0, 0};
-  for (std::size_t j = 0; j < v.size(); ++j)
-    for (int c = 0; c < 3; ++c) q[c] += Exact(w[j]) * v[j][c];
-  for (int c = 0; c < 3; ++c) q[c] /= Exact(total);
-  return q;
-}
-
-// A triangle, a parallelogram, or (when lower_dim) a segment or a point, in
-// [lo, hi]^3 (the parallelogram reaches a bit beyond), and the vertices
-// whose convex hull is its point set.
-std::pair<Body, std::vector<Vec3E>> pick_shape(const std::string& name, double lo, double hi, bool lower_dim) {
-  const int kind = uniform(0, lower_dim ? 3 : 1);
-  Body b;
-  std::vector<Vec3E> v;
-  if (kind == 0) {
-    v = pick_triangle(lo, hi);
-    b = make_body(name, {v});
-  } else if (kind == 1) {
-    v = pick_triangle(lo, hi);
-    v.push_back({v[0][0] + v[2][0] - v[1][0], v[0][1] + v[2][1] - v[1][1], v[0][2] + v[2][2] - v[1][2]});
-    b = make_body(name, {v});
-  } else if (kind == 2) {
-    v = {pick_point(lo, hi), pick_point(lo, hi)};
-    RC_PRE(v[0] != v[1]);
-    b = make_body(name, {});
-    b.segments.push_back({v[0], v[1]});
-  } else {
-    v = {pick_point(lo, hi)};
-    b = make_body(name, {});
-    b.points.push_back(v[0]);
-  }
-  return {b, v};
-}
-
-VerifyOptions options_for(const Exact& epsilon, KernelKind kernel, std::uint64_t max_nodes = 20000) {
-  VerifyOptions o;
-  o.kernel = kernel;
-  o.epsilon = epsilon;
-  o.max_depth = 30;
-  o.max_nodes = max_nodes;
-  return o;
-}
-
-Exact pow10(int e) {
-  Exact r = 1;
-  for (int i = 0; i < (e < 0 ? -e : e); ++i) r *= 10;
-  return e < 0 ? 1 / r : r;
 }
 
 // Shifts the translation of control point P along kNormal so that the
@@ -626,13 +259,7 @@ Case fixed_case() {
     fixed.motion = p;
   } else if (pose != kIdentity) {  // a translation only: move the coordinates
     const Vec3E d = {pose[3], pose[7], pose[11]};
-    for (auto& poly : fixed.polygons)
-      for (Vec3E& v : poly) v = add(v, d);
-    for (ConvexPiece& piece : fixed.pieces)
-      for (Vec3E& v : piece.vertices) v = add(v, d);
-    for (auto& seg : fixed.segments)
-      for (Vec3E& v : seg) v = add(v, d);
-    for (Vec3E& v : fixed.points) v = add(v, d);
+    map_coordinates(fixed, [&](const Vec3E& v) { return add(v, d); });
   }
   for (Vec3E& v : fixed_hull) v = place(pose, v);  // world coordinates
   std::optional<Exact> t_star;
@@ -658,49 +285,6 @@ Case fixed_case() {
 }
 
 // ------------------------------------------------------------------ transformations
-
-// Applies the affine world map W to the scene: moving (and posed) bodies'
-// control points [A | a] -> W o [A | a]; plain fixed bodies' coordinates
-// x -> W x (W must keep polygons valid: a rotation or a translation here).
-Scene world_mapped(const Scene& s, const Mat34E& W) {
-  Scene out = s;
-  for (Body& b : out.bodies) {
-    if (b.motion) {
-      for (Mat34E& p : b.motion->control_points) p = compose(W, p);
-      continue;
-    }
-    for (auto& poly : b.polygons)
-      for (Vec3E& v : poly) v = place(W, v);
-    for (ConvexPiece& piece : b.pieces)
-      for (Vec3E& v : piece.vertices) v = place(W, v);
-    for (auto& seg : b.segments)
-      for (Vec3E& v : seg) v = place(W, v);
-    for (Vec3E& v : b.points) v = place(W, v);
-  }
-  rebuild_masses(out);
-  return out;
-}
-
-// A change of unit: every length times f (coordinates in every body's own
-// frame, translation columns, epsilon); linear parts are unitless.
-Scene scaled(const Scene& s, const Exact& f) {
-  Scene out = s;
-  for (Body& b : out.bodies) {
-    for (auto& poly : b.polygons)
-      for (Vec3E& v : poly) v = mul(f, v);
-    for (ConvexPiece& piece : b.pieces)
-      for (Vec3E& v : piece.vertices) v = mul(f, v);
-    for (auto& seg : b.segments)
-      for (Vec3E& v : seg) v = mul(f, v);
-    for (Vec3E& v : b.points) v = mul(f, v);
-    if (b.motion)
-      for (Mat34E& p : b.motion->control_points)
-        for (int r = 0; r < 3; ++r) p[4 * r + 3] *= f;
-  }
-  if (out.epsilon) *out.epsilon *= f;
-  rebuild_masses(out);
-  return out;
-}
 
 // The rotation of the unit quaternion q / |q| (q = (a, b, c, d) integers):
 // rational entries over n = a^2 + b^2 + c^2 + d^2.
@@ -751,35 +335,6 @@ void check_orders_agree(const CheckResult& x, const CheckResult& y) {
   if (x.verdict == Verdict::Collision) RC_ASSERT(y.first_contact->first <= x.witness->t);
   if (y.verdict == Verdict::Collision) RC_ASSERT(x.first_contact->first <= y.witness->t);
   if (x.verdict != Verdict::Safe) RC_ASSERT(x.first_contact->first == y.first_contact->first);
-}
-
-// Runs a property as the current Boost test case with `percent` % of the
-// configured number of cases (RC_PARAMS="max_success=N", default 100; at
-// least one case), under the configured seed and reproduce settings,
-// reporting like RC_BOOST_PROP.
-template <typename Testable>
-void check_cases(Testable&& testable, int percent) {
-  using namespace rc::detail;
-  const auto& tc = boost::unit_test::framework::current_test_case();
-  TestMetadata metadata;
-  metadata.id = tc.full_name();
-  metadata.description = tc.p_name;
-  TestParams params = configuration().testParams;
-  params.maxSuccess = std::max(1, static_cast<int>(static_cast<long>(params.maxSuccess) * percent / 100));
-  const auto result = checkTestable(std::forward<Testable>(testable), metadata, params);
-  BOOST_CHECK(true);
-  if (result.template is<SuccessResult>()) {
-    if (!result.template get<SuccessResult>().distribution.empty()) {
-      std::cout << "- " << metadata.description << std::endl;
-      printResultMessage(result, std::cout);
-      std::cout << std::endl;
-    }
-  } else {
-    std::ostringstream ss;
-    ss << "\n";
-    printResultMessage(result, ss);
-    BOOST_FAIL(ss.str());
-  }
 }
 
 // ------------------------------------------------------------------ degenerate linear motions
@@ -1031,14 +586,8 @@ Case degenerate_case(int kind, bool contact) {
     }
   }
   const Exact epsilon = contact ? *rc::gen::element(Exact(1, 16), Exact(1, 100), Exact(1, 1000)) : m / 4;
-  Scene s;
-  s.source = "property";
-  s.bodies = {linear_body("a", a0, a1), linear_body("b", b0, b1)};
-  s.epsilon = epsilon;
-  s.max_depth = 30;
-  s.checks = {{0, 1}};
-  rebuild_masses(s);
-  Case c{s, std::string(kDegenerateKinds[kind]) + (contact ? " contact" : " separated"), t_star, !contact, note};
+  Case c{make_scene(linear_body("a", a0, a1), linear_body("b", b0, b1), epsilon),
+         std::string(kDegenerateKinds[kind]) + (contact ? " contact" : " separated"), t_star, !contact, note};
   if (contact) c.note += ", contact at t* = " + str(*t_star);
   else c.note += ", clearance m = " + str(m);
   // The construction itself (contact): a common point at t*.
@@ -1191,7 +740,7 @@ BOOST_AUTO_TEST_CASE(translation_by_1e6_and_scaling_by_1e_6_keep_the_verdicts) {
         const Vec3E d = {*rc::gen::element(1, -1) * big, *rc::gen::element(1, -1) * big,
                          *rc::gen::element(1, -1) * big};
         Case variants[3] = {c, c, c};
-        variants[1].scene = world_mapped(c.scene, translation(d[0], d[1], d[2]));
+        variants[1].scene = translated(c.scene, d);
         variants[1].note += " (translated by " + str(d) + ")";
         variants[2].scene = scaled(c.scene, pow10(-6));
         variants[2].note += " (lengths scaled by 10^-6)";
@@ -1218,14 +767,9 @@ BOOST_AUTO_TEST_CASE(two_segments_crossing_head_on_and_passing_apart) {
   // dz) in -x; they pass x = 0 together at t = 1/2 only: they meet at
   // (0, 0, dz) when dz = 0, and keep clearance 1 when dz = 2.
   for (const Exact dz : {Exact(0), Exact(2)}) {
-    Scene s;
+    Scene s = make_scene(linear_body("a", {{-2, 0, -1}, {-2, 0, 1}}, {{2, 0, -1}, {2, 0, 1}}),
+                         linear_body("b", {{2, -1, dz}, {2, 1, dz}}, {{-2, -1, dz}, {-2, 1, dz}}), Exact(1, 1000));
     s.source = "deterministic";
-    s.bodies = {linear_body("a", {{-2, 0, -1}, {-2, 0, 1}}, {{2, 0, -1}, {2, 0, 1}}),
-                linear_body("b", {{2, -1, dz}, {2, 1, dz}}, {{-2, -1, dz}, {-2, 1, dz}})};
-    s.epsilon = Exact(1, 1000);
-    s.max_depth = 30;
-    s.checks = {{0, 1}};
-    rebuild_masses(s);
     for (KernelKind kernel : {KernelKind::Filtered, KernelKind::Exact})
       for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 0}}) {
         const CheckResult r = verify_check(s, a, b, options_for(*s.epsilon, kernel));

@@ -5,37 +5,16 @@
 #include "kernels/filtered.h"
 #include "src/metric/metric.h"
 #include "src/verify/prepared.h"
+#include "tests/support/random_geometry.h"
 
 #include <boost/test/unit_test.hpp>
 
-#include <random>
-
 using namespace tmcert;
+using namespace tmcert::testing;
 
 namespace {
 
-struct Rng {
-  std::mt19937 gen;
-  explicit Rng(unsigned seed) : gen(seed) {}
-  Exact q(int lo, int hi, int den) { return Exact(std::uniform_int_distribution<int>(lo, hi)(gen), den); }
-  int i(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen); }
-};
-
 Vec3E rand_point(Rng& r) { return {r.q(-8, 8, 4), r.q(-8, 8, 4), r.q(-8, 8, 4)}; }
-
-Body triangle_body(const std::string& name, const std::array<Vec3E, 3>& t) {
-  Body b;
-  b.name = name;
-  b.polygons = {{t[0], t[1], t[2]}};
-  b.pieces = {ConvexPiece{0, {t[0], t[1], t[2]}}};
-  b.mass = default_mass({t[0], t[1], t[2]}, Exact(1));
-  return b;
-}
-
-bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  const Vec3E u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 && u[0] * v[1] - u[1] * v[0] == 0;
-}
 
 Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
   Vec3E r;

@@ -1,20 +1,14 @@
 // Motions: exact evaluation, subdivision (exact and enclosed), certified
 // bounding balls, and the joint curve of two motions.
 #include "src/motion/bezier.h"
+#include "tests/support/random_geometry.h"
 
 #include <boost/test/unit_test.hpp>
 
-#include <random>
-
 using namespace tmcert;
+using namespace tmcert::testing;
 
 namespace {
-
-struct Rng {
-  std::mt19937 gen;
-  explicit Rng(unsigned seed) : gen(seed) {}
-  Exact q(int lo, int hi, int den) { return Exact(std::uniform_int_distribution<int>(lo, hi)(gen), den); }
-};
 
 Motion random_motion(Rng& r, int degree, bool rational) {
   Motion m;
