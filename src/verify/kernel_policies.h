@@ -1,0 +1,139 @@
+// Internal to src/verify: the piece representation, ball and contact test of each kernel
+// (filtered, exact, fast) for one (B = 1) or two (B = 2) moving bodies.
+#pragma once
+
+#include "kernels/filtered.h"
+#include "src/verify/pairs.h"
+#include "src/verify/verify.h"
+
+#include <CGAL/number_utils.h>
+
+#include <optional>
+
+namespace tmcert::detail {
+
+// ------------------------------------------------------------------ kernels
+// Each policy supplies the piece representation, its ball and the contact
+// test in one number type; the search below is shared.  B = 1: body 1 moves,
+// body 2 is fixed (world coordinates, no rho term); B = 2: both move along
+// their joint curve, with the product metric.
+
+template <int B, class FT>
+Placement<FT> make_placement(const std::array<FT, 12 * B>& center, const FT& r2) {
+  Placement<FT> p;
+  for (int e = 0; e < 12; ++e) p.g1[e] = center[e];
+  if constexpr (B == 2) {
+    p.body2_moving = true;
+    for (int e = 0; e < 12; ++e) p.g2[e] = center[12 + e];
+  }
+  p.r2 = r2;
+  return p;
+}
+
+template <int B>
+Metrics<B> metrics_of(const PreparedBody& m, const PreparedBody& f) {
+  if constexpr (B == 1) return {&m.metric_data};
+  else return {&m.metric_data, &f.metric_data};
+}
+
+template <int B>
+struct FilteredPolicy {
+  using Piece = HomogeneousCurve<Interval, B>;
+  struct Ball {
+    BallD<B> ball;
+    Placement<Interval> interval;
+    std::optional<Placement<Exact>> exact;  // built on the first exact fallback
+    bool valid() const { return ball.valid; }
+    double r2() const { return ball.r2; }
+  };
+  const PreparedBody& m;
+  const PreparedBody& f;
+  const HomogeneousCurve<Exact, B>& curve;
+
+  Piece root() const { return enclose(curve); }
+  void split(const Piece& p, Piece& l, Piece& r) const {
+    RoundingGuard guard;  // interval de Casteljau encloses the exact halves
+    split_half(p, l, r);
+  }
+  Ball ball(const Piece& p) const {
+    Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}, std::nullopt};
+    if (b.ball.valid) {
+      std::array<Interval, 12 * B> c;
+      for (int e = 0; e < 12 * B; ++e) c[e] = Interval(b.ball.center[e]);
+      b.interval = make_placement<B>(c, Interval(b.ball.r2));
+    }
+    return b;
+  }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    const FeatureTable& X = moving_table(m, p.kind);
+    const FeatureTable& Y = other_table(f, p.kind);
+    return filtered(
+        [&] { return contact_sign<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval); },
+        [&] {
+          if (!b.exact) {
+            std::array<Exact, 12 * B> c;
+            for (int e = 0; e < 12 * B; ++e) c[e] = Exact(b.ball.center[e]);
+            b.exact = make_placement<B>(c, Exact(b.ball.r2));
+          }
+          return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], *b.exact);
+        },
+        stats.by_kind[static_cast<int>(p.kind)]);
+  }
+};
+
+template <int B>
+struct ExactPolicy {
+  using Piece = HomogeneousCurve<Exact, B>;
+  struct Ball {
+    Placement<Exact> placement;
+    bool valid() const { return true; }
+    double r2() const { return CGAL::to_double(placement.r2); }
+  };
+  const PreparedBody& m;
+  const PreparedBody& f;
+  const HomogeneousCurve<Exact, B>& curve;
+
+  Piece root() const { return curve; }
+  void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
+  Ball ball(const Piece& p) const {
+    BallE<B> b = bounding_ball<B>(p, metrics_of<B>(m, f));
+    return Ball{make_placement<B>(b.center, b.r2)};
+  }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
+    ++c.calls;
+    ++c.exact_fallbacks;  // every call is exact
+    return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j],
+                               b.placement);
+  }
+};
+
+template <int B>
+struct FastPolicy {
+  using Piece = HomogeneousCurve<double, B>;
+  struct Ball {
+    BallD<B> ball;
+    Placement<double> placement;
+    bool valid() const { return ball.valid; }
+    double r2() const { return ball.r2; }
+  };
+  const PreparedBody& m;
+  const PreparedBody& f;
+  const HomogeneousCurve<Exact, B>& curve;
+
+  Piece root() const { return approximate(curve); }
+  void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
+  Ball ball(const Piece& p) const {
+    Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}};
+    b.placement = make_placement<B>(b.ball.center, b.ball.r2);
+    return b;
+  }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    ++stats.by_kind[static_cast<int>(p.kind)].calls;
+    return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
+                                b.placement);
+  }
+};
+
+
+}  // namespace tmcert::detail

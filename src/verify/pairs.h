@@ -1,0 +1,61 @@
+// Internal to src/verify: the feature pairs a check carries, and their tables.
+#pragma once
+
+#include "src/verify/prepared.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tmcert::detail {
+
+// ------------------------------------------------------------------ pairs
+
+struct PairRef {
+  ContactKind kind;
+  std::uint32_t i;  // in the moving body's table of that kind
+  std::uint32_t j;  // in the other body's table
+};
+
+inline const FeatureTable& moving_table(const PreparedBody& b, ContactKind k) {
+  return k == ContactKind::VertexFace ? b.vertices : k == ContactKind::EdgeEdge ? b.edges : b.faces;
+}
+inline const std::vector<FeatureGeometry<Exact>>& moving_exact(const PreparedBody& b, ContactKind k) {
+  const ExactFeatures& e = b.exact();
+  return k == ContactKind::VertexFace ? e.vertices : k == ContactKind::EdgeEdge ? e.edges : e.faces;
+}
+inline const std::vector<FeatureGeometry<Exact>>& other_exact(const PreparedBody& b, ContactKind k) {
+  const ExactFeatures& e = b.exact();
+  return k == ContactKind::VertexFace ? e.faces : k == ContactKind::EdgeEdge ? e.edges : e.vertices;
+}
+inline const FeatureTable& other_table(const PreparedBody& b, ContactKind k) {
+  return k == ContactKind::VertexFace ? b.faces : k == ContactKind::EdgeEdge ? b.edges : b.vertices;
+}
+
+// The three contact types over all features: complete for the first contact
+// after a contact-free start (proofs/contact-tests.md).
+// Without a hierarchy every pair is carried: refuse sizes whose lists could
+// not be held (about 1.2 GB at the limit) rather than thrash.
+constexpr std::size_t kMaxPairs = 100'000'000;
+
+inline std::vector<PairRef> all_pairs(const PreparedBody& m, const PreparedBody& f) {
+  std::size_t total = 0;
+  for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex})
+    total += moving_table(m, k).size() * other_table(f, k).size();
+  if (total > kMaxPairs)
+    throw ResourceLimit("check of \"" + m.body->name + "\" and \"" + f.body->name + "\": " + std::to_string(total) +
+                        " feature pairs exceed the limit of " + std::to_string(kMaxPairs) +
+                        " (bodies this large need the bounding-volume hierarchy of a later version)");
+  std::vector<PairRef> pairs;
+  pairs.reserve(total);
+  for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
+    const std::size_t nx = moving_table(m, k).size(), ny = other_table(f, k).size();
+    for (std::size_t i = 0; i < nx; ++i)
+      for (std::size_t j = 0; j < ny; ++j)
+        pairs.push_back({k, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
+  }
+  return pairs;
+}
+
+
+}  // namespace tmcert::detail

@@ -1,0 +1,253 @@
+// Internal to src/verify: the search of one check: start check, pruned depth-first subdivision in
+// parameter order, stop rules, witnesses (DESIGN.md sections 4-6,
+// proofs/search-and-pruning.md, proofs/witness.md).
+#pragma once
+
+#include "src/verify/kernel_policies.h"
+
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace tmcert::detail {
+
+// ------------------------------------------------------------------ static tests
+
+struct StaticHit {
+  int part_moving, part_other;
+  Vec3E point;
+};
+
+inline std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, const std::vector<StaticPart>& b,
+                                   const std::set<std::pair<int, int>>* only, CheckStats& stats) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (only && !only->count({static_cast<int>(i), static_cast<int>(j)})) continue;
+      for (const Simplex& s : a[i].simplices)
+        for (const Simplex& t : b[j].simplices) {
+          ++stats.static_tests;
+          if (auto p = common_point(s, t)) return StaticHit{static_cast<int>(i), static_cast<int>(j), *p};
+        }
+    }
+  return std::nullopt;
+}
+
+// ------------------------------------------------------------------ search
+
+// The rational with the smallest denominator in the closed interval
+// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent).
+inline Exact simplest_between(const Exact& lo, const Exact& hi) {
+  if (lo <= 0 && hi >= 0) return Exact(0);
+  if (hi < 0) return -simplest_between(-hi, -lo);
+  CGAL::Gmpz fl;
+  mpz_fdiv_q(fl.mpz(), lo.numerator().mpz(), lo.denominator().mpz());
+  if (Exact(fl) == lo) return lo;
+  if (Exact(fl + 1) <= hi) return Exact(fl + 1);
+  // Both in (fl, fl + 1): recurse on the reciprocals of the fractional parts.
+  return Exact(fl) + Exact(1) / simplest_between(Exact(1) / (hi - Exact(fl)), Exact(1) / (lo - Exact(fl)));
+}
+
+// The deepest subdivision level: a node's parameter interval is
+// [index, index + 1] / 2^depth with a 64-bit index.
+constexpr int kDepthCap = 62;
+
+struct Node {
+  std::uint64_t index;  // the piece is [index, index + 1] / 2^depth of the curve parameter
+  int depth;
+  std::vector<PairRef> alive;
+
+  Exact u0() const { return at(index); }
+  Exact u1() const { return at(index + 1); }
+  Exact mid() const { return (u0() + u1()) / 2; }
+  Exact at(std::uint64_t k) const {
+    CGAL::Gmpz den;
+    mpz_setbit(den.mpz(), static_cast<mp_bitcnt_t>(depth));
+    return Exact(CGAL::Gmpz(static_cast<unsigned long>(k)), den);
+  }
+};
+
+template <int B>
+struct Check {
+  const PreparedBody& moving;    // body 1
+  const PreparedBody& other;     // body 2: fixed (B = 1) or moving (B = 2)
+  bool swapped;                  // the check names body 2 first
+  const HomogeneousCurve<Exact, B>& curve;
+  HomogeneousCurve<Interval, B> root_interval;  // encloses `curve`
+  const Motion& motion;          // body 1's: the parameter interval
+  double eps2;                   // epsilon^2 for the stop test (a tolerance)
+  double rho2_sum;               // max rho1^2 (+ max rho2^2): the fat size per unit R^2
+  const VerifyOptions& options;
+  CheckResult& result;
+
+  Exact scene_t(const Exact& u) const { return motion.t0 + u * (motion.t1 - motion.t0); }
+  Exact curve_u(const Exact& t) const { return (t - motion.t0) / (motion.t1 - motion.t0); }
+
+  void set_witness(const Exact& u, const StaticHit& hit) {
+    const std::string a = moving.body->name + " " + moving.parts[hit.part_moving].name;
+    const std::string b = other.body->name + " " + other.parts[hit.part_other].name;
+    Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, hit.point};
+    result.witness = w;
+    result.verdict = Verdict::Collision;
+  }
+
+  // The configuration at curve parameter u: interval maps first (cheap),
+  // exact only for simplex pairs the interval filter cannot separate.
+  std::optional<StaticHit> static_test(const Exact& u, const std::set<std::pair<int, int>>* only) {
+    std::array<std::array<Interval, 12>, B> maps;
+    {
+      RoundingGuard guard;
+      const Interval ui = to_interval(u), vi = Interval(1) - ui;
+      HomogeneousCurve<Interval, B> work = root_interval;
+      constexpr std::size_t W = kHomogeneousSize<B> - 1;
+      for (std::size_t level = 1; level < work.size(); ++level)
+        for (std::size_t k = 0; k + level < work.size(); ++k)
+          for (std::size_t e = 0; e <= W; ++e) work[k][e] = vi * work[k][e] + ui * work[k + 1][e];
+      for (int b = 0; b < B; ++b)
+        for (int e = 0; e < 12; ++e) maps[b][e] = work[0][12 * b + e] / work[0][W];
+    }
+    auto placed = [](const Simplex& s, const std::array<Interval, 12>* m) {
+      SimplexI out;
+      out.count = s.count;
+      for (int k = 0; k < s.count; ++k) {
+        const std::array<Interval, 3> x = {to_interval(s.p[k][0]), to_interval(s.p[k][1]), to_interval(s.p[k][2])};
+        if (!m) { out.p[k] = x; continue; }
+        for (int i = 0; i < 3; ++i)
+          out.p[k][i] = (*m)[4 * i] * x[0] + (*m)[4 * i + 1] * x[1] + (*m)[4 * i + 2] * x[2] + (*m)[4 * i + 3];
+      }
+      return out;
+    };
+    struct Candidate { int pi, si, pj, sj; };
+    std::vector<Candidate> candidates;
+    {
+      RoundingGuard guard;
+      for (std::size_t i = 0; i < moving.parts.size(); ++i)
+        for (std::size_t j = 0; j < other.parts.size(); ++j) {
+          if (only && !only->count({static_cast<int>(i), static_cast<int>(j)})) continue;
+          const auto& A = moving.parts[i].simplices;
+          const auto& Bs = other.parts[j].simplices;
+          for (std::size_t si = 0; si < A.size(); ++si) {
+            const SimplexI a = placed(A[si], &maps[0]);
+            for (std::size_t sj = 0; sj < Bs.size(); ++sj) {
+              const SimplexI b = placed(Bs[sj], B == 2 ? &maps[B - 1] : nullptr);
+              if (!certainly_disjoint(a, b))
+                candidates.push_back({static_cast<int>(i), static_cast<int>(si), static_cast<int>(j), static_cast<int>(sj)});
+            }
+          }
+        }
+    }
+    if (candidates.empty()) return std::nullopt;
+    const Mat34E m1 = evaluate<B>(curve, u, 0);
+    std::optional<Mat34E> m2;
+    if constexpr (B == 2) m2 = evaluate<B>(curve, u, 1);
+    auto exact_placed = [](Simplex s, const Mat34E* m) {
+      if (m)
+        for (int k = 0; k < s.count; ++k) {
+          Vec3E r;
+          for (int i = 0; i < 3; ++i)
+            r[i] = (*m)[4 * i] * s.p[k][0] + (*m)[4 * i + 1] * s.p[k][1] + (*m)[4 * i + 2] * s.p[k][2] + (*m)[4 * i + 3];
+          s.p[k] = r;
+        }
+      return s;
+    };
+    for (const Candidate& c : candidates) {
+      ++result.stats.static_tests;
+      const Simplex a = exact_placed(moving.parts[c.pi].simplices[c.si], &m1);
+      const Simplex b = exact_placed(other.parts[c.pj].simplices[c.sj], m2 ? &*m2 : nullptr);
+      if (auto p = common_point(a, b)) return StaticHit{c.pi, c.pj, *p};
+    }
+    return std::nullopt;
+  }
+
+  // Exact static test of the configuration at curve parameter u, restricted
+  // to the parts that still have a live feature pair.
+  bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
+    std::set<std::pair<int, int>> parts;
+    for (const PairRef& p : alive)
+      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
+    if (auto hit = static_test(u, &parts)) {
+      set_witness(u, *hit);
+      return true;
+    }
+    return false;
+  }
+
+  void record(const Node& n, StopReason reason) {
+    const Exact t0 = scene_t(n.u0()), t1 = scene_t(n.u1());
+    if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
+      result.undecided.back().t1 = t1;
+    else
+      result.undecided.push_back({t0, t1, reason});
+    if (!result.first_contact) result.first_contact = std::pair{t0, t1};
+  }
+
+  template <class Policy>
+  void search(const Policy& policy) {
+    struct Item {
+      Node node;
+      typename Policy::Piece piece;
+    };
+    std::vector<Item> stack;
+    stack.push_back({Node{0, 0, all_pairs(moving, other)}, policy.root()});
+    const int max_depth = std::min(options.max_depth, kDepthCap);
+    CheckStats& stats = result.stats;
+    while (!stack.empty()) {
+      Item item = std::move(stack.back());
+      stack.pop_back();
+      Node& node = item.node;
+      if (stats.nodes >= options.max_nodes) {  // resource limit: not cleared
+        record(node, StopReason::Limit);
+        continue;
+      }
+      ++stats.nodes;
+      stats.max_depth = std::max(stats.max_depth, node.depth);
+      typename Policy::Ball ball = policy.ball(item.piece);
+      if (ball.valid())  // keep the pairs not cleared on this piece
+        std::erase_if(node.alive, [&](const PairRef& p) { return policy.test(ball, p, stats) == CGAL::POSITIVE; });
+      if (node.alive.empty()) continue;  // cleared on the whole piece
+      std::optional<StopReason> stop;
+      if (node.depth >= max_depth) stop = StopReason::Depth;
+      else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
+      if (stop) {
+        // Witness candidates: the midpoint, the end, and the scene time with
+        // the smallest denominator in the piece (a contact at a "round"
+        // rational time, such as 1/3 or 0.137, is found exactly there).
+        const Exact mid = node.mid();
+        const Exact end = node.u1();
+        const Exact simple = curve_u(simplest_between(scene_t(node.u0()), scene_t(end)));
+        for (const Exact* u : {&mid, &end, &simple}) {
+          if (try_witness(*u, node.alive)) {
+            const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
+            result.first_contact = std::pair{lo, scene_t(*u)};
+            return;
+          }
+        }
+        record(node, *stop);
+        continue;
+      }
+      Item left{Node{2 * node.index, node.depth + 1, node.alive}, {}};
+      Item right{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}};
+      policy.split(item.piece, left.piece, right.piece);
+      stack.push_back(std::move(right));
+      stack.push_back(std::move(left));  // parameter order: left first
+    }
+  }
+
+  // The start check (DESIGN.md section 4: the contact tests are complete
+  // only after a contact-free start), then the search.
+  void run() {
+    if (auto hit = static_test(Exact(0), nullptr)) {
+      set_witness(Exact(0), *hit);
+      result.first_contact = std::pair{motion.t0, motion.t0};
+      return;
+    }
+    switch (options.kernel) {
+      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve}); break;
+      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve}); break;
+      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve}); break;
+    }
+  }
+};
+
+
+}  // namespace tmcert::detail
