@@ -5,8 +5,12 @@
 
 #include "src/verify/kernel_policies.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -117,25 +121,73 @@ struct Check {
       }
       return out;
     };
-    struct Candidate { int pi, si, pj, sj; };
+    // Place every simplex of the parts involved once, with its interval box.
+    struct Item {
+      int part, index;
+      SimplexI s;
+      std::array<double, 3> lo, hi;
+    };
+    auto place_all = [&](const PreparedBody& body, const std::vector<char>& use, const std::array<Interval, 12>* m) {
+      std::vector<Item> items;
+      for (std::size_t i = 0; i < body.parts.size(); ++i) {
+        if (!use[i]) continue;
+        const auto& simplices = body.parts[i].simplices;
+        for (std::size_t k = 0; k < simplices.size(); ++k) {
+          Item it{static_cast<int>(i), static_cast<int>(k), placed(simplices[k], m), {}, {}};
+          for (int c = 0; c < 3; ++c) {
+            double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+            for (int v = 0; v < it.s.count; ++v) {
+              const Interval& x = it.s.p[v][c];
+              if (std::isnan(x.inf()) || std::isnan(x.sup())) { lo = -std::numeric_limits<double>::infinity(); hi = -lo; break; }
+              lo = std::min(lo, x.inf());
+              hi = std::max(hi, x.sup());
+            }
+            it.lo[c] = lo;
+            it.hi[c] = hi;
+          }
+          items.push_back(std::move(it));
+        }
+      }
+      return items;
+    };
+    std::vector<char> use_a(moving.parts.size(), only ? 0 : 1), use_b(other.parts.size(), only ? 0 : 1);
+    if (only)
+      for (const auto& [i, j] : *only) use_a[i] = use_b[j] = 1;
+    struct Candidate { int pi, pj, si, sj; };
     std::vector<Candidate> candidates;
     {
       RoundingGuard guard;
-      for (std::size_t i = 0; i < moving.parts.size(); ++i)
-        for (std::size_t j = 0; j < other.parts.size(); ++j) {
-          if (only && !only->count({static_cast<int>(i), static_cast<int>(j)})) continue;
-          const auto& A = moving.parts[i].simplices;
-          const auto& Bs = other.parts[j].simplices;
-          for (std::size_t si = 0; si < A.size(); ++si) {
-            const SimplexI a = placed(A[si], &maps[0]);
-            for (std::size_t sj = 0; sj < Bs.size(); ++sj) {
-              const SimplexI b = placed(Bs[sj], B == 2 ? &maps[B - 1] : nullptr);
-              if (!certainly_disjoint(a, b))
-                candidates.push_back({static_cast<int>(i), static_cast<int>(si), static_cast<int>(j), static_cast<int>(sj)});
-            }
-          }
-        }
+      std::vector<Item> a_items = place_all(moving, use_a, &maps[0]);
+      std::vector<Item> b_items = place_all(other, use_b, B == 2 ? &maps[B - 1] : nullptr);
+      // Sweep along x: only pairs whose boxes overlap on every axis (boxes
+      // hold the true simplices, so a strict gap proves disjointness) go on
+      // to the separating-axis filter.
+      auto by_lo = [](const Item& x, const Item& y) { return x.lo[0] < y.lo[0]; };
+      std::sort(a_items.begin(), a_items.end(), by_lo);
+      std::sort(b_items.begin(), b_items.end(), by_lo);
+      auto overlap = [](const Item& x, const Item& y) {
+        for (int c = 0; c < 3; ++c)
+          if (x.hi[c] < y.lo[c] || y.hi[c] < x.lo[c]) return false;
+        return true;
+      };
+      auto consider = [&](const Item& x, const Item& y) {  // x from the moving body
+        if (only && !only->count({x.part, y.part})) return;
+        if (!overlap(x, y) || certainly_disjoint(x.s, y.s)) return;
+        candidates.push_back({x.part, y.part, x.index, y.index});
+      };
+      std::size_t first_b = 0;
+      for (const Item& x : a_items) {
+        // A leading b item that ends before x starts ends before every later
+        // a item starts too (a items are sorted by their start): drop it.
+        while (first_b < b_items.size() && b_items[first_b].hi[0] < x.lo[0]) ++first_b;
+        for (std::size_t k = first_b; k < b_items.size() && !(x.hi[0] < b_items[k].lo[0]); ++k) consider(x, b_items[k]);
+      }
     }
+    // The order of the nested loops over parts and simplices, whatever the
+    // sweep order: the first hit (and so the witness) does not depend on it.
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+      return std::tie(x.pi, x.pj, x.si, x.sj) < std::tie(y.pi, y.pj, y.si, y.sj);
+    });
     if (candidates.empty()) return std::nullopt;
     const Mat34E m1 = evaluate<B>(curve, u, 0);
     std::optional<Mat34E> m2;
