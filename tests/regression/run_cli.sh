@@ -45,21 +45,26 @@ fail() {
   if [ -s "$work/out" ]; then sed 's/^/  stdout: /' "$work/out" | head -n 5 >&2; fi
 }
 
-# Bad input: exit 3, empty stdout, a message on stderr containing $2.
-expect_bad() {
-  local scene=$1 substring=$2 code
-  run 60 "$tmcert" verify "$scene"
+# Refused input or usage: `tmcert ARGS...` must exit 3 with nothing on
+# stdout and a message on stderr containing SUBSTRING.
+expect_refusal() {
+  local substring=$1 code
+  shift
+  run 60 "$tmcert" "$@"
   code=$?
   if [ "$code" -ne 3 ]; then
-    fail "$scene: exit code $code, expected 3"
+    fail "tmcert $*: exit code $code, expected 3"
   elif [ -s "$work/out" ]; then
-    fail "$scene: output on stdout with exit code 3"
+    fail "tmcert $*: output on stdout with exit code 3"
   elif ! grep -qF -- "$substring" "$work/err"; then
-    fail "$scene: stderr does not contain '$substring'"
+    fail "tmcert $*: stderr does not contain '$substring'"
   else
     pass
   fi
 }
+
+# Bad scene: `tmcert verify SCENE` refused, the message containing $2.
+expect_bad() { expect_refusal "$2" verify "$1"; }
 
 # The top-level "verdict" of the JSON document in $work/out.
 top_verdict() {
@@ -117,31 +122,15 @@ if [ -f "$data/bad-cli/EXPECTED" ]; then
   for_each_line "$data/bad-cli/EXPECTED" expect_bad
 fi
 
-# Bad options: exit 3 with nothing on stdout.
-expect_bad_options() {
-  local substring=$1 code
-  shift
-  run 60 "$tmcert" "$@"
-  code=$?
-  if [ "$code" -ne 3 ]; then
-    fail "tmcert $*: exit code $code, expected 3"
-  elif [ -s "$work/out" ]; then
-    fail "tmcert $*: output on stdout with exit code 3"
-  elif ! grep -qF -- "$substring" "$work/err"; then
-    fail "tmcert $*: stderr does not contain '$substring'"
-  else
-    pass
-  fi
-}
 good="$examples/octagons-clear.json"
-expect_bad_options "--epsilon" verify "$good" --epsilon 0
-expect_bad_options "--epsilon" verify "$good" --epsilon nan
-expect_bad_options "--epsilon" verify "$good" --epsilon -1/3
-expect_bad_options "--kernel" verify "$good" --kernel quadruple
-expect_bad_options "--max-depth" verify "$good" --max-depth -2
-expect_bad_options "--threads" verify "$good" --threads 0
-expect_bad_options "frobnicate" verify "$good" --frobnicate
-expect_bad_options "scene" verify
+expect_refusal "--epsilon" verify "$good" --epsilon 0
+expect_refusal "--epsilon" verify "$good" --epsilon nan
+expect_refusal "--epsilon" verify "$good" --epsilon -1/3
+expect_refusal "--kernel" verify "$good" --kernel quadruple
+expect_refusal "--max-depth" verify "$good" --max-depth -2
+expect_refusal "--threads" verify "$good" --threads 0
+expect_refusal "frobnicate" verify "$good" --frobnicate
+expect_refusal "scene" verify
 
 for list in "$data/scenes/EXPECTED" "$examples/EXPECTED"; do
   if [ -f "$list" ]; then
