@@ -328,13 +328,29 @@ CheckResult run_and_check(const Case& c, int a, int b, KernelKind kernel, std::u
   return r;
 }
 
-// (swap) Both orders of a check agree; a collision's witness is a real
-// contact, so the other order's certified-free prefix ends at or before it.
-void check_orders_agree(const CheckResult& x, const CheckResult& y) {
-  RC_ASSERT(x.verdict == y.verdict);
+// A case whose truth has room to spare: a clearance margin (safe for
+// epsilon <= m/2) or a contact at the very start (the exact start check).
+// Elsewhere - a contact at one instant, a clearance near epsilon - two runs
+// that round differently (a swapped order, a rotated world) may end one
+// with a proof and the other undecided; they can never contradict.
+bool robust(const Case& c) {
+  if (c.safe) return true;
+  if (!c.t_star) return false;
+  for (const Body& b : c.scene.bodies)
+    if (b.motion && b.motion->degree() >= 1) return *c.t_star == b.motion->t0;
+  return false;
+}
+
+// Two runs of the same geometry (swapped order, rotated world): certified
+// answers never contradict, a collision's witness is a real contact so the
+// other run's certified-free prefix ends at or before it, and robust cases
+// get the same verdict.
+void check_compatible(const Case& c, const CheckResult& x, const CheckResult& y) {
+  RC_ASSERT(!(x.verdict == Verdict::Safe && y.verdict == Verdict::Collision));
+  RC_ASSERT(!(y.verdict == Verdict::Safe && x.verdict == Verdict::Collision));
   if (x.verdict == Verdict::Collision) RC_ASSERT(y.first_contact->first <= x.witness->t);
   if (y.verdict == Verdict::Collision) RC_ASSERT(x.first_contact->first <= y.witness->t);
-  if (x.verdict != Verdict::Safe) RC_ASSERT(x.first_contact->first == y.first_contact->first);
+  if (robust(c)) RC_ASSERT(x.verdict == y.verdict);
 }
 
 // ------------------------------------------------------------------ degenerate linear motions
@@ -690,7 +706,8 @@ BOOST_AUTO_TEST_CASE(swapping_the_bodies_of_a_check_keeps_the_verdict) {
         const CheckResult ab = run_and_check(c, 0, 1, kernel, node_budget(kernel), "order (0, 1)");
         const CheckResult ba = run_and_check(c, 1, 0, kernel, node_budget(kernel), "order (1, 0)");
         RC_TAG(c.kind, stop_label(ab));
-        check_orders_agree(ab, ba);
+        RC_TAG(ab.verdict == ba.verdict ? "same verdict" : "proof in one order only");
+        check_compatible(c, ab, ba);
       },
       300);
 }
@@ -714,7 +731,8 @@ BOOST_AUTO_TEST_CASE(rational_rotation_of_the_world_keeps_every_verdict) {
         const CheckResult r0 = run_and_check(c, 0, 1, kernel, node_budget(kernel), "original");
         const CheckResult r1 = run_and_check(rotated, 0, 1, kernel, node_budget(kernel), "rotated");
         RC_TAG(c.kind, stop_label(r0));
-        RC_ASSERT(r0.verdict == r1.verdict);
+        RC_TAG(r0.verdict == r1.verdict ? "same verdict" : "proof in one frame only");
+        check_compatible(c, r0, r1);
       },
       300);
 }
