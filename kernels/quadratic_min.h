@@ -10,7 +10,12 @@
 //   * FT = double: the fast, uncertified path.
 #pragma once
 
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Uncertain.h>
 #include <CGAL/enum.h>
+
+#include <algorithm>
+#include <type_traits>
 
 #include <array>
 #include <cstddef>
@@ -55,6 +60,43 @@ void take(MinSign& m, const FT& value) {
   else if (m.sign == CGAL::POSITIVE && !(value > FT(0))) m.sign = CGAL::ZERO;
 }
 
+// An uncertain comparison the enclosures below could not settle: hand over
+// to the exact run (the filtered dispatch catches this).
+[[noreturn]] inline void undecided() {
+  throw CGAL::Uncertain_conversion_exception("min_sign: a candidate needs exact arithmetic");
+}
+
+// Interval extensions of q: they enclose its range over a superset of the
+// candidate set, so a certainly positive lower end proves q > 0 there.
+// Exact and double comparisons are never uncertain: they never ask.
+template <class FT>
+bool positive_on_edge(const FT& alpha, const FT& beta, const FT& gamma) {
+  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) {
+    const FT t(0, 1);
+    return (gamma + t * (beta + alpha * t)).inf() > 0;
+  } else {
+    return false;
+  }
+}
+
+template <class FT>
+bool positive_on_box(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
+  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) {
+    double lo1 = d.vertices[0][0].inf(), hi1 = d.vertices[0][0].sup();
+    double lo2 = d.vertices[0][1].inf(), hi2 = d.vertices[0][1].sup();
+    for (std::size_t i = 1; i < d.count; ++i) {
+      lo1 = std::min(lo1, d.vertices[i][0].inf());
+      hi1 = std::max(hi1, d.vertices[i][0].sup());
+      lo2 = std::min(lo2, d.vertices[i][1].inf());
+      hi2 = std::max(hi2, d.vertices[i][1].sup());
+    }
+    if (!(lo1 <= hi1) || !(lo2 <= hi2)) return false;  // NaN bounds: no claim
+    return q(FT(lo1, hi1), FT(lo2, hi2)).inf() > 0;
+  } else {
+    return false;
+  }
+}
+
 }  // namespace detail
 
 // Returns the sign of min { q(s) : s in D }.
@@ -66,9 +108,13 @@ void take(MinSign& m, const FT& value) {
 // positive (edge: alpha > 0; interior: Hessian positive definite); where it
 // is not, the minimum lies on the boundary and is found by the other cases.
 // Each candidate's value is a rational function of the inputs whose sign is
-// computed without division where possible.
+// computed without division where possible.  Over intervals, a candidate
+// whose existence or position is uncertain is settled, where possible, by
+// an interval extension of q over a superset (the edge, the domain's box)
+// being certainly positive; otherwise the exact run decides.
 template <class FT>
 CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
+  using Bool = decltype(FT(0) < FT(0));  // bool, or CGAL::Uncertain<bool> over intervals
   detail::MinSign m;
   const FT zero(0);
   // Vertices.
@@ -84,34 +130,59 @@ CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
     const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
     const FT e1 = w[0] - v[0], e2 = w[1] - v[1];
     const FT alpha = q.h11 * e1 * e1 + FT(2) * q.h12 * e1 * e2 + q.h22 * e2 * e2;
-    if (!(alpha > zero)) continue;  // no interior minimum on this edge
+    const Bool curved = alpha > zero;
+    if (CGAL::certainly_not(curved)) continue;  // no interior minimum on this edge
     // Gradient of q at v, dotted with e.
     const FT g1 = FT(2) * (q.h11 * v[0] + q.h12 * v[1]) + q.b1;
     const FT g2 = FT(2) * (q.h12 * v[0] + q.h22 * v[1]) + q.b2;
     const FT beta = g1 * e1 + g2 * e2;
-    // Critical t* = -beta / (2 alpha) lies in (0, 1)  <=>  0 < -beta < 2 alpha.
-    if (!(beta < zero) || !(-beta < FT(2) * alpha)) continue;
     const FT gamma = q(v[0], v[1]);
-    // Minimum gamma - beta^2 / (4 alpha) has the sign of 4 alpha gamma - beta^2.
-    detail::take(m, FT(4) * alpha * gamma - beta * beta);
-    if (m.negative()) return m.sign;
+    if (CGAL::certainly(curved)) {
+      // Critical t* = -beta / (2 alpha) lies in (0, 1)  <=>  0 < -beta < 2 alpha.
+      const Bool inside = (beta < zero) & (-beta < FT(2) * alpha);
+      if (CGAL::certainly_not(inside)) continue;
+      // Minimum gamma - beta^2 / (4 alpha) has the sign of 4 alpha gamma - beta^2.
+      const FT value = FT(4) * alpha * gamma - beta * beta;
+      if (CGAL::certainly(inside)) {
+        detail::take(m, value);
+        if (m.negative()) return m.sign;
+        continue;
+      }
+      if (CGAL::certainly(value > zero)) continue;  // positive wherever t* is
+    }
+    // Only intervals get here (an uncertain comparison): q positive on the
+    // whole edge settles it; otherwise the exact run decides.
+    if (!detail::positive_on_edge(alpha, beta, gamma)) detail::undecided();
   }
   if (d.count < 3) return m.sign;
   // Interior: only a positive definite Hessian has an interior minimum.
   const FT det = q.h11 * q.h22 - q.h12 * q.h12;
-  if (!(q.h11 > zero) || !(det > zero)) return m.sign;
-  // Critical point s* solves [h11 h12; h12 h22] s = -b / 2.
-  const FT s1 = (q.h12 * q.b2 - q.h22 * q.b1) / (FT(2) * det);
-  const FT s2 = (q.h12 * q.b1 - q.h11 * q.b2) / (FT(2) * det);
-  // Inside the closed polygon: no edge sees s* on its outer side.
-  for (std::size_t i = 0; i < d.count; ++i) {
-    const Pt2<FT>& v = d.vertices[i];
-    const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
-    const FT side = (w[0] - v[0]) * (s2 - v[1]) - (w[1] - v[1]) * (s1 - v[0]);
-    if (d.orientation > 0 ? side < zero : side > zero) return m.sign;
+  const Bool definite = (q.h11 > zero) & (det > zero);
+  if (CGAL::certainly_not(definite)) return m.sign;
+  if (CGAL::certainly(definite)) {
+    // Critical point s* solves [h11 h12; h12 h22] s = -b / 2.
+    const FT s1 = (q.h12 * q.b2 - q.h22 * q.b1) / (FT(2) * det);
+    const FT s2 = (q.h12 * q.b1 - q.h11 * q.b2) / (FT(2) * det);
+    // Inside the closed polygon: no edge sees s* on its outer side.
+    Bool inside(true);
+    for (std::size_t i = 0; i < d.count; ++i) {
+      const Pt2<FT>& v = d.vertices[i];
+      const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
+      const FT side = (w[0] - v[0]) * (s2 - v[1]) - (w[1] - v[1]) * (s1 - v[0]);
+      inside = inside & (d.orientation > 0 ? side >= zero : side <= zero);
+      if (CGAL::certainly_not(inside)) return m.sign;
+    }
+    // q(s*) = c + (b . s*) / 2.
+    const FT value = FT(2) * q.c + q.b1 * s1 + q.b2 * s2;
+    if (CGAL::certainly(inside)) {
+      detail::take(m, value);
+      return m.sign;
+    }
+    if (CGAL::certainly(value > zero)) return m.sign;  // positive wherever s* is
   }
-  // q(s*) = c + (b . s*) / 2.
-  detail::take(m, FT(2) * q.c + q.b1 * s1 + q.b2 * s2);
+  // Only intervals get here: q positive on the domain's bounding box
+  // settles it; otherwise the exact run decides.
+  if (!detail::positive_on_box(q, d)) detail::undecided();
   return m.sign;
 }
 

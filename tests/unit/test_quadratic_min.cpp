@@ -1,6 +1,7 @@
 // min_sign: hand-made degenerate cases and an exhaustive comparison with a
 // brute-force exact minimum over a fine rational grid of the domain.
 #include "kernels/number_types.h"
+#include "kernels/filtered.h"
 #include "kernels/quadratic_min.h"
 
 #include <boost/test/unit_test.hpp>
@@ -180,6 +181,48 @@ BOOST_AUTO_TEST_CASE(positive_means_positive_everywhere_sampled) {
   // Both outcomes must occur, or the test proves nothing.
   BOOST_TEST(positives > 20);
   BOOST_TEST(nonpositives > 20);
+}
+
+// Over intervals, a candidate whose existence is uncertain (a curvature or
+// determinant whose enclosure contains 0) is settled by an interval
+// extension of q over the edge or the domain's box when that is certainly
+// positive - no exact run needed - and handed to the exact run otherwise.
+BOOST_AUTO_TEST_CASE(uncertain_candidates_are_settled_by_enclosures_or_exactly) {
+  CGAL::Gmpz big;
+  mpz_ui_pow_ui(big.mpz(), 10, 400);
+  const Exact tiny(CGAL::Gmpz(1), big);  // encloses as [0, smallest double]: its sign is uncertain
+  auto filtered_sign = [](const Quadratic2<Exact>& q, FilterCounters& counters) {
+    Quadratic2<Interval> qi{to_interval(q.h11), to_interval(q.h12), to_interval(q.h22),
+                            to_interval(q.b1), to_interval(q.b2), to_interval(q.c)};
+    static const std::vector<Pt2<Interval>> sq = {{Interval(0), Interval(0)}, {Interval(1), Interval(0)},
+                                                  {Interval(1), Interval(1)}, {Interval(0), Interval(1)}};
+    return filtered([&] { return min_sign(qi, ConvexDomain<Interval>{sq.data(), sq.size(), 1}); },
+                    [&] { return on_square(q); }, counters);
+  };
+  // Nearly flat and clearly positive: settled without exact arithmetic.
+  {
+    const Quadratic2<Exact> q{tiny, Exact(0), tiny, Exact(0), Exact(0), Exact(1)};
+    FilterCounters counters;
+    BOOST_CHECK(filtered_sign(q, counters) == CGAL::POSITIVE);
+    BOOST_CHECK(on_square(q) == CGAL::POSITIVE);
+    BOOST_CHECK_EQUAL(counters.exact_fallbacks, 0u);
+  }
+  // Nearly flat with a minimum of exactly zero: only the exact run can say.
+  {
+    const Quadratic2<Exact> q{tiny, Exact(0), tiny, -2 * tiny / 2, -2 * tiny / 2, tiny / 2};
+    FilterCounters counters;
+    BOOST_CHECK(filtered_sign(q, counters) == on_square(q));
+    BOOST_CHECK_EQUAL(counters.exact_fallbacks, 1u);
+  }
+  // Random tiny curvatures: the filtered answer always equals the exact one.
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coef(-3, 3);
+  for (int iter = 0; iter < 300; ++iter) {
+    const Quadratic2<Exact> q{coef(rng) * tiny, coef(rng) * tiny, coef(rng) * tiny,
+                              Exact(coef(rng), 4), Exact(coef(rng), 4), Exact(coef(rng), 2)};
+    FilterCounters counters;
+    BOOST_CHECK_MESSAGE(filtered_sign(q, counters) == on_square(q), "iteration " << iter);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
