@@ -31,6 +31,7 @@ struct VerifyArgs {
   bool json = false;
   std::string certificate;
   int threads = 1;
+  bool all_pairs = false;
 };
 
 int run_verify(const VerifyArgs& args) {
@@ -49,6 +50,7 @@ int run_verify(const VerifyArgs& args) {
     options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   }
   options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
+  options.hierarchy = !args.all_pairs;
   if (!args.certificate.empty())
     throw InputError("--certificate: certificates are not supported by this version yet");
   require_supported(scene);
@@ -74,6 +76,9 @@ int main(int argc, char** argv) {
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
   verify->add_option("--certificate", args.certificate, "write a certificate (not available yet)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
+  verify->add_flag("--all-pairs", args.all_pairs,
+                   "carry every feature pair from the start instead of the bounding-volume hierarchies "
+                   "(the reference the hierarchy is tested against; slow for large bodies)");
   CLI::App* check = app.add_subcommand("check", "re-verify a certificate (not available yet)");
   std::string cert_file, cert_scene;
   check->add_option("certificate", cert_file)->required();

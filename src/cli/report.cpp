@@ -35,6 +35,7 @@ nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
                 {"face_vertex_calls", s.by_kind[2].calls},
                 {"face_vertex_exact", s.by_kind[2].exact_fallbacks},
                 {"exact_static_tests", s.static_tests},
+                {"sphere_tests", s.sphere_tests},
                 {"prefiltered", s.prefiltered},
                 {"seconds", s.seconds}};
   return j;

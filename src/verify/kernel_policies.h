@@ -64,6 +64,15 @@ struct FilteredPolicy {
     }
     return b;
   }
+  using Frame = SphereFrame<Interval>;
+  Frame frame(const Ball& b) const {
+    RoundingGuard guard;
+    return sphere_frame(b.interval);
+  }
+  bool clear(const Frame& fr, const BvNode& a, const BvNode& b) const {
+    RoundingGuard guard;
+    return spheres_clear(fr, a, b);
+  }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     const FeatureTable& X = moving_table(m, p.kind);
     const FeatureTable& Y = other_table(f, p.kind);
@@ -99,6 +108,23 @@ struct ExactPolicy {
     BallE<B> b = bounding_ball<B>(p, metrics_of<B>(m, f));
     return Ball{make_placement<B>(b.center, b.r2)};
   }
+  // The sphere test over intervals enclosing the exact ball: certified, and
+  // it only ever skips contact tests that would clear too.
+  using Frame = SphereFrame<Interval>;
+  Frame frame(const Ball& b) const {
+    Placement<Interval> p;
+    for (int e = 0; e < 12; ++e) p.g1[e] = to_interval(b.placement.g1[e]);
+    p.body2_moving = b.placement.body2_moving;
+    if (p.body2_moving)
+      for (int e = 0; e < 12; ++e) p.g2[e] = to_interval(b.placement.g2[e]);
+    p.r2 = to_interval(b.placement.r2);
+    RoundingGuard guard;
+    return sphere_frame(p);
+  }
+  bool clear(const Frame& fr, const BvNode& a, const BvNode& b) const {
+    RoundingGuard guard;
+    return spheres_clear(fr, a, b);
+  }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
     ++c.calls;
@@ -128,6 +154,9 @@ struct FastPolicy {
     b.placement = make_placement<B>(b.ball.center, b.ball.r2);
     return b;
   }
+  using Frame = SphereFrame<double>;
+  Frame frame(const Ball& b) const { return sphere_frame(b.placement); }
+  bool clear(const Frame& fr, const BvNode& a, const BvNode& b) const { return spheres_clear(fr, a, b); }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     ++stats.by_kind[static_cast<int>(p.kind)].calls;
     return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 
 namespace tmcert {
 
@@ -158,8 +159,14 @@ FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E
       if (seen.emplace(key, true).second) out.edges.push_back({{p, q}, piece.polygon});
     }
   }
+  // Vertices once each (a vertex shared by polygons is one feature; the
+  // first polygon names it).
+  std::set<Vec3E> vertex_seen;
   for (std::size_t i = 0; i < body.polygons.size(); ++i)
-    for (const Vec3E& x : body.polygons[i]) out.vertices.push_back({place(x), static_cast<int>(i)});
+    for (const Vec3E& x : body.polygons[i]) {
+      Vec3E p = place(x);
+      if (vertex_seen.insert(p).second) out.vertices.push_back({std::move(p), static_cast<int>(i)});
+    }
   for (std::size_t i = 0; i < body.segments.size(); ++i) {
     const int part = first_segment + static_cast<int>(i);
     const Vec3E p = place(body.segments[i][0]), q = place(body.segments[i][1]);
@@ -276,6 +283,21 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
   max_rho2 = best;
   for (FeatureTable* t : {&vertices, &edges, &faces})
     for (const auto& f : t->interval) t->approx.push_back(midpoint(f));
+
+  // Hierarchies over each kind of feature (spheres around the vertex
+  // enclosures).
+  std::vector<std::vector<Vec3<Interval>>> points;
+  for (const auto& [v, part] : list.faces) {
+    points.emplace_back();
+    for (const Vec3E& x : v) points.back().push_back(enclose3(x));
+  }
+  faces.tree = build_tree(points, g);
+  points.clear();
+  for (const auto& [e, part] : list.edges) points.push_back({enclose3(e[0]), enclose3(e[1])});
+  edges.tree = build_tree(points, g);
+  points.clear();
+  for (const auto& [v, part] : list.vertices) points.push_back({enclose3(v)});
+  vertices.tree = build_tree(points, g);
 }
 
 const Metric& PreparedBody::exact_metric() const {

@@ -8,6 +8,7 @@
 #include "kernels/static_intersection.h"
 #include "src/metric/metric.h"
 #include "src/motion/bezier.h"
+#include "src/verify/hierarchy.h"
 #include "src/scene/model.h"
 
 #include <memory>
@@ -23,6 +24,7 @@ struct FeatureTable {
   std::vector<FeatureGeometry<Interval>> interval;  // enclose the exact features
   std::vector<FeatureGeometry<double>> approx;      // for the fast kernel only
   std::vector<int> part;                            // index into PreparedBody::parts
+  BvTree tree;                                      // leaves in table order
   std::size_t size() const { return interval.size(); }
 };
 

@@ -212,12 +212,21 @@ struct Check {
   }
 
   // Exact static test of the configuration at curve parameter u, restricted
-  // to the parts that still have a live feature pair.
+  // to the parts that still have a live feature pair (all parts when a pair
+  // of hierarchy nodes is still alive).
   bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
     std::set<std::pair<int, int>> parts;
-    for (const PairRef& p : alive)
-      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
-    if (auto hit = static_test(u, &parts)) {
+    bool all = false;
+    for (const PairRef& p : alive) {
+      const FeatureTable& X = moving_table(moving, p.kind);
+      const FeatureTable& Y = other_table(other, p.kind);
+      if (!X.tree.leaf(p.i) || !Y.tree.leaf(p.j)) {
+        all = true;
+        break;
+      }
+      parts.insert({X.part[p.i], Y.part[p.j]});
+    }
+    if (auto hit = static_test(u, all ? nullptr : &parts)) {
       set_witness(u, *hit);
       return true;
     }
@@ -233,6 +242,67 @@ struct Check {
     if (!result.first_contact) result.first_contact = std::pair{t0, t1};
   }
 
+  // The tests of one piece.  A feature pair gets the contact test; with the
+  // hierarchy, every pair first gets the sphere test.  A pair of hierarchy
+  // nodes that is not cleared is descended on this piece (its child pairs
+  // tested in turn) when `expand_all` or when a node is larger in the world
+  // than the piece's fattening R rho; otherwise it is carried as it is to
+  // the sub-pieces, where the smaller balls make descending worthwhile.
+  // Leaves `alive` with the pairs not cleared (proofs/hierarchy.md).
+  template <class Policy>
+  void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all) {
+    if (!ball.valid()) return;  // nothing is cleared by an unbounded ball
+    CheckStats& stats = result.stats;
+    if (!options.hierarchy) {
+      std::erase_if(alive, [&](const PairRef& p) { return policy.test(ball, p, stats) == CGAL::POSITIVE; });
+      return;
+    }
+    const typename Policy::Frame frame = policy.frame(ball);
+    const double n1 = CGAL::to_double(frame.n1), n2 = CGAL::to_double(frame.n2), radius = CGAL::to_double(frame.R);
+    std::vector<PairRef> work;
+    work.swap(alive);
+    std::reverse(work.begin(), work.end());  // a stack that pops in list order
+    while (!work.empty()) {
+      const PairRef p = work.back();
+      work.pop_back();
+      const BvTree& X = moving_table(moving, p.kind).tree;
+      const BvTree& Y = other_table(other, p.kind).tree;
+      const BvNode& a = X.nodes[p.i];
+      const BvNode& b = Y.nodes[p.j];
+      ++stats.sphere_tests;
+      if (policy.clear(frame, a, b)) continue;
+      const bool leaf_a = X.leaf(p.i), leaf_b = Y.leaf(p.j);
+      if (leaf_a && leaf_b) {
+        if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
+        continue;
+      }
+      const double size_a = leaf_a ? -1 : n1 * a.r, size_b = leaf_b ? -1 : n2 * b.r;
+      if (!expand_all && !(std::max(size_a, size_b) > radius * std::hypot(a.p, b.p))) {
+        alive.push_back(p);
+        continue;
+      }
+      // Children pushed right first: the left one is tested first.
+      if (size_a >= size_b) {
+        work.push_back({p.kind, a.right, p.j});
+        work.push_back({p.kind, a.left, p.j});
+      } else {
+        work.push_back({p.kind, p.i, b.right});
+        work.push_back({p.kind, p.i, b.left});
+      }
+    }
+  }
+
+  std::vector<PairRef> root_pairs() const {
+    if (!options.hierarchy) return all_pairs(moving, other);
+    std::vector<PairRef> out;
+    for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
+      const BvTree& X = moving_table(moving, k).tree;
+      const BvTree& Y = other_table(other, k).tree;
+      if (!X.empty() && !Y.empty()) out.push_back({k, X.root(), Y.root()});
+    }
+    return out;
+  }
+
   template <class Policy>
   void search(const Policy& policy) {
     struct Item {
@@ -240,7 +310,7 @@ struct Check {
       typename Policy::Piece piece;
     };
     std::vector<Item> stack;
-    stack.push_back({Node{0, 0, all_pairs(moving, other)}, policy.root()});
+    stack.push_back({Node{0, 0, root_pairs()}, policy.root()});
     const int max_depth = std::min(options.max_depth, kDepthCap);
     CheckStats& stats = result.stats;
     while (!stack.empty()) {
@@ -254,13 +324,15 @@ struct Check {
       ++stats.nodes;
       stats.max_depth = std::max(stats.max_depth, node.depth);
       typename Policy::Ball ball = policy.ball(item.piece);
-      if (ball.valid())  // keep the pairs not cleared on this piece
-        std::erase_if(node.alive, [&](const PairRef& p) { return policy.test(ball, p, stats) == CGAL::POSITIVE; });
+      prune(policy, ball, node.alive, false);  // keep the pairs not cleared on this piece
       if (node.alive.empty()) continue;  // cleared on the whole piece
       std::optional<StopReason> stop;
       if (node.depth >= max_depth) stop = StopReason::Depth;
       else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
       if (stop) {
+        // A stop is final: descend the hierarchy to feature pairs here.
+        prune(policy, ball, node.alive, true);
+        if (node.alive.empty()) continue;
         // Witness candidates: the midpoint, the end, and the scene time with
         // the smallest denominator in the piece (a contact at a "round"
         // rational time, such as 1/3 or 0.137, is found exactly there).

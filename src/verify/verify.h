@@ -31,6 +31,9 @@ struct VerifyOptions {
   Exact epsilon;                  // > 0, a length in scene units
   int max_depth = 40;
   std::uint64_t max_nodes = 2'000'000;  // per check; beyond it: undecided "limit"
+  // Bounding-volume hierarchies over the features (false: every feature pair
+  // is carried from the root, the reference the hierarchy is checked against).
+  bool hierarchy = true;
 };
 
 struct Witness {
@@ -50,6 +53,7 @@ struct CheckStats {
   FilterCounters contact;        // all contact tests
   std::array<FilterCounters, 3> by_kind;  // vertex-face, edge-edge, face-vertex
   std::uint64_t static_tests = 0;
+  std::uint64_t sphere_tests = 0;  // hierarchy node pairs tested
   bool prefiltered = false;      // cleared by the swept-box prefilter alone
   double seconds = 0;
 };

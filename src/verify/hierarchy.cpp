@@ -1,0 +1,127 @@
+#include "src/verify/hierarchy.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+namespace tmcert {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Builder {
+  const std::vector<std::vector<Vec3<Interval>>>& features;
+  const std::array<Interval, 16>* gi;
+  BvTree tree;
+  std::vector<std::uint32_t> order;  // leaf indices, permuted by the splits
+  Interval rho_scale;                // >= sqrt(lambda_max) of G^-1's 3x3 block
+
+  // Upper bound of |x - c| over the box x, c exact.
+  static Interval distance(const Vec3<Interval>& x, const std::array<double, 3>& c) {
+    Interval s(0);
+    for (int i = 0; i < 3; ++i) s += CGAL::square(x[i] - Interval(c[i]));
+    return CGAL::sqrt(s);
+  }
+
+  // rho over the sphere: rho(c) + sqrt(lambda_max) r (rho is a norm of (x, 1)).
+  double rho_bound(const BvNode& n) const {
+    if (!gi) return 0;
+    const Interval h[4] = {Interval(n.c[0]), Interval(n.c[1]), Interval(n.c[2]), Interval(1)};
+    Interval q(0);
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) q += h[r] * (*gi)[4 * r + c] * h[c];
+    if (!(q.sup() >= 0)) return kInf;
+    const Interval p = CGAL::sqrt(Interval(0, q.sup())) + rho_scale * Interval(n.r);
+    return std::isfinite(p.sup()) ? p.sup() : kInf;
+  }
+
+  void finish(BvNode& n) {
+    if (!std::isfinite(n.r)) n.r = kInf;
+    n.p = rho_bound(n);
+  }
+
+  BvNode leaf(std::uint32_t k) {
+    BvNode n;
+    const auto& pts = features[k];
+    std::array<double, 3> lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+    for (const auto& x : pts)
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], x[i].inf());
+        hi[i] = std::max(hi[i], x[i].sup());
+      }
+    for (int i = 0; i < 3; ++i) n.c[i] = std::isfinite(lo[i]) && std::isfinite(hi[i]) ? lo[i] / 2 + hi[i] / 2 : 0;
+    double r = 0;
+    for (const auto& x : pts) r = std::max(r, distance(x, n.c).sup());
+    n.r = std::isnan(r) ? kInf : r;
+    finish(n);
+    return n;
+  }
+
+  // Builds the subtree over order[first, last) and returns its node index.
+  std::uint32_t build(std::size_t first, std::size_t last) {
+    if (last - first == 1) return order[first];
+    std::array<double, 3> lo{kInf, kInf, kInf}, hi{-kInf, -kInf, -kInf};
+    std::array<double, 3> clo = lo, chi = hi;  // of the leaf centers
+    for (std::size_t k = first; k < last; ++k) {
+      const BvNode& l = tree.nodes[order[k]];
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], l.c[i] - l.r);
+        hi[i] = std::max(hi[i], l.c[i] + l.r);
+        clo[i] = std::min(clo[i], l.c[i]);
+        chi[i] = std::max(chi[i], l.c[i]);
+      }
+    }
+    int axis = 0;
+    for (int i = 1; i < 3; ++i)
+      if (chi[i] - clo[i] > chi[axis] - clo[axis]) axis = i;
+    const std::size_t mid = first + (last - first) / 2;
+    std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + last,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                       const double a = tree.nodes[x].c[axis], b = tree.nodes[y].c[axis];
+                       return a < b || (a == b && x < y);
+                     });
+    const std::uint32_t left = build(first, mid), right = build(mid, last);
+    BvNode n;
+    for (int i = 0; i < 3; ++i) n.c[i] = std::isfinite(lo[i]) && std::isfinite(hi[i]) ? lo[i] / 2 + hi[i] / 2 : 0;
+    // Radius over the leaf spheres (tighter than over the two children).
+    double r = 0;
+    for (std::size_t k = first; k < last; ++k) {
+      const BvNode& l = tree.nodes[order[k]];
+      const Interval d = distance({Interval(l.c[0]), Interval(l.c[1]), Interval(l.c[2])}, n.c) + Interval(l.r);
+      r = std::max(r, d.sup());
+    }
+    n.r = std::isnan(r) ? kInf : r;
+    n.left = left;
+    n.right = right;
+    finish(n);
+    tree.nodes.push_back(n);
+    return static_cast<std::uint32_t>(tree.nodes.size() - 1);
+  }
+};
+
+}  // namespace
+
+BvTree build_tree(const std::vector<std::vector<Vec3<Interval>>>& features, const std::array<Interval, 16>* gi) {
+  RoundingGuard guard;
+  Builder b{features, gi, {}, {}, Interval(0)};
+  if (gi) {
+    Interval f(0);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) f += CGAL::square((*gi)[4 * r + c]);
+    // |(d, 0)|^2 in G^-1 is at most lambda_max |d|^2 <= |M|_F |d|^2 for the
+    // 3x3 block M: so rho grows by at most sqrt(|M|_F) per unit length.
+    b.rho_scale = CGAL::sqrt(CGAL::sqrt(Interval(0, f.sup())));
+  }
+  const std::size_t n = features.size();
+  b.tree.leaves = static_cast<std::uint32_t>(n);
+  if (n == 0) return b.tree;
+  b.tree.nodes.reserve(2 * n - 1);
+  for (std::size_t k = 0; k < n; ++k) b.tree.nodes.push_back(b.leaf(static_cast<std::uint32_t>(k)));
+  b.order.resize(n);
+  std::iota(b.order.begin(), b.order.end(), 0u);
+  if (n > 1) b.build(0, n);
+  return std::move(b.tree);
+}
+
+}  // namespace tmcert
