@@ -12,6 +12,26 @@ std::string to_string(const Exact& q) {
   return std::string(text.get());  // GMP prints "p/q" in lowest terms, or "p"
 }
 
+void ExactSum::add(const CGAL::Gmpz& num, const CGAL::Gmpz& den) {
+  mpz_srcptr n = num.mpz(), d = den.mpz();
+  if (mpz_sgn(n) == 0) return;
+  if (!mpz_divisible_p(den_.mpz(), d)) {
+    // New running denominator: lcm(den_, d); rescale the sum.
+    mpz_t l, f;
+    mpz_inits(l, f, nullptr);
+    mpz_lcm(l, den_.mpz(), d);
+    mpz_divexact(f, l, den_.mpz());
+    mpz_mul(num_.mpz(), num_.mpz(), f);
+    mpz_set(den_.mpz(), l);
+    mpz_clears(l, f, nullptr);
+  }
+  mpz_t f;
+  mpz_init(f);
+  mpz_divexact(f, den_.mpz(), d);
+  mpz_addmul(num_.mpz(), n, f);
+  mpz_clear(f);
+}
+
 namespace {
 
 bool is_digits(const std::string& s, std::size_t from, std::size_t to) {

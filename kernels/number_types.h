@@ -38,6 +38,24 @@ inline Interval to_interval(const Exact& q) { return Interval(CGAL::to_interval(
 // Exact value of a finite double (every finite double is a rational).
 inline Exact to_exact(double d) { return Exact(d); }
 
+// A sum of many rationals kept over one running denominator: adding a term
+// whose denominator divides it costs an integer division and a multiply-add
+// instead of the gcds of a rational addition (sums of decimals, whose
+// denominators are powers of ten, rarely need a new denominator).  Exact.
+class ExactSum {
+ public:
+  ExactSum() : den_(1) {}
+  ExactSum(const ExactSum&) = delete;  // CGAL::Gmpz shares its representation
+  ExactSum& operator=(const ExactSum&) = delete;
+  // Adds num / den (den > 0; need not be in lowest terms).
+  void add(const CGAL::Gmpz& num, const CGAL::Gmpz& den);
+  void add(const Exact& q) { add(q.numerator(), q.denominator()); }
+  Exact value() const { return Exact(num_, den_); }
+
+ private:
+  CGAL::Gmpz num_, den_;
+};
+
 // "p/q" in lowest terms, or "p" when the denominator is 1.
 std::string to_string(const Exact& q);
 

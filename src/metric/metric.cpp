@@ -38,13 +38,26 @@ bool invert_positive_definite(const Mat44E& a, Mat44E& inv) {
 
 Metric Metric::from_mass(const MassDistribution& mass) {
   Metric metric;
-  for (auto& e : metric.g_) e = 0;
+  // G = sum w h h^T, h = (p, 1): the 10 distinct entries as integer
+  // products over running denominators (ExactSum), no per-term gcd.
+  std::array<ExactSum, 16> sums;
+  CGAL::Gmpz one(1), num, den;
   for (std::size_t i = 0; i < mass.points.size(); ++i) {
     const Vec3E& p = mass.points[i];
-    const Exact h[4] = {p[0], p[1], p[2], Exact(1)};
+    const Exact& w = mass.weights[i];
+    mpz_srcptr hn[4] = {mpq_numref(p[0].mpq()), mpq_numref(p[1].mpq()), mpq_numref(p[2].mpq()), one.mpz()};
+    mpz_srcptr hd[4] = {mpq_denref(p[0].mpq()), mpq_denref(p[1].mpq()), mpq_denref(p[2].mpq()), one.mpz()};
     for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) metric.g_[4 * r + c] += mass.weights[i] * h[r] * h[c];
+      for (int c = r; c < 4; ++c) {
+        mpz_mul(num.mpz(), mpq_numref(w.mpq()), hn[r]);
+        mpz_mul(num.mpz(), num.mpz(), hn[c]);
+        mpz_mul(den.mpz(), mpq_denref(w.mpq()), hd[r]);
+        mpz_mul(den.mpz(), den.mpz(), hd[c]);
+        sums[4 * r + c].add(num, den);
+      }
   }
+  for (int r = 0; r < 4; ++r)
+    for (int c = r; c < 4; ++c) metric.g_[4 * r + c] = metric.g_[4 * c + r] = sums[4 * r + c].value();
   if (!invert_positive_definite(metric.g_, metric.g_inv_))
     throw InputError("moment matrix of the mass distribution is not positive definite "
                      "(mass points must not lie in one plane)");
@@ -92,14 +105,15 @@ MassDistribution default_mass(const std::vector<Vec3E>& vertices, const Exact& f
   mass.weights.assign(vertices.size(), Exact(1));
   if (vertices.empty()) return mass;
 
-  Vec3E lo = vertices[0], hi = vertices[0], centroid = {0, 0, 0};
+  Vec3E lo = vertices[0], hi = vertices[0], centroid;
+  std::array<ExactSum, 3> sum;
   for (const Vec3E& v : vertices)
     for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], v[i]);
-      hi[i] = std::max(hi[i], v[i]);
-      centroid[i] += v[i];
+      if (v[i] < lo[i]) lo[i] = v[i];
+      if (hi[i] < v[i]) hi[i] = v[i];
+      sum[i].add(v[i]);
     }
-  for (int i = 0; i < 3; ++i) centroid[i] /= Exact(static_cast<long>(vertices.size()));
+  for (int i = 0; i < 3; ++i) centroid[i] = sum[i].value() / Exact(static_cast<long>(vertices.size()));
   Exact size = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   if (size == 0) size = fallback_size > 0 ? fallback_size : Exact(1);
   const Exact offset = size / 10;

@@ -16,6 +16,8 @@
 #include "kernels/contact.h"
 #include "kernels/number_types.h"
 
+#include <CGAL/number_utils.h>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -85,20 +87,72 @@ SphereFrame<FT> sphere_frame(const Placement<FT>& p) {
   return f;
 }
 
-// True when no feature under `a` (body 1) can touch one under `b` (body 2)
-// on the piece.  FT = Interval: call under RoundingGuard; certified (a NaN
-// or an overlap of the bounds gives false).  FT = double: the fast path.
+// A node's sphere placed in the world by the piece's ball: every point the
+// node's features can occupy on the piece lies within `f` of `c`
+// (|A| r + R p for a moving body, r for a fixed one).
 template <class FT>
-bool spheres_clear(const SphereFrame<FT>& f, const BvNode& a, const BvNode& b) {
-  const Vec3<FT> ca{FT(a.c[0]), FT(a.c[1]), FT(a.c[2])}, cb{FT(b.c[0]), FT(b.c[1]), FT(b.c[2])};
-  const Vec3<FT> w1 = detail::apply_point(f.g1, ca);
-  const Vec3<FT> w2 = f.body2_moving ? detail::apply_point(f.g2, cb) : cb;
+struct WorldSphere {
+  Vec3<FT> c;
+  FT f;
+};
+
+// body1: the node is body 1's, else body 2's.  FT = Interval: call under
+// RoundingGuard.
+template <class FT>
+WorldSphere<FT> world_sphere(const SphereFrame<FT>& fr, bool body1, const BvNode& n) {
+  const Vec3<FT> c{FT(n.c[0]), FT(n.c[1]), FT(n.c[2])};
+  if (body1) return {detail::apply_point(fr.g1, c), fr.n1 * FT(n.r) + fr.R * FT(n.p)};
+  if (fr.body2_moving) return {detail::apply_point(fr.g2, c), fr.n2 * FT(n.r) + fr.R * FT(n.p)};
+  return {c, FT(n.r)};
+}
+
+// True when the two placed spheres certainly do not meet.  FT = Interval:
+// call under RoundingGuard; a NaN or an overlap of the bounds gives false.
+template <class FT>
+bool world_spheres_apart(const WorldSphere<FT>& a, const WorldSphere<FT>& b) {
   FT d2(0);
-  for (int i = 0; i < 3; ++i) d2 += (w1[i] - w2[i]) * (w1[i] - w2[i]);
-  const FT pa(a.p), pb(b.p);
-  const FT t = f.n1 * FT(a.r) + f.n2 * FT(b.r) + f.R * detail::sqrt_of(pa * pa + pb * pb);
+  for (int i = 0; i < 3; ++i) d2 += CGAL::square(a.c[i] - b.c[i]);
+  const FT t = a.f + b.f;
   return detail::certainly_greater(d2, t * t);
 }
+
+// True when no feature under `a` (body 1) can touch one under `b` (body 2)
+// on the piece: the two world spheres are apart.  (The joint ball's
+// R sqrt(p_a^2 + p_b^2) is bounded by R p_a + R p_b, which lets each
+// placed sphere be computed once per piece.)  FT = Interval: call under
+// RoundingGuard; certified.  FT = double: the fast path.
+template <class FT>
+bool spheres_clear(const SphereFrame<FT>& f, const BvNode& a, const BvNode& b) {
+  return world_spheres_apart(world_sphere(f, true, a), world_sphere(f, false, b));
+}
+
+// The placed spheres of the nodes of one tree, computed once per piece
+// (`stamp` says for which piece an entry is current).
+template <class FT>
+struct SphereCache {
+  std::vector<std::uint32_t> stamp;
+  std::vector<WorldSphere<FT>> sphere;
+  void reset(std::size_t nodes) {
+    stamp.assign(nodes, 0);
+    sphere.resize(nodes);
+  }
+  const WorldSphere<FT>& get(std::uint32_t piece, const SphereFrame<FT>& fr, bool body1, const BvTree& tree,
+                             std::uint32_t i) {
+    if (stamp[i] != piece) {
+      stamp[i] = piece;
+      sphere[i] = world_sphere(fr, body1, tree.nodes[i]);
+    }
+    return sphere[i];
+  }
+};
+
+// Holds upward rounding for interval arithmetic, nothing for double.
+template <class FT>
+struct RoundingFor {};
+template <>
+struct RoundingFor<Interval> {
+  RoundingGuard guard;
+};
 
 // The world size of a node under the piece's ball (for descent decisions
 // only; no guarantee depends on it).

@@ -64,15 +64,9 @@ struct FilteredPolicy {
     }
     return b;
   }
-  using Frame = SphereFrame<Interval>;
-  Frame frame(const Ball& b) const {
-    RoundingGuard guard;
-    return sphere_frame(b.interval);
-  }
-  bool clear(const Frame& fr, const BvNode& a, const BvNode& b) const {
-    RoundingGuard guard;
-    return spheres_clear(fr, a, b);
-  }
+  // Call under RoundingGuard.
+  using SphereFT = Interval;
+  SphereFrame<Interval> frame(const Ball& b) const { return sphere_frame(b.interval); }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     const FeatureTable& X = moving_table(m, p.kind);
     const FeatureTable& Y = other_table(f, p.kind);
@@ -110,20 +104,16 @@ struct ExactPolicy {
   }
   // The sphere test over intervals enclosing the exact ball: certified, and
   // it only ever skips contact tests that would clear too.
-  using Frame = SphereFrame<Interval>;
-  Frame frame(const Ball& b) const {
+  // Call under RoundingGuard.
+  using SphereFT = Interval;
+  SphereFrame<Interval> frame(const Ball& b) const {
     Placement<Interval> p;
     for (int e = 0; e < 12; ++e) p.g1[e] = to_interval(b.placement.g1[e]);
     p.body2_moving = b.placement.body2_moving;
     if (p.body2_moving)
       for (int e = 0; e < 12; ++e) p.g2[e] = to_interval(b.placement.g2[e]);
     p.r2 = to_interval(b.placement.r2);
-    RoundingGuard guard;
     return sphere_frame(p);
-  }
-  bool clear(const Frame& fr, const BvNode& a, const BvNode& b) const {
-    RoundingGuard guard;
-    return spheres_clear(fr, a, b);
   }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
@@ -154,9 +144,8 @@ struct FastPolicy {
     b.placement = make_placement<B>(b.ball.center, b.ball.r2);
     return b;
   }
-  using Frame = SphereFrame<double>;
-  Frame frame(const Ball& b) const { return sphere_frame(b.placement); }
-  bool clear(const Frame& fr, const BvNode& a, const BvNode& b) const { return spheres_clear(fr, a, b); }
+  using SphereFT = double;
+  SphereFrame<double> frame(const Ball& b) const { return sphere_frame(b.placement); }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     ++stats.by_kind[static_cast<int>(p.kind)].calls;
     return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],

@@ -250,34 +250,55 @@ struct Check {
   // the sub-pieces, where the smaller balls make descending worthwhile.
   // Leaves `alive` with the pairs not cleared (proofs/hierarchy.md).
   template <class Policy>
-  void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all) {
+  struct Spheres {
+    using FT = typename Policy::SphereFT;
+    std::array<SphereCache<FT>, 3> moving, other;  // by contact kind
+    std::uint32_t piece = 0;
+    Spheres(const PreparedBody& m, const PreparedBody& f) {
+      for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
+        moving[static_cast<int>(k)].reset(moving_table(m, k).tree.nodes.size());
+        other[static_cast<int>(k)].reset(other_table(f, k).tree.nodes.size());
+      }
+    }
+  };
+
+  template <class Policy>
+  void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all,
+             Spheres<Policy>& spheres) {
     if (!ball.valid()) return;  // nothing is cleared by an unbounded ball
     CheckStats& stats = result.stats;
     if (!options.hierarchy) {
       std::erase_if(alive, [&](const PairRef& p) { return policy.test(ball, p, stats) == CGAL::POSITIVE; });
       return;
     }
-    const typename Policy::Frame frame = policy.frame(ball);
+    using FT = typename Policy::SphereFT;
+    RoundingFor<FT> rounding;  // the contact tests' exact fallbacks are rounding-independent
+    const SphereFrame<FT> frame = policy.frame(ball);
+    const std::uint32_t piece = ++spheres.piece;
     const double n1 = CGAL::to_double(frame.n1), n2 = CGAL::to_double(frame.n2), radius = CGAL::to_double(frame.R);
     std::vector<PairRef> work;
     work.swap(alive);
+    alive.reserve(work.size());
     std::reverse(work.begin(), work.end());  // a stack that pops in list order
     while (!work.empty()) {
       const PairRef p = work.back();
       work.pop_back();
+      const int k = static_cast<int>(p.kind);
       const BvTree& X = moving_table(moving, p.kind).tree;
       const BvTree& Y = other_table(other, p.kind).tree;
-      const BvNode& a = X.nodes[p.i];
-      const BvNode& b = Y.nodes[p.j];
       ++stats.sphere_tests;
-      if (policy.clear(frame, a, b)) continue;
+      if (world_spheres_apart(spheres.moving[k].get(piece, frame, true, X, p.i),
+                              spheres.other[k].get(piece, frame, false, Y, p.j)))
+        continue;
       const bool leaf_a = X.leaf(p.i), leaf_b = Y.leaf(p.j);
       if (leaf_a && leaf_b) {
         if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
         continue;
       }
+      const BvNode& a = X.nodes[p.i];
+      const BvNode& b = Y.nodes[p.j];
       const double size_a = leaf_a ? -1 : n1 * a.r, size_b = leaf_b ? -1 : n2 * b.r;
-      if (!expand_all && !(std::max(size_a, size_b) > radius * std::hypot(a.p, b.p))) {
+      if (!expand_all && !(std::max(size_a, size_b) > radius * (a.p + b.p))) {
         alive.push_back(p);
         continue;
       }
@@ -313,6 +334,7 @@ struct Check {
     stack.push_back({Node{0, 0, root_pairs()}, policy.root()});
     const int max_depth = std::min(options.max_depth, kDepthCap);
     CheckStats& stats = result.stats;
+    Spheres<Policy> spheres(moving, other);
     while (!stack.empty()) {
       Item item = std::move(stack.back());
       stack.pop_back();
@@ -324,14 +346,14 @@ struct Check {
       ++stats.nodes;
       stats.max_depth = std::max(stats.max_depth, node.depth);
       typename Policy::Ball ball = policy.ball(item.piece);
-      prune(policy, ball, node.alive, false);  // keep the pairs not cleared on this piece
+      prune(policy, ball, node.alive, false, spheres);  // keep the pairs not cleared on this piece
       if (node.alive.empty()) continue;  // cleared on the whole piece
       std::optional<StopReason> stop;
       if (node.depth >= max_depth) stop = StopReason::Depth;
       else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
       if (stop) {
         // A stop is final: descend the hierarchy to feature pairs here.
-        prune(policy, ball, node.alive, true);
+        prune(policy, ball, node.alive, true, spheres);
         if (node.alive.empty()) continue;
         // Witness candidates: the midpoint, the end, and the scene time with
         // the smallest denominator in the piece (a contact at a "round"
