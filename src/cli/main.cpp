@@ -6,7 +6,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
 #include <iostream>
+#include <memory>
+#include <mutex>
 #include <new>
 
 namespace {
@@ -34,6 +40,31 @@ struct VerifyArgs {
   bool all_pairs = false;
 };
 
+// Progress on stderr for runs longer than about two seconds, only when
+// stderr is a terminal: one line, rewritten in place, erased at the end.
+class Progress {
+ public:
+  Progress() : start_(std::chrono::steady_clock::now()) {}
+  ~Progress() {
+    if (shown_) std::fputs("\r\033[K", stderr);
+  }
+  void report(double fraction) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (elapsed < 2.0 || fraction < last_ + 0.01) return;
+    last_ = fraction;
+    shown_ = true;
+    std::fprintf(stderr, "\rtmcert: %3.0f%% done, %.0f s", 100 * fraction, elapsed);
+    std::fflush(stderr);
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  std::mutex mutex_;
+  bool shown_ = false;
+  double last_ = -1;
+};
+
 int run_verify(const VerifyArgs& args) {
   using namespace tmcert;
   Scene scene = parse_scene_file(args.scene);
@@ -54,7 +85,14 @@ int run_verify(const VerifyArgs& args) {
   if (!args.certificate.empty())
     throw InputError("--certificate: certificates are not supported by this version yet");
   require_supported(scene);
+  std::shared_ptr<Progress> progress;
+  if (isatty(STDERR_FILENO)) {
+    progress = std::make_shared<Progress>();
+    options.progress = [progress](double f) { progress->report(f); };
+  }
   const SceneResult result = verify_scene(scene, options, args.threads);
+  options.progress = nullptr;
+  progress.reset();  // erases the progress line before the result is printed
   std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
   return exit_code(result.verdict);
 }

@@ -94,6 +94,7 @@ struct Builder {
     n.r = std::isnan(r) ? kInf : r;
     n.left = left;
     n.right = right;
+    n.leaves = static_cast<std::uint32_t>(last - first);
     finish(n);
     tree.nodes.push_back(n);
     return static_cast<std::uint32_t>(tree.nodes.size() - 1);

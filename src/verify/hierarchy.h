@@ -33,6 +33,7 @@ struct BvNode {
   double r = 0;                // radius, rounded upward
   double p = 0;                // >= max rho over the sphere, rounded upward
   std::uint32_t left = 0, right = 0;  // children of an internal node
+  std::uint32_t leaves = 1;           // features under the node
 };
 
 struct BvTree {

@@ -6,6 +6,10 @@
 #include "src/verify/kernel_policies.h"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <stdexcept>
+#include <thread>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -262,6 +266,10 @@ struct Check {
     }
   };
 
+  // Node pairs with at most this many feature pairs below are descended at
+  // once.
+  static constexpr std::uint64_t kExpandPairs = 64;
+
   template <class Policy>
   void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all,
              Spheres<Policy>& spheres) {
@@ -272,7 +280,7 @@ struct Check {
       return;
     }
     using FT = typename Policy::SphereFT;
-    RoundingFor<FT> rounding;  // the contact tests' exact fallbacks are rounding-independent
+    [[maybe_unused]] RoundingFor<FT> rounding;  // the contact tests' exact fallbacks are rounding-independent
     const SphereFrame<FT> frame = policy.frame(ball);
     const std::uint32_t piece = ++spheres.piece;
     const double n1 = CGAL::to_double(frame.n1), n2 = CGAL::to_double(frame.n2), radius = CGAL::to_double(frame.R);
@@ -298,7 +306,10 @@ struct Check {
       const BvNode& a = X.nodes[p.i];
       const BvNode& b = Y.nodes[p.j];
       const double size_a = leaf_a ? -1 : n1 * a.r, size_b = leaf_b ? -1 : n2 * b.r;
-      if (!expand_all && !(std::max(size_a, size_b) > radius * (a.p + b.p))) {
+      // Few feature pairs under the pair: test them now (cheaper than
+      // carrying them down the pieces, and as tight as all pairs).
+      const bool small = std::uint64_t(a.leaves) * b.leaves <= kExpandPairs;
+      if (!expand_all && !small && !(std::max(size_a, size_b) > radius * (a.p + b.p))) {
         alive.push_back(p);
         continue;
       }
@@ -325,57 +336,217 @@ struct Check {
   }
 
   template <class Policy>
-  void search(const Policy& policy) {
-    struct Item {
-      Node node;
-      typename Policy::Piece piece;
-    };
-    std::vector<Item> stack;
-    stack.push_back({Node{0, 0, root_pairs()}, policy.root()});
-    const int max_depth = std::min(options.max_depth, kDepthCap);
+  struct Item {
+    Node node;
+    typename Policy::Piece piece;
+  };
+
+  // What a node's tests decided.
+  enum class Outcome { Cleared, Split, Stopped, Witness };
+
+  // Tests one node: prunes its pairs; on a stop, descends to feature pairs
+  // and tries the witness candidates (setting the witness, or recording the
+  // undecided piece); else splits it into `left` and `right`.
+  template <class Policy>
+  Outcome visit(const Policy& policy, Item<Policy>& item, Item<Policy>& left, Item<Policy>& right,
+                Spheres<Policy>& spheres) {
+    Node& node = item.node;
     CheckStats& stats = result.stats;
-    Spheres<Policy> spheres(moving, other);
-    while (!stack.empty()) {
-      Item item = std::move(stack.back());
-      stack.pop_back();
-      Node& node = item.node;
-      if (stats.nodes >= options.max_nodes) {  // resource limit: not cleared
-        record(node, StopReason::Limit);
-        continue;
-      }
-      ++stats.nodes;
-      stats.max_depth = std::max(stats.max_depth, node.depth);
-      typename Policy::Ball ball = policy.ball(item.piece);
-      prune(policy, ball, node.alive, false, spheres);  // keep the pairs not cleared on this piece
-      if (node.alive.empty()) continue;  // cleared on the whole piece
-      std::optional<StopReason> stop;
-      if (node.depth >= max_depth) stop = StopReason::Depth;
-      else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
-      if (stop) {
-        // A stop is final: descend the hierarchy to feature pairs here.
-        prune(policy, ball, node.alive, true, spheres);
-        if (node.alive.empty()) continue;
-        // Witness candidates: the midpoint, the end, and the scene time with
-        // the smallest denominator in the piece (a contact at a "round"
-        // rational time, such as 1/3 or 0.137, is found exactly there).
-        const Exact mid = node.mid();
-        const Exact end = node.u1();
-        const Exact simple = curve_u(simplest_between(scene_t(node.u0()), scene_t(end)));
-        for (const Exact* u : {&mid, &end, &simple}) {
-          if (try_witness(*u, node.alive)) {
-            const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
-            result.first_contact = std::pair{lo, scene_t(*u)};
-            return;
-          }
+    ++stats.nodes;
+    stats.max_depth = std::max(stats.max_depth, node.depth);
+    typename Policy::Ball ball = policy.ball(item.piece);
+    prune(policy, ball, node.alive, false, spheres);  // keep the pairs not cleared on this piece
+    if (node.alive.empty()) return Outcome::Cleared;  // cleared on the whole piece
+    std::optional<StopReason> stop;
+    if (node.depth >= std::min(options.max_depth, kDepthCap)) stop = StopReason::Depth;
+    else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
+    if (stop) {
+      // A stop is final: descend the hierarchy to feature pairs here.
+      if (options.hierarchy) prune(policy, ball, node.alive, true, spheres);
+      if (node.alive.empty()) return Outcome::Cleared;
+      // Witness candidates: the midpoint, the end, and the scene time with
+      // the smallest denominator in the piece (a contact at a "round"
+      // rational time, such as 1/3 or 0.137, is found exactly there).
+      const Exact mid = node.mid();
+      const Exact end = node.u1();
+      const Exact simple = curve_u(simplest_between(scene_t(node.u0()), scene_t(end)));
+      for (const Exact* u : {&mid, &end, &simple}) {
+        if (try_witness(*u, node.alive)) {
+          const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
+          result.first_contact = std::pair{lo, scene_t(*u)};
+          return Outcome::Witness;
         }
-        record(node, *stop);
+      }
+      record(node, *stop);
+      return Outcome::Stopped;
+    }
+    left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}};
+    right = Item<Policy>{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}};
+    policy.split(item.piece, left.piece, right.piece);
+    return Outcome::Split;
+  }
+
+  // Depth-first search below `root` in parameter order, at most `budget`
+  // nodes (then the rest is recorded as undecided "limit").  With `shared`,
+  // every node is also counted there and the search gives up (returns
+  // false, its result unusable) once that count passes `shared_limit`.
+  template <class Policy>
+  bool dfs(const Policy& policy, Item<Policy> root, std::uint64_t budget, Spheres<Policy>& spheres,
+           std::atomic<std::uint64_t>* shared = nullptr, std::uint64_t shared_limit = 0) {
+    std::vector<Item<Policy>> stack;
+    stack.push_back(std::move(root));
+    const std::uint64_t limit = result.stats.nodes + budget;
+    while (!stack.empty()) {
+      Item<Policy> item = std::move(stack.back());
+      stack.pop_back();
+      if (result.stats.nodes >= limit) {  // resource limit: not cleared
+        record(item.node, StopReason::Limit);
         continue;
       }
-      Item left{Node{2 * node.index, node.depth + 1, node.alive}, {}};
-      Item right{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}};
-      policy.split(item.piece, left.piece, right.piece);
-      stack.push_back(std::move(right));
-      stack.push_back(std::move(left));  // parameter order: left first
+      if (shared && ++*shared > shared_limit) return false;
+      Item<Policy> left, right;
+      switch (visit(policy, item, left, right, spheres)) {
+        case Outcome::Witness: return true;
+        case Outcome::Split:
+          stack.push_back(std::move(right));
+          stack.push_back(std::move(left));  // parameter order: left first
+          break;
+        default: break;
+      }
+    }
+    return true;
+  }
+
+  // Adds a task's result after everything before it in parameter order;
+  // false once a witness ends the search.
+  bool merge(const CheckResult& part) {
+    CheckStats& s = result.stats;
+    const CheckStats& p = part.stats;
+    s.nodes += p.nodes;
+    s.max_depth = std::max(s.max_depth, p.max_depth);
+    s.contact += p.contact;
+    for (int k = 0; k < 3; ++k) s.by_kind[k] += p.by_kind[k];
+    s.static_tests += p.static_tests;
+    s.sphere_tests += p.sphere_tests;
+    for (const UndecidedInterval& u : part.undecided) {
+      if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)
+        result.undecided.back().t1 = u.t1;
+      else
+        result.undecided.push_back(u);
+    }
+    if (part.witness) {
+      result.witness = part.witness;
+      result.verdict = Verdict::Collision;
+      const Exact lo = result.first_contact ? result.first_contact->first : part.first_contact->first;
+      result.first_contact = std::pair{lo, part.first_contact->second};
+      return false;
+    }
+    if (!result.first_contact && part.first_contact) result.first_contact = part.first_contact;
+    return true;
+  }
+
+  // The search: the top of the subdivision tree sequentially, then the
+  // pieces at depth kTaskDepth (and shallower stops) as independent tasks
+  // on up to options.threads threads, merged in parameter order.  The
+  // result is the same for every thread count (the tasks and their node
+  // budgets do not depend on it).
+  static constexpr int kTaskDepth = 5;
+
+  template <class Policy>
+  void search(const Policy& policy) {
+    // The ordered entries: a task to search, or the finished result of a
+    // shallower piece that stopped.
+    struct Entry {
+      std::optional<Item<Policy>> task;
+      CheckResult part;
+    };
+    std::vector<Entry> entries;  // in parameter order
+    Spheres<Policy> spheres(moving, other);
+    {
+      std::vector<Item<Policy>> stack;
+      stack.push_back({Node{0, 0, root_pairs()}, policy.root()});
+      while (!stack.empty()) {
+        Item<Policy> item = std::move(stack.back());
+        stack.pop_back();
+        if (item.node.depth >= kTaskDepth || result.stats.nodes >= options.max_nodes) {
+          entries.push_back({std::move(item), {}});
+          continue;
+        }
+        CheckResult part;
+        Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, part};
+        Item<Policy> left, right;
+        const Outcome outcome = sub.visit(policy, item, left, right, spheres);
+        if (outcome == Outcome::Split || outcome == Outcome::Cleared) {
+          merge(part);  // statistics only
+          if (outcome == Outcome::Split) {
+            stack.push_back(std::move(right));
+            stack.push_back(std::move(left));
+          }
+          continue;
+        }
+        entries.push_back({std::nullopt, std::move(part)});
+        if (outcome == Outcome::Witness) break;  // nothing after it matters
+      }
+    }
+    // The tasks run optimistically, in parallel, each with all the node
+    // budget left; the merge then replays the sequential budget: a task that
+    // used more than what the tasks before it left (or gave up because all
+    // tasks together passed the budget) is searched again, alone, with
+    // exactly that.  So the result is the sequential one for every thread
+    // count.
+    std::size_t task_count = 0;
+    for (const Entry& e : entries) task_count += e.task ? 1 : 0;
+    const std::uint64_t used = result.stats.nodes;
+    const std::uint64_t remaining = options.max_nodes > used ? options.max_nodes - used : 0;
+    std::vector<std::optional<Item<Policy>>> originals(entries.size());
+    std::vector<char> complete(entries.size(), 0);
+    std::vector<std::exception_ptr> errors(entries.size());
+    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<std::size_t> first_witness{entries.size()};
+    std::atomic<std::uint64_t> spent{0};
+    for (std::size_t i = 0; i < entries.size(); ++i)
+      if (entries[i].task) originals[i] = *entries[i].task;
+    auto worker = [&](Spheres<Policy>* own) {
+      std::optional<Spheres<Policy>> local;
+      for (std::size_t i = next++; i < entries.size(); i = next++) {
+        Entry& e = entries[i];
+        if (!e.task || i > first_witness.load()) continue;  // after a witness: not needed
+        if (!own) own = &local.emplace(moving, other);
+        try {
+          Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, e.part};
+          complete[i] = sub.dfs(policy, std::move(*e.task), remaining, *own, &spent, remaining) ? 1 : 0;
+          if (complete[i] && e.part.witness) {
+            std::size_t w = first_witness.load();
+            while (i < w && !first_witness.compare_exchange_weak(w, i)) {}
+          }
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+        const std::size_t d = ++done;
+        if (options.progress) options.progress(static_cast<double>(d) / task_count);
+      }
+    };
+    if (task_count > 0) {
+      const int threads = std::max(1, std::min<int>(options.threads, static_cast<int>(task_count)));
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t) pool.emplace_back(worker, nullptr);
+      worker(&spheres);
+      for (std::thread& t : pool) t.join();
+    }
+    std::uint64_t cumulative = 0;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      Entry& e = entries[i];
+      if (originals[i]) {
+        if (errors[i]) std::rethrow_exception(errors[i]);
+        const std::uint64_t left = remaining > cumulative ? remaining - cumulative : 0;
+        if (!complete[i] || e.part.stats.nodes > left) {
+          e.part = CheckResult{};
+          Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, e.part};
+          sub.dfs(policy, std::move(*originals[i]), left, spheres);
+        }
+        cumulative += e.part.stats.nodes;
+      }
+      if (!merge(e.part)) return;
     }
   }
 

@@ -211,7 +211,16 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   out.certified = options.kernel != KernelKind::Fast;
   out.epsilon = options.epsilon;
 
-  const Verifier verifier(scene, options);
+  // Threads go to the checks first; when there are fewer checks than
+  // threads, each check spreads its pieces over the rest.  Progress: a lone
+  // check reports its pieces, several checks report as each finishes.
+  const std::size_t checks = scene.checks.size();
+  VerifyOptions per_check = options;
+  per_check.threads = std::max(options.threads, static_cast<int>(threads / std::max<std::size_t>(1, checks)));
+  if (checks != 1) per_check.progress = nullptr;
+  std::atomic<std::size_t> finished{0};
+  std::mutex progress_mutex;
+  const Verifier verifier(scene, per_check);
   out.checks.resize(scene.checks.size());
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
@@ -221,6 +230,11 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
       for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
         const auto [a, b] = scene.checks[k];
         out.checks[k] = verifier.check(a, b);
+        const std::size_t f = ++finished;
+        if (options.progress && checks > 1) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          options.progress(static_cast<double>(f) / checks);
+        }
       }
     } catch (...) {  // reported by the caller; never a verdict
       std::lock_guard<std::mutex> lock(failure_mutex);

@@ -6,6 +6,7 @@
 #include "src/scene/model.h"
 
 #include <cstdint>
+#include <functional>
 #include <ostream>
 #include <memory>
 #include <mutex>
@@ -34,6 +35,11 @@ struct VerifyOptions {
   // Bounding-volume hierarchies over the features (false: every feature pair
   // is carried from the root, the reference the hierarchy is checked against).
   bool hierarchy = true;
+  // Threads for the pieces of one check (the result does not depend on it).
+  int threads = 1;
+  // Called (from any thread, serialized by the caller's function if needed)
+  // with the fraction of a check's pieces done; empty: no reports.
+  std::function<void(double)> progress;
 };
 
 struct Witness {
