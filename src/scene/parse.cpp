@@ -6,9 +6,12 @@
 // Then the tree is validated and turned into the exact model; every error
 // names the JSON path of the offending value.  Polygons are checked
 // (planar, simple) and split into convex pieces with exact arithmetic.
+// Mesh files (src/scene/mesh.h) are read relative to the scene file, and
+// every face goes through the same polygon checks.
 #include "src/scene/parse.h"
 
 #include "src/metric/metric.h"
+#include "src/scene/mesh.h"
 
 #include <nlohmann/json.hpp>
 
@@ -576,7 +579,10 @@ std::pair<std::vector<Vec3E>, std::vector<ConvexPiece>> split_polygon(const std:
 // "<source>: <path>: <what>".
 class SceneReader {
  public:
-  explicit SceneReader(std::string source) : source_(std::move(source)) {}
+  // `base` is the directory mesh file names are relative to ("" for the
+  // current directory).
+  SceneReader(std::string source, std::filesystem::path base)
+      : source_(std::move(source)), base_(std::move(base)) {}
 
   Scene read(const Node& root) {
     Scene scene;
@@ -709,7 +715,6 @@ class SceneReader {
 
   Body body(const Node& node, const std::string& path) const {
     const Node& obj = object(node, path);
-    if (find(obj, "mesh")) fail(member_path(path, "mesh"), "mesh bodies are not supported yet");
     reject_unknown_keys(obj, path, {"name", "polygons", "segments", "points", "mass", "motion", "solid", "mesh"});
     Body b;
 
@@ -736,15 +741,17 @@ class SceneReader {
       }
     }
     if (const Node* pts = find(obj, "points")) b.points = points(*pts, member_path(path, "points"));
+    // Mesh faces come after the explicit polygons (polygon indices go on).
+    if (const Node* file = find(obj, "mesh")) mesh(b, *file, member_path(path, "mesh"));
     if (b.polygons.empty() && b.segments.empty() && b.points.empty())
-      fail(path, "body has no features (needs at least one of polygons, segments, points)");
+      fail(path, "body has no features (needs at least one of polygons, segments, points, mesh)");
 
     if (const Node* solid = find(obj, "solid")) {
-      if (solid->kind != Node::Kind::Boolean) fail(member_path(path, "solid"), "expected true or false");
-      // Inside-counts-as-contact needs a closed surface and an exact
-      // containment test (the meshes issue); accepting it silently would
-      // certify "safe" for a body moving inside a solid.
-      if (solid->boolean) fail(member_path(path, "solid"), "solid bodies are not supported yet");
+      const std::string solid_path = member_path(path, "solid");
+      if (solid->kind != Node::Kind::Boolean) fail(solid_path, "expected true or false");
+      // The inside of a solid counts as contact, and "inside" is only
+      // defined for a closed surface (proofs/containment.md).
+      if (solid->boolean) require_closed(b, solid_path);
       b.solid = solid->boolean;
     }
     if (const Node* mass = find(obj, "mass")) {
@@ -768,6 +775,83 @@ class SceneReader {
       for (ConvexPiece& piece : pieces) b.pieces.push_back(std::move(piece));
     } catch (const InputError& e) {
       fail(path, e.what());
+    }
+  }
+
+  // "mesh": a file name relative to the scene file's directory.  Each face
+  // becomes a polygon through the same checks as explicit polygons; an
+  // error names the file and the face.
+  void mesh(Body& b, const Node& node, const std::string& path) const {
+    if (node.kind != Node::Kind::String || node.text.empty())
+      fail(path, std::string("expected a mesh file name (a non-empty string), got ") +
+                     (node.kind == Node::Kind::String ? "an empty string" : kind_name(node.kind)));
+    if (node.text.find('\0') != std::string::npos) fail(path, "file name contains a NUL character");
+    const std::string file = (base_ / std::filesystem::path(node.text)).string();
+    MeshData data;
+    try {
+      data = read_mesh(file);
+    } catch (const InputError& e) {
+      fail(path, one_line(e.what()));
+    }
+    if (data.faces.empty()) fail(path, file + ": mesh has no faces");
+    std::vector<Vec3E> vertices;
+    for (std::size_t f = 0; f < data.faces.size(); ++f) {
+      const std::vector<std::size_t>& face = data.faces[f];
+      vertices.clear();
+      for (std::size_t index : face) vertices.push_back(data.vertices[index]);
+      try {
+        auto [clean, pieces] = split_polygon(vertices, static_cast<int>(b.polygons.size()));
+        b.polygons.push_back(std::move(clean));
+        for (ConvexPiece& piece : pieces) b.pieces.push_back(std::move(piece));
+      } catch (const InputError& e) {
+        fail(path, file + ": face " + std::to_string(f) + ": " + e.what());
+      }
+    }
+  }
+
+  // A solid needs a closed surface: every undirected edge of its polygons
+  // (as stored, by exact endpoint coordinates) belongs to exactly two
+  // polygon edges; and no segments or points, whose "inside" would mean
+  // nothing.
+  void require_closed(const Body& b, const std::string& path) const {
+    if (!b.segments.empty() || !b.points.empty())
+      fail(path, "a solid body cannot have segments or points (only polygons or a mesh forming a closed surface)");
+    if (b.polygons.empty()) fail(path, "a solid body needs polygons forming a closed surface");
+    std::map<Vec3E, std::size_t> ids;
+    std::vector<const Vec3E*> points_of;
+    auto id = [&](const Vec3E& v) {
+      const auto [it, fresh] = ids.emplace(v, ids.size());
+      if (fresh) points_of.push_back(&it->first);
+      return it->second;
+    };
+    struct Use {
+      std::size_t count = 0;
+      std::size_t polygon = 0;  // the first polygon with this edge
+    };
+    std::map<std::pair<std::size_t, std::size_t>, Use> edges;
+    std::vector<std::pair<std::size_t, std::size_t>> order;  // edges in first-seen order
+    for (std::size_t p = 0; p < b.polygons.size(); ++p) {
+      const std::vector<Vec3E>& poly = b.polygons[p];
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const std::size_t u = id(poly[i]), v = id(poly[(i + 1) % poly.size()]);
+        const auto key = std::minmax(u, v);
+        Use& use = edges[key];
+        if (use.count++ == 0) {
+          use.polygon = p;
+          order.push_back(key);
+        }
+      }
+    }
+    for (const auto& key : order) {
+      const Use& use = edges.at(key);
+      if (use.count == 2) continue;
+      auto text = [](const Vec3E& v) {
+        return "(" + to_string(v[0]) + ", " + to_string(v[1]) + ", " + to_string(v[2]) + ")";
+      };
+      fail(path, "not a closed surface: the edge " + text(*points_of[key.first]) + "-" +
+                     text(*points_of[key.second]) + " (of polygon " + std::to_string(use.polygon) + ") belongs to " +
+                     std::to_string(use.count) + (use.count == 1 ? " polygon" : " polygons") +
+                     " (every edge of a solid must belong to exactly 2)");
     }
   }
 
@@ -902,13 +986,23 @@ class SceneReader {
   }
 
   std::string source_;
+  std::filesystem::path base_;
 };
+
+Scene parse_with_base(const std::string& text, const std::string& source, const std::filesystem::path& base) {
+  const Node root = parse_json(text, source);
+  return SceneReader(source, base).read(root);
+}
 
 }  // namespace
 
+// Mesh files are relative to the directory of `source` when it names an
+// existing file, otherwise to the current directory.
 Scene parse_scene_text(const std::string& text, const std::string& source) {
-  const Node root = parse_json(text, source);
-  return SceneReader(source).read(root);
+  std::error_code ec;
+  std::filesystem::path base;
+  if (!source.empty() && std::filesystem::is_regular_file(source, ec)) base = std::filesystem::path(source).parent_path();
+  return parse_with_base(text, source, base);
 }
 
 Scene parse_scene_file(const std::string& path) {
@@ -922,7 +1016,7 @@ Scene parse_scene_file(const std::string& path) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
   if (in.bad()) throw InputError(path + ": cannot read file");
-  return parse_scene_text(buffer.str(), path);
+  return parse_with_base(buffer.str(), path, std::filesystem::path(path).parent_path());
 }
 
 }  // namespace tmcert

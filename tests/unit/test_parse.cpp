@@ -151,9 +151,10 @@ BOOST_AUTO_TEST_CASE(annotations_and_solid_false_are_accepted) {
        "motion": {"type": "rational_bezier", "comment": "m", "control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]]]}}]})");
   BOOST_TEST(!s.bodies[0].solid);
   BOOST_TEST(!read_scene(scene_of(R"({"name": "a", "points": [[0,0,0]]})")).bodies[0].solid);
-  // Solid bodies need the containment test of the meshes issue: refused,
-  // never silently treated as a surface (that would certify a false "safe").
-  expect_error(scene_of(R"({"name": "a", "points": [[0,0,0]], "solid": true})"), "bodies[0].solid", "not supported");
+  // A solid is a closed surface: isolated points or segments cannot be part
+  // of one.
+  expect_error(scene_of(R"({"name": "a", "points": [[0,0,0]], "solid": true})"), "bodies[0].solid",
+               "a solid body cannot have segments or points");
 }
 
 // ---------------------------------------------------------------- masses
@@ -362,7 +363,7 @@ BOOST_AUTO_TEST_CASE(body_errors) {
   expect_error(scene_of(R"({"name": "a"})"), "bodies[0]", "no features");
   expect_error(scene_of(R"({"name": "a", "polygons": [], "points": []})"), "bodies[0]", "no features");
   expect_error(scene_of(R"({"name": "a", "points": [[0,0,0]], "colour": 1})"), "bodies[0].colour", "unknown field");
-  expect_error(scene_of(R"({"name": "a", "mesh": "x.off"})"), "bodies[0].mesh", "not supported yet");
+  expect_error(scene_of(R"({"name": "a", "mesh": "x.off"})"), "bodies[0].mesh", "x.off: cannot open file");
   expect_error(scene_of(R"({"name": "a", "points": [[0,0,0]], "solid": 1})"), "bodies[0].solid", "true or false");
   expect_error(scene_of(R"({"name": "a", "points": [[0,0]]})"), "bodies[0].points[0]", "3 coordinates");
   expect_error(scene_of(R"({"name": "a", "points": [[0,0,"x"]]})"), "bodies[0].points[0][2]", "not a number");
