@@ -13,6 +13,10 @@ namespace tmcert {
 // be positive") on any malformed input.
 Scene parse_scene_file(const std::string& path);
 
+// Why `b` cannot be a solid (its polygons do not form a closed surface, or
+// it has segments or points); empty when it can.
+std::string solid_problem(const Body& b);
+
 // The same for a document held in memory; `source` names it in messages.
 Scene parse_scene_text(const std::string& text, const std::string& source);
 

@@ -1,5 +1,8 @@
 #include "src/verify/verify.h"
 
+#include "kernels/containment.h"
+#include "src/scene/parse.h"
+
 #include "src/verify/prepared.h"
 #include "src/verify/search.h"
 
@@ -92,8 +95,12 @@ Exact default_epsilon(const Scene& scene) {
 }
 
 void require_supported(const Scene& scene) {
+  // The parser checks this; a scene built in code must hold it too, since
+  // containment needs a closed surface.
   for (const Body& b : scene.bodies)
-    if (b.solid) throw InputError(scene.source + ": body \"" + b.name + "\": solid bodies are not supported yet");
+    if (b.solid)
+      if (const std::string problem = solid_problem(b); !problem.empty())
+        throw InputError(scene.source + ": body \"" + b.name + "\": solid: " + problem);
   // Nothing to check would be reported "safe" vacuously: a user who forgot
   // the motion or the checks must hear about it instead.
   if (scene.checks.empty())
@@ -162,7 +169,8 @@ CheckResult run_check(int a, int b, const PreparedBody& pa, const PreparedBody& 
 
 Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
     : scene_(scene), options_(options), once_(new std::once_flag[scene.bodies.size()]),
-      prepared_(scene.bodies.size()) {
+      prepared_(scene.bodies.size()), surface_once_(new std::once_flag[scene.bodies.size()]),
+      surfaces_(scene.bodies.size()) {
   boxes_.reserve(scene.bodies.size());
   for (const Body& b : scene.bodies) boxes_.push_back(swept_box(b));
 }
@@ -178,12 +186,6 @@ CheckResult Verifier::check(int a, int b) const {
   const Body& x = scene_.bodies[a];
   const Body& y = scene_.bodies[b];
   const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
-  // A solid's inside counts as contact: that needs an exact containment
-  // test this version does not have, so it refuses rather than treat the
-  // solid as its surface (which could certify a false "safe").
-  for (const Body* body : {&x, &y})
-    if (body->solid)
-      throw InputError(scene_.source + ": body \"" + body->name + "\": solid bodies are not supported yet");
   // The joint curve pairs the motions by curve parameter: that is the same
   // instant only when the scene intervals agree.
   if (mx && my && (x.motion->t0 != y.motion->t0 || x.motion->t1 != y.motion->t1))
@@ -197,7 +199,97 @@ CheckResult Verifier::check(int a, int b) const {
     result.stats.prefiltered = true;
     return result;
   }
+  // A solid's inside counts as contact: at the start parameter, a vertex of
+  // each connected component of one body inside the other (solid) body is a
+  // collision there.  Later contacts go through the surfaces
+  // (proofs/containment.md).
+  for (const Body* body : {&x, &y})
+    if (body->solid)
+      if (const std::string problem = solid_problem(*body); !problem.empty())
+        throw InputError(scene_.source + ": body \"" + body->name + "\": solid: " + problem);
+  if (x.solid || y.solid) {
+    const Exact t0 = mx ? x.motion->t0 : my ? y.motion->t0 : x.motion ? x.motion->t0 : y.motion ? y.motion->t0 : Exact(0);
+    for (int side = 0; side < 2; ++side) {
+      const int solid = side == 0 ? a : b, other = side == 0 ? b : a;
+      if (!scene_.bodies[solid].solid) continue;
+      const ClosedSurface* surface = start_surface(solid);
+      if (!surface) continue;  // singular pose: the solid is its surface there
+      for (const auto& [part, point] : start_representatives(scene_.bodies[other])) {
+        if (!surface->contains(point)) continue;
+        CheckResult result;
+        result.bodies = {a, b};
+        result.verdict = Verdict::Collision;
+        const std::string inside = scene_.bodies[solid].name + " interior";
+        const std::string at = scene_.bodies[other].name + " " + part;
+        result.witness = Witness{t0, side == 0 ? std::array{inside, at} : std::array{at, inside}, point};
+        result.first_contact = std::pair{t0, t0};
+        return result;
+      }
+    }
+  }
   return run_check(a, b, prepared(a), prepared(b), options_);
+}
+
+namespace {
+
+Mat34E start_pose(const Body& b) {
+  if (b.motion) return b.motion->control_points[0];  // the curve's value at its start
+  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+}
+
+}  // namespace
+
+const ClosedSurface* Verifier::start_surface(int body) const {
+  std::call_once(surface_once_[body], [&] {
+    const Body& b = scene_.bodies[body];
+    const Mat34E m = start_pose(b);
+    const Exact det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
+                      m[2] * (m[4] * m[9] - m[5] * m[8]);
+    if (det == 0) return;
+    std::vector<std::array<Vec3E, 3>> triangles;
+    for (const ConvexPiece& piece : b.pieces)
+      for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k)
+        triangles.push_back({apply_map(m, piece.vertices[0]), apply_map(m, piece.vertices[k]),
+                             apply_map(m, piece.vertices[k + 1])});
+    surfaces_[body] = std::make_unique<ClosedSurface>(std::move(triangles));
+  });
+  return surfaces_[body].get();
+}
+
+// One vertex per connected component of the body's polygons, segments and
+// points (features sharing a vertex are connected), placed at the start.
+std::vector<std::pair<std::string, Vec3E>> Verifier::start_representatives(const Body& b) const {
+  std::vector<std::vector<Vec3E>> parts;
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < b.polygons.size(); ++i) {
+    parts.push_back(b.polygons[i]);
+    names.push_back("polygon " + std::to_string(i) + " vertex 0");
+  }
+  for (std::size_t i = 0; i < b.segments.size(); ++i) {
+    parts.push_back({b.segments[i][0], b.segments[i][1]});
+    names.push_back("segment " + std::to_string(i) + " end 0");
+  }
+  for (std::size_t i = 0; i < b.points.size(); ++i) {
+    parts.push_back({b.points[i]});
+    names.push_back("point " + std::to_string(i));
+  }
+  std::vector<std::size_t> parent(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<Vec3E, std::size_t> owner;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    for (const Vec3E& v : parts[i]) {
+      auto [it, fresh] = owner.emplace(v, i);
+      if (!fresh) parent[find(i)] = find(it->second);
+    }
+  const Mat34E m = start_pose(b);
+  std::vector<std::pair<std::string, Vec3E>> out;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    if (find(i) == i) out.emplace_back(names[i], apply_map(m, parts[i][0]));
+  return out;
 }
 
 CheckResult verify_check(const Scene& scene, int body_a, int body_b, const VerifyOptions& options) {

@@ -91,8 +91,9 @@ Exact default_epsilon(const Scene& scene);
 // bodies).  Called before any verdict is printed.
 void require_supported(const Scene& scene);
 
-struct PreparedBody;
+class PreparedBody;
 struct SweptBox;
+class ClosedSurface;
 
 // Verifies checks of one scene.  Bodies are prepared lazily, once, on first
 // use, and only when the cheap certified prefilter (disjoint boxes around
@@ -109,12 +110,18 @@ class Verifier {
 
  private:
   const PreparedBody& prepared(int body) const;
+  // A solid body's surface at the start parameter (null when its pose there
+  // is singular), built once; the start vertices of a body's components.
+  const ClosedSurface* start_surface(int body) const;
+  std::vector<std::pair<std::string, Vec3E>> start_representatives(const Body& body) const;
 
   const Scene& scene_;
   VerifyOptions options_;
   std::vector<SweptBox> boxes_;
   std::unique_ptr<std::once_flag[]> once_;
   mutable std::vector<std::unique_ptr<PreparedBody>> prepared_;
+  std::unique_ptr<std::once_flag[]> surface_once_;
+  mutable std::vector<std::unique_ptr<ClosedSurface>> surfaces_;
 };
 
 // Verifies one check (a pair of body indices).

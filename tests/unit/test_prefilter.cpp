@@ -92,9 +92,10 @@ BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(refusals)
 
-// A solid body built in C++ (the parser refuses it) is refused by the
-// verifier too: treating it as its surface could certify a false "safe".
-BOOST_AUTO_TEST_CASE(solid_bodies_are_refused_by_the_verifier) {
+// A solid body built in C++ whose polygons are not a closed surface is
+// refused by the verifier too (containment needs a closed surface; the
+// parser checks this for scene files).
+BOOST_AUTO_TEST_CASE(open_solid_bodies_are_refused_by_the_verifier) {
   bench::QueryGenerator generator(1);
   bench::QuerySet set = generator.generate(2);
   set.scene.bodies[set.queries[0].body_b].solid = true;
