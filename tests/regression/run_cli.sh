@@ -6,7 +6,7 @@
 # 1. Every malformed scene in DATA/bad/EXPECTED ("<file><TAB><substring>")
 #    must give exit code 3, nothing on stdout and the substring on stderr;
 #    so must a file that does not exist.
-# 2. Every scene in DATA/scenes/EXPECTED and EXAMPLES/EXPECTED
+# 2. Every scene in DATA/scenes/EXPECTED, EXAMPLES/EXPECTED and EXAMPLES/gripper/EXPECTED
 #    ("<file><TAB>safe|collision|undecided"), if those lists exist, must give
 #    the exit code of its verdict (0, 1, 2) and that top-level "verdict" in
 #    the --json output.
@@ -132,7 +132,7 @@ expect_refusal "--threads" verify "$good" --threads 0
 expect_refusal "frobnicate" verify "$good" --frobnicate
 expect_refusal "scene" verify
 
-for list in "$data/scenes/EXPECTED" "$examples/EXPECTED"; do
+for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED"; do
   if [ -f "$list" ]; then
     for_each_line "$list" expect_verdict
   fi
