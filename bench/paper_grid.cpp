@@ -4,13 +4,15 @@
 // clear no-collision variant, with a global or an individual mass
 // distribution.  Scenes come from bench/paper_grid.py.
 //
-// Usage: tmcert_paper_grid DIR [repeats]
+// Usage: tmcert_paper_grid DIR [repeats] [threads]
 //
-// Runs verify_scene (filtered kernel, one thread, the scene's epsilon and
-// max_depth) `repeats` times (default 3; only once when a run takes longer
-// than 60 s) on every scene file of DIR and prints a markdown table with the
-// median wall time next to the paper's figures for n <= 10.  Exit status 0
-// when every verdict is the expected one (collision / safe / safe), 1
+// Runs verify_scene (filtered kernel, `threads` threads (default 1), the
+// scene's epsilon and max_depth) `repeats` times (default 3; only once when
+// a run takes longer than 60 s) on every scene file of DIR and prints a
+// markdown table with the median wall time, the parse time, and for n <= 20
+// the time of the all-pairs reference (no hierarchy) in the same run, next to
+// the paper's figures for n <= 10.  Exit status 0 when every verdict is the
+// expected one (collision / safe / safe) and the reference agrees, 1
 // otherwise, 3 on bad usage.
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
@@ -134,6 +136,9 @@ struct Row {
   std::array<int, 3> by_verdict{};  // safe, collision, undecided checks
   int prefiltered = 0;              // checks cleared by the swept-box prefilter
   double seconds = 0;               // median wall time of verify_scene
+  double parse_seconds = 0;         // one parse of the scene file
+  double reference_seconds = -1;    // all pairs (no hierarchy), median; < 0: not run
+  std::uint64_t sphere_tests = 0;
   int runs = 0;
   std::uint64_t nodes = 0, calls = 0, fallbacks = 0, pairs = 0;
   int max_depth = 0;
@@ -144,12 +149,14 @@ struct Row {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: tmcert_paper_grid DIR [repeats]\n");
+  if (argc < 2 || argc > 4) {
+    std::fprintf(stderr, "usage: tmcert_paper_grid DIR [repeats] [threads]\n");
     return 3;
   }
   const fs::path dir = argv[1];
   const int repeats = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
+  const int threads = argc > 3 ? std::max(1, std::atoi(argv[3])) : 1;
+  constexpr int kReferenceUpTo = 20;  // the all-pairs reference is run for n <= this
   std::vector<Entry> entries;
   std::error_code ec;
   for (const auto& item : fs::directory_iterator(dir, ec)) {
@@ -170,21 +177,23 @@ int main(int argc, char** argv) {
 
   std::printf("tmcert vs. Schroecker & Weber, Sec. 7.2 (Tables 1 and 2): two unit squares of n x n sub-squares,\n"
               "a degree-8 rational rigid motion, epsilon and max_depth from the scenes (bench/paper_grid.py).\n"
-              "ours: %s, this 2-core machine, Release build, filtered kernel, one thread, no bounding-volume\n"
-              "hierarchy (every feature pair is carried and pruned per piece); total = median wall time of\n"
-              "verify_scene over %d run(s), parsing excluded.\n"
+              "ours: %s, this 2-core machine, Release build, filtered kernel, %d thread(s), bounding-volume\n"
+              "hierarchies; total = median wall time of verify_scene over %d run(s) (preparing the bodies and\n"
+              "the search); parse = reading the scene file once (JSON, exact numbers, polygon checks, masses);\n"
+              "all-pairs = the same verify_scene without hierarchies (every feature pair carried from the root),\n"
+              "same runs, n <= %d; all-pairs/ours = ratio of the two.\n"
               "paper: Intel Core 2 Duo 3 GHz, g++ 4.8.2 (2014), average over 100 runs.\n"
               "per pair = total / n^4 (the paper's \"average\": per test of one moving vs one fixed sub-square);\n"
               "paper/ours = ratio of the total times. global = one mass distribution for the moving surface;\n"
               "individual = one body (own mass) per moving sub-square, n^2 checks against the fixed surface.\n"
               "checks s/c/u (pf) = safe/collision/undecided checks (pf: of them cleared by the swept-box prefilter);\n"
-              "pairs = feature pairs at the roots of all checks;\n"
-              "calls/node = predicate calls per subdivision node; ns/call = total / predicate calls (all the time, not\n"
-              "only the predicates); fb = exact fallbacks of the interval filter.\n\n",
-              cpu_model().c_str(), repeats);
-  std::printf("| n | mass | variant | verdict | checks s/c/u (pf) | total [s] | per pair [s] | nodes | max depth | pairs "
-              "| predicate calls | calls/node | ns/call | fb | paper total [s] | paper avg [s] | paper/ours |\n");
-  std::printf("|--:|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+              "pairs = feature pairs at the roots of all checks without hierarchies; spheres = hierarchy node pairs\n"
+              "tested; predicate calls = contact tests; fb = exact fallbacks of the interval filter.\n\n",
+              cpu_model().c_str(), threads, repeats, kReferenceUpTo);
+  std::printf("| n | mass | variant | verdict | checks s/c/u (pf) | total [s] | parse [s] | per pair [s] | nodes | max depth "
+              "| pairs | spheres | predicate calls | fb | all-pairs [s] | all-pairs/ours | paper total [s] | paper avg [s] "
+              "| paper/ours |\n");
+  std::printf("|--:|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
   std::fflush(stdout);
 
   bool all_expected = true, any_single_run = false;
@@ -193,7 +202,9 @@ int main(int argc, char** argv) {
     Row row;
     row.entry = e;
     try {
+      const auto parse_start = std::chrono::steady_clock::now();
       const Scene scene = parse_scene_file(e.path.string());
+      row.parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - parse_start).count();
       VerifyOptions options;
       options.kernel = KernelKind::Filtered;
       options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
@@ -204,7 +215,7 @@ int main(int argc, char** argv) {
       SceneResult result;
       for (int r = 0; r < repeats; ++r) {
         const auto start = std::chrono::steady_clock::now();
-        SceneResult run = verify_scene(scene, options, 1);
+        SceneResult run = verify_scene(scene, options, threads);
         times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         if (r == 0) result = std::move(run);
         if (times.back() > kSingleRunAbove) break;
@@ -212,11 +223,26 @@ int main(int argc, char** argv) {
       std::sort(times.begin(), times.end());
       row.runs = static_cast<int>(times.size());
       row.seconds = times[times.size() / 2];
+      if (e.n > 0 && e.n <= kReferenceUpTo) {
+        VerifyOptions reference = options;
+        reference.hierarchy = false;
+        std::vector<double> ref_times;
+        for (int r = 0; r < repeats; ++r) {
+          const auto start = std::chrono::steady_clock::now();
+          const SceneResult run = verify_scene(scene, reference, threads);
+          ref_times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+          if (run.verdict != result.verdict) row.error = "the all-pairs reference gives " + std::string(to_string(run.verdict));
+          if (ref_times.back() > kSingleRunAbove) break;
+        }
+        std::sort(ref_times.begin(), ref_times.end());
+        row.reference_seconds = ref_times[ref_times.size() / 2];
+      }
       row.verdict = to_string(result.verdict);
       for (const CheckResult& c : result.checks) {
         row.nodes += c.stats.nodes;
         row.calls += c.stats.contact.calls;
         row.fallbacks += c.stats.contact.exact_fallbacks;
+        row.sphere_tests += c.stats.sphere_tests;
         row.max_depth = std::max(row.max_depth, c.stats.max_depth);
         ++row.by_verdict[c.verdict == Verdict::Safe ? 0 : c.verdict == Verdict::Collision ? 1 : 2];
         if (c.stats.prefiltered) ++row.prefiltered;
@@ -230,7 +256,7 @@ int main(int argc, char** argv) {
 
     const std::string name = e.n > 0 ? std::to_string(e.n) : e.path.filename().string();
     if (!row.error.empty()) {
-      std::printf("| %s | %s | %s | ERROR | | | | | | | | | | | | | |\n", name.c_str(), e.strategy.c_str(),
+      std::printf("| %s | %s | %s | ERROR | | | | | | | | | | | | | | | |\n", name.c_str(), e.strategy.c_str(),
                   e.variant.c_str());
       notes.push_back(e.path.filename().string() + ": " + row.error);
       std::fflush(stdout);
@@ -248,13 +274,18 @@ int main(int argc, char** argv) {
     const double n4 = e.n > 0 ? static_cast<double>(e.n) * e.n * e.n * e.n : 1.0;
     std::string verdict = row.verdict;
     if (!row.expected) verdict += " (WRONG: expected " + std::string(e.variant == "collision" ? "collision" : "safe") + ")";
-    std::printf("| %s | %s | %s | %s | %d/%d/%d (%d) | %.4f%s | %.2e | %llu | %d | %llu | %llu | %.0f | %.0f | %llu | %s | %s | %s |\n",
+    char reference[32] = "-", reference_ratio[32] = "-";
+    if (row.reference_seconds >= 0) {
+      std::snprintf(reference, sizeof reference, "%.4f", row.reference_seconds);
+      if (row.seconds > 0) std::snprintf(reference_ratio, sizeof reference_ratio, "%.1f", row.reference_seconds / row.seconds);
+    }
+    std::printf("| %s | %s | %s | %s | %d/%d/%d (%d) | %.4f%s | %.4f | %.2e | %llu | %d | %llu | %llu | %llu | %llu | %s | %s | %s | %s | %s |\n",
                 name.c_str(), e.strategy.c_str(), e.variant.c_str(), verdict.c_str(), row.by_verdict[0],
-                row.by_verdict[1], row.by_verdict[2], row.prefiltered, row.seconds, row.runs < repeats ? "*" : "", row.seconds / n4,
-                static_cast<unsigned long long>(row.nodes), row.max_depth, static_cast<unsigned long long>(row.pairs),
-                static_cast<unsigned long long>(row.calls), row.nodes ? double(row.calls) / row.nodes : 0.0,
-                row.calls ? 1e9 * row.seconds / row.calls : 0.0, static_cast<unsigned long long>(row.fallbacks),
-                paper_total, paper_avg, ratio);
+                row.by_verdict[1], row.by_verdict[2], row.prefiltered, row.seconds, row.runs < repeats ? "*" : "",
+                row.parse_seconds, row.seconds / n4, static_cast<unsigned long long>(row.nodes), row.max_depth,
+                static_cast<unsigned long long>(row.pairs), static_cast<unsigned long long>(row.sphere_tests),
+                static_cast<unsigned long long>(row.calls), static_cast<unsigned long long>(row.fallbacks), reference,
+                reference_ratio, paper_total, paper_avg, ratio);
     std::fflush(stdout);
   }
   if (any_single_run) std::printf("\n* = a single run (it took more than %.0f s).\n", kSingleRunAbove);
