@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -329,6 +330,36 @@ Exact orient(const Vec2E& a, const Vec2E& b, const Vec2E& c) {
   return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
 
+// A cheap enclosure of a rational: mpq_get_d truncates toward zero, so the
+// value lies between that double and its neighbour away from zero.  False
+// when the double is not finite (then only exact arithmetic decides).
+bool cheap_interval(const Exact& q, Interval& out) {
+  const double d = mpq_get_d(q.mpq());
+  if (!std::isfinite(d)) return false;
+  const int s = mpq_sgn(q.mpq());
+  const double away = std::nextafter(d, s >= 0 ? std::numeric_limits<double>::infinity()
+                                               : -std::numeric_limits<double>::infinity());
+  if (!std::isfinite(away)) return false;
+  out = s == 0 ? Interval(0) : Interval(std::min(d, away), std::max(d, away));
+  return true;
+}
+
+// The sign of orient(a, b, c): an interval filter first, exact when the
+// filter cannot decide (the filtered-predicate pattern of DESIGN.md).
+int orient_sign(const Vec2E& a, const Vec2E& b, const Vec2E& c) {
+  Interval x[6];
+  const Exact* q[6] = {&a[0], &a[1], &b[0], &b[1], &c[0], &c[1]};
+  bool ok = true;
+  for (int i = 0; i < 6 && ok; ++i) ok = cheap_interval(*q[i], x[i]);
+  if (ok) {
+    RoundingGuard guard;
+    const Interval det = (x[2] - x[0]) * (x[5] - x[1]) - (x[3] - x[1]) * (x[4] - x[0]);
+    if (det.inf() > 0) return 1;
+    if (det.sup() < 0) return -1;
+  }
+  return sign(orient(a, b, c));
+}
+
 // Given that p is collinear with a and b: is it on the closed segment ab?
 bool within_box(const Vec2E& a, const Vec2E& b, const Vec2E& p) {
   return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) &&
@@ -337,8 +368,8 @@ bool within_box(const Vec2E& a, const Vec2E& b, const Vec2E& p) {
 
 // Do the closed segments ab and cd share a point?
 bool segments_meet(const Vec2E& a, const Vec2E& b, const Vec2E& c, const Vec2E& d) {
-  const int o1 = sign(orient(a, b, c)), o2 = sign(orient(a, b, d));
-  const int o3 = sign(orient(c, d, a)), o4 = sign(orient(c, d, b));
+  const int o1 = orient_sign(a, b, c), o2 = orient_sign(a, b, d);
+  const int o3 = orient_sign(c, d, a), o4 = orient_sign(c, d, b);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;
   return (o1 == 0 && within_box(a, b, c)) || (o2 == 0 && within_box(a, b, d)) ||
          (o3 == 0 && within_box(c, d, a)) || (o4 == 0 && within_box(c, d, b));
@@ -426,7 +457,7 @@ CleanPolygon remove_collinear(const CleanPolygon& in) {
     work.pop_back();
     if (!alive[i]) continue;
     const Vec2E &a = in.flat[prev[i]], &b = in.flat[i], &c = in.flat[next[i]];
-    if (orient(a, b, c) != 0) continue;
+    if (orient_sign(a, b, c) != 0) continue;
     const Exact along = (a[0] - b[0]) * (c[0] - b[0]) + (a[1] - b[1]) * (c[1] - b[1]);
     if (along > 0)
       throw InputError("adjacent edges overlap at " + vertex_name(in.original[i]) + " (a polygon must be simple)");
@@ -456,7 +487,7 @@ bool is_convex(const CleanPolygon& p) {
   const std::size_t n = p.flat.size();
   int turn = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const int s = sign(orient(p.flat[(i + n - 1) % n], p.flat[i], p.flat[(i + 1) % n]));
+    const int s = orient_sign(p.flat[(i + n - 1) % n], p.flat[i], p.flat[(i + 1) % n]);
     if (turn == 0) turn = s;
     if (s != turn) return false;
   }
@@ -520,12 +551,12 @@ std::vector<std::array<std::size_t, 3>> triangulate(const CleanPolygon& p) {
     next[i] = (i + 1) % n;
   }
   auto inside = [&](const Vec2E& a, const Vec2E& b, const Vec2E& c, const Vec2E& q) {
-    return orientation * sign(orient(a, b, q)) >= 0 && orientation * sign(orient(b, c, q)) >= 0 &&
-           orientation * sign(orient(c, a, q)) >= 0;
+    return orientation * orient_sign(a, b, q) >= 0 && orientation * orient_sign(b, c, q) >= 0 &&
+           orientation * orient_sign(c, a, q) >= 0;
   };
   auto is_ear = [&](std::size_t i) {
     const Vec2E &a = p.flat[prev[i]], &b = p.flat[i], &c = p.flat[next[i]];
-    if (sign(orient(a, b, c)) != orientation) return false;
+    if (orient_sign(a, b, c) != orientation) return false;
     // Comparisons are cheap, orientations are not: skip vertices outside
     // the triangle's bounding box first.
     const Exact x0 = std::min({a[0], b[0], c[0]}), x1 = std::max({a[0], b[0], c[0]});
@@ -561,6 +592,11 @@ std::vector<std::array<std::size_t, 3>> triangulate(const CleanPolygon& p) {
 // convex pieces (tagged with `index`).  Errors carry no location.
 std::pair<std::vector<Vec3E>, std::vector<ConvexPiece>> split_polygon(const std::vector<Vec3E>& vertices,
                                                                       int index) {
+  // A triangle with distinct, non-collinear vertices is its own convex
+  // piece (anything else goes through the general checks and their messages).
+  if (vertices.size() == 3 && vertices[0] != vertices[1] && vertices[1] != vertices[2] && vertices[0] != vertices[2] &&
+      !is_zero(cross(sub(vertices[1], vertices[0]), sub(vertices[2], vertices[0]))))
+    return {vertices, {ConvexPiece{index, vertices}}};
   const CleanPolygon clean = remove_collinear(project_polygon(vertices));
   std::vector<ConvexPiece> pieces;
   if (is_convex(clean)) {
