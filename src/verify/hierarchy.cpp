@@ -11,11 +11,10 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct Builder {
-  const std::vector<std::vector<Vec3<Interval>>>& features;
+  const std::vector<std::vector<Vec3<Interval>>>& features;  // the items' points
   const std::array<Interval, 16>* gi;
   BvTree tree;
   std::vector<std::uint32_t> order;  // leaf indices, permuted by the splits
-  Interval rho_scale;                // >= sqrt(lambda_max) of G^-1's 3x3 block
 
   // Upper bound of |x - c| over the box x, c exact.
   static Interval distance(const Vec3<Interval>& x, const std::array<double, 3>& c) {
@@ -24,21 +23,23 @@ struct Builder {
     return CGAL::sqrt(s);
   }
 
-  // rho over the sphere: rho(c) + sqrt(lambda_max) r (rho is a norm of (x, 1)).
-  double rho_bound(const BvNode& n) const {
+  // rho over an item: the largest rho at its points.  rho is convex (a norm
+  // of (x, 1)) and the item lies in the convex hull of its points, so this
+  // bounds rho over the item (not over its sphere).
+  double rho_points(const std::vector<Vec3<Interval>>& pts) const {
     if (!gi) return 0;
-    const Interval h[4] = {Interval(n.c[0]), Interval(n.c[1]), Interval(n.c[2]), Interval(1)};
-    Interval q(0);
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) q += h[r] * (*gi)[4 * r + c] * h[c];
-    if (!(q.sup() >= 0)) return kInf;
-    const Interval p = CGAL::sqrt(Interval(0, q.sup())) + rho_scale * Interval(n.r);
-    return std::isfinite(p.sup()) ? p.sup() : kInf;
-  }
-
-  void finish(BvNode& n) {
-    if (!std::isfinite(n.r)) n.r = kInf;
-    n.p = rho_bound(n);
+    double p = 0;
+    for (const auto& x : pts) {
+      const Interval h[4] = {x[0], x[1], x[2], Interval(1)};
+      Interval q(0);
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) q += h[r] * (*gi)[4 * r + c] * h[c];
+      if (!(q.sup() >= 0)) return kInf;
+      const double s = CGAL::sqrt(Interval(0, q.sup())).sup();
+      if (!std::isfinite(s)) return kInf;
+      p = std::max(p, s);
+    }
+    return p;
   }
 
   BvNode leaf(std::uint32_t k) {
@@ -54,7 +55,7 @@ struct Builder {
     double r = 0;
     for (const auto& x : pts) r = std::max(r, distance(x, n.c).sup());
     n.r = std::isnan(r) ? kInf : r;
-    finish(n);
+    n.p = rho_points(pts);
     return n;
   }
 
@@ -85,17 +86,18 @@ struct Builder {
     BvNode n;
     for (int i = 0; i < 3; ++i) n.c[i] = std::isfinite(lo[i]) && std::isfinite(hi[i]) ? lo[i] / 2 + hi[i] / 2 : 0;
     // Radius over the leaf spheres (tighter than over the two children).
-    double r = 0;
+    double r = 0, p = 0;
     for (std::size_t k = first; k < last; ++k) {
       const BvNode& l = tree.nodes[order[k]];
       const Interval d = distance({Interval(l.c[0]), Interval(l.c[1]), Interval(l.c[2])}, n.c) + Interval(l.r);
       r = std::max(r, d.sup());
+      p = std::max(p, l.p);
     }
-    n.r = std::isnan(r) ? kInf : r;
+    n.r = std::isnan(r) || !std::isfinite(r) ? kInf : r;
+    n.p = p;
     n.left = left;
     n.right = right;
     n.leaves = static_cast<std::uint32_t>(last - first);
-    finish(n);
     tree.nodes.push_back(n);
     return static_cast<std::uint32_t>(tree.nodes.size() - 1);
   }
@@ -103,18 +105,18 @@ struct Builder {
 
 }  // namespace
 
-BvTree build_tree(const std::vector<std::vector<Vec3<Interval>>>& features, const std::array<Interval, 16>* gi) {
+namespace {
+
+Builder make_builder(const std::vector<std::vector<Vec3<Interval>>>& items, const std::array<Interval, 16>* gi) {
+  return Builder{items, gi, {}, {}};
+}
+
+}  // namespace
+
+BvTree build_tree(const std::vector<std::vector<Vec3<Interval>>>& items, const std::array<Interval, 16>* gi) {
   RoundingGuard guard;
-  Builder b{features, gi, {}, {}, Interval(0)};
-  if (gi) {
-    Interval f(0);
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) f += CGAL::square((*gi)[4 * r + c]);
-    // |(d, 0)|^2 in G^-1 is at most lambda_max |d|^2 <= |M|_F |d|^2 for the
-    // 3x3 block M: so rho grows by at most sqrt(|M|_F) per unit length.
-    b.rho_scale = CGAL::sqrt(CGAL::sqrt(Interval(0, f.sup())));
-  }
-  const std::size_t n = features.size();
+  Builder b = make_builder(items, gi);
+  const std::size_t n = items.size();
   b.tree.leaves = static_cast<std::uint32_t>(n);
   if (n == 0) return b.tree;
   b.tree.nodes.reserve(2 * n - 1);
@@ -123,6 +125,30 @@ BvTree build_tree(const std::vector<std::vector<Vec3<Interval>>>& features, cons
   std::iota(b.order.begin(), b.order.end(), 0u);
   if (n > 1) b.build(0, n);
   return std::move(b.tree);
+}
+
+std::vector<BvNode> item_spheres(const std::vector<std::vector<Vec3<Interval>>>& items,
+                                 const std::array<Interval, 16>* gi) {
+  RoundingGuard guard;
+  Builder b = make_builder(items, gi);
+  std::vector<BvNode> out;
+  out.reserve(items.size());
+  for (std::size_t k = 0; k < items.size(); ++k) out.push_back(b.leaf(static_cast<std::uint32_t>(k)));
+  return out;
+}
+
+void build_cell_tree(CellTree& cells, const std::vector<std::vector<Vec3<Interval>>>& cell_points,
+                     const std::array<Interval, 16>* gi) {
+  cells.tree = build_tree(cell_points, gi);
+  cells.below.assign(cells.tree.nodes.size(), {0, 0, 0});
+  for (std::size_t k = 0; k < cells.cells(); ++k)
+    cells.below[k] = {cells.vertex_begin[k + 1] - cells.vertex_begin[k], cells.edge_begin[k + 1] - cells.edge_begin[k],
+                      cells.face[k] >= 0 ? 1u : 0u};
+  // Children have smaller indices than their parent.
+  for (std::size_t i = cells.tree.leaves; i < cells.tree.nodes.size(); ++i) {
+    const BvNode& n = cells.tree.nodes[i];
+    for (int c = 0; c < 3; ++c) cells.below[i][c] = cells.below[n.left][c] + cells.below[n.right][c];
+  }
 }
 
 }  // namespace tmcert

@@ -2,6 +2,11 @@
 // certified test that clears a pair of bounding spheres on a motion piece
 // (proofs/hierarchy.md).
 //
+// One hierarchy per body, over "cells": each convex piece with the edges and
+// vertices it owns (every vertex and edge feature is owned by exactly one
+// cell), segments and points as cells of their own.  Every feature also has
+// its own sphere, for a last sphere test per feature pair.
+//
 // A sphere S(c, r) of a body (its frame for a moving body, world coordinates
 // for a fixed one) under a ball B(g, R) of affine maps: every point x of S is
 // placed at g(x) + delta(x) with |delta(x)| <= R rho(x) (DESIGN.md section 2),
@@ -27,32 +32,64 @@ namespace tmcert {
 
 // A node of a hierarchy: a sphere certainly holding its features, and an
 // upper bound of rho over the sphere (0 for a fixed body).  Leaves are the
-// features themselves, in table order: node i < leaves is feature i.
+// items the tree is built over (cells), in their order: node i < leaves is
+// item i.  Also the sphere of one feature.
 struct BvNode {
   std::array<double, 3> c{};   // center (a double, used exactly)
   double r = 0;                // radius, rounded upward
   double p = 0;                // >= max rho over the sphere, rounded upward
   std::uint32_t left = 0, right = 0;  // children of an internal node
-  std::uint32_t leaves = 1;           // features under the node
+  std::uint32_t leaves = 1;           // items under the node
 };
 
 struct BvTree {
-  std::vector<BvNode> nodes;   // [0, leaves): features; internal nodes after; root last
+  std::vector<BvNode> nodes;   // [0, leaves): items; internal nodes after; root last
   std::uint32_t leaves = 0;
   bool leaf(std::uint32_t i) const { return i < leaves; }
   bool empty() const { return nodes.empty(); }
   std::uint32_t root() const { return static_cast<std::uint32_t>(nodes.size() - 1); }
 };
 
-// Builds the hierarchy of features given by the enclosures of their vertices
-// (a feature is the convex hull of its vertices).  `gi` encloses G^-1 of a
-// moving body, null for a fixed body.  Median splits along the longest axis
-// of the feature centers: depth about log2(features).
-BvTree build_tree(const std::vector<std::vector<Vec3<Interval>>>& features, const std::array<Interval, 16>* gi);
+// Builds the hierarchy of items given by the enclosures of their points
+// (an item - a cell, or a feature - lies in the convex hull of its points).
+// `gi` encloses G^-1 of a moving body, null for a fixed body.  Median splits
+// along the longest axis of the item centers: depth about log2(items).
+BvTree build_tree(const std::vector<std::vector<Vec3<Interval>>>& items, const std::array<Interval, 16>* gi);
 
-// The ball of a motion piece as the sphere test needs it: the centers, the
-// Frobenius norms of their linear parts (upper bounds of the operator norms)
-// and the radius.
+// The leaf spheres alone (as the leaves of build_tree): one per item.
+std::vector<BvNode> item_spheres(const std::vector<std::vector<Vec3<Interval>>>& items,
+                                 const std::array<Interval, 16>* gi);
+
+// A body's one hierarchy: its leaves are the cells.  Cell k holds face
+// `face[k]` (an index into the body's face table, or -1: a segment, a point,
+// a piece degenerate under a singular pose) and owns the edges
+// edges[edge_begin[k], edge_begin[k + 1]) and the vertices
+// vertices[vertex_begin[k], vertex_begin[k + 1]) of the body's tables.
+// Every face, edge and vertex feature belongs to exactly one cell.
+struct CellTree {
+  BvTree tree;
+  std::vector<std::int32_t> face;
+  std::vector<std::uint32_t> edge_begin{0}, edges;
+  std::vector<std::uint32_t> vertex_begin{0}, vertices;
+  // Per node: the vertices, edges and faces of the cells below it.
+  std::vector<std::array<std::uint32_t, 3>> below;
+  std::size_t cells() const { return face.size(); }
+  // Feature pairs (vertex x face, edge x edge, face x vertex) under a node
+  // pair of two bodies' trees.
+  static std::uint64_t pairs_below(const CellTree& a, std::uint32_t i, const CellTree& b, std::uint32_t j) {
+    const auto& x = a.below[i];
+    const auto& y = b.below[j];
+    return std::uint64_t(x[0]) * y[2] + std::uint64_t(x[1]) * y[1] + std::uint64_t(x[2]) * y[0];
+  }
+};
+
+// Fills `tree` and `below` of a CellTree whose cells are set, from the
+// enclosures of the points of each cell's features.
+void build_cell_tree(CellTree& cells, const std::vector<std::vector<Vec3<Interval>>>& cell_points,
+                     const std::array<Interval, 16>* gi);
+
+// The ball of a motion piece as the sphere test needs it: the centers, upper
+// bounds of the operator norms of their linear parts and the radius.
 template <class FT>
 struct SphereFrame {
   std::array<FT, 12> g1, g2;
@@ -66,12 +103,39 @@ inline double sqrt_of(double x) { return std::sqrt(x); }
 inline bool certainly_greater(const Interval& a, const Interval& b) { return a.inf() > b.sup(); }
 inline bool certainly_greater(double a, double b) { return a > b; }
 
+inline double upper(const Interval& x) { return x.sup(); }
+inline double upper(double x) { return x; }
+
+// An upper bound of the operator norm |A|_2 of the linear part A of g:
+// sqrt(lambda_max(A^T A)), with lambda_max bounded by the smaller of the
+// trace (= |A|_F^2) and the largest Gershgorin row bound of A^T A (the
+// eigenvalues of a symmetric matrix lie in the union of its Gershgorin
+// intervals).  For a near rotation: about 1 instead of |A|_F = sqrt 3.
+// FT = Interval: call under RoundingGuard; the upper end bounds |A|_2 for
+// every matrix in the intervals.  With a NaN: the Frobenius norm (a NaN).
 template <class FT>
-FT frobenius_linear(const std::array<FT, 12>& g) {
-  FT s(0);
+FT operator_norm_bound(const std::array<FT, 12>& g) {
+  FT m[3][3];
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) s += g[4 * i + j] * g[4 * i + j];
-  return sqrt_of(s);
+    for (int j = i; j < 3; ++j) {
+      FT s(0);
+      for (int k = 0; k < 3; ++k) s += g[4 * k + i] * g[4 * k + j];
+      m[i][j] = s;
+      m[j][i] = s;
+    }
+  const FT trace = m[0][0] + m[1][1] + m[2][2];
+  double gershgorin = 0;
+  for (int i = 0; i < 3; ++i) {
+    FT row = m[i][i];
+    for (int j = 0; j < 3; ++j)
+      if (j != i) row += CGAL::abs(m[i][j]);
+    const double u = upper(row);
+    if (!(u >= 0)) return sqrt_of(trace);  // NaN: as the Frobenius norm would be
+    gershgorin = std::max(gershgorin, u);
+  }
+  const double t = upper(trace);
+  if (!(t >= 0) || t <= gershgorin) return sqrt_of(trace);
+  return sqrt_of(FT(gershgorin));
 }
 }  // namespace detail
 
@@ -82,8 +146,8 @@ SphereFrame<FT> sphere_frame(const Placement<FT>& p) {
   f.g1 = p.g1;
   f.body2_moving = p.body2_moving;
   if (p.body2_moving) f.g2 = p.g2;
-  f.n1 = detail::frobenius_linear(p.g1);
-  f.n2 = p.body2_moving ? detail::frobenius_linear(p.g2) : FT(1);
+  f.n1 = detail::operator_norm_bound(p.g1);
+  f.n2 = p.body2_moving ? detail::operator_norm_bound(p.g2) : FT(1);
   f.R = detail::sqrt_of(p.r2);
   return f;
 }
@@ -127,21 +191,22 @@ bool spheres_clear(const SphereFrame<FT>& f, const BvNode& a, const BvNode& b) {
   return world_spheres_apart(world_sphere(f, true, a), world_sphere(f, false, b));
 }
 
-// The placed spheres of the nodes of one tree, computed once per piece
-// (`stamp` says for which piece an entry is current).
+// The placed spheres of the nodes of one tree (or of one feature table),
+// computed once per piece (`stamp` says for which piece an entry is current;
+// 64 bits: the counter never wraps around to a stale entry).
 template <class FT>
 struct SphereCache {
-  std::vector<std::uint32_t> stamp;
+  std::vector<std::uint64_t> stamp;
   std::vector<WorldSphere<FT>> sphere;
   void reset(std::size_t nodes) {
     stamp.assign(nodes, 0);
     sphere.resize(nodes);
   }
-  const WorldSphere<FT>& get(std::uint32_t piece, const SphereFrame<FT>& fr, bool body1, const BvTree& tree,
-                             std::uint32_t i) {
+  const WorldSphere<FT>& get(std::uint64_t piece, const SphereFrame<FT>& fr, bool body1,
+                             const std::vector<BvNode>& nodes, std::uint32_t i) {
     if (stamp[i] != piece) {
       stamp[i] = piece;
-      sphere[i] = world_sphere(fr, body1, tree.nodes[i]);
+      sphere[i] = world_sphere(fr, body1, nodes[i]);
     }
     return sphere[i];
   }

@@ -11,11 +11,22 @@ namespace tmcert::detail {
 
 // ------------------------------------------------------------------ pairs
 
+// A feature pair (nodes = false): feature i of the moving body's table of
+// `kind` and feature j of the other body's table.  Or a pair of hierarchy
+// nodes (nodes = true, kind unused): node i of the moving body's cell tree
+// and node j of the other body's, standing for every feature pair of the
+// three kinds under them (proofs/hierarchy.md section 4).
 struct PairRef {
   ContactKind kind;
-  std::uint32_t i;  // in the moving body's table of that kind
-  std::uint32_t j;  // in the other body's table
+  bool nodes;
+  std::uint32_t i;
+  std::uint32_t j;
 };
+
+static_assert(sizeof(PairRef) == 12, "alive lists hold many pairs: keep them small");
+
+inline PairRef node_pair(std::uint32_t i, std::uint32_t j) { return {ContactKind::VertexFace, true, i, j}; }
+inline PairRef feature_pair(ContactKind k, std::uint32_t i, std::uint32_t j) { return {k, false, i, j}; }
 
 inline const FeatureTable& moving_table(const PreparedBody& b, ContactKind k) {
   return k == ContactKind::VertexFace ? b.vertices : k == ContactKind::EdgeEdge ? b.edges : b.faces;
@@ -52,7 +63,7 @@ inline std::vector<PairRef> all_pairs(const PreparedBody& m, const PreparedBody&
     const std::size_t nx = moving_table(m, k).size(), ny = other_table(f, k).size();
     for (std::size_t i = 0; i < nx; ++i)
       for (std::size_t j = 0; j < ny; ++j)
-        pairs.push_back({k, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)});
+        pairs.push_back(feature_pair(k, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)));
   }
   return pairs;
 }

@@ -135,10 +135,22 @@ FeatureGeometry<double> midpoint(const FeatureGeometry<Interval>& e) {
 // singular pose), edges = piece edges (shared diagonals once), segments,
 // points as degenerate edges; vertices = polygon vertices, segment ends,
 // points.  See proofs/contact-tests.md for why this set is complete.
+// Cells: one per convex piece, holding its face (if not degenerate), the
+// edges it lists first and the polygon vertices of which it is the first
+// piece to list them; a cell per segment (its edge and two end vertices)
+// and per point (its degenerate edge and vertex); a polygon vertex no piece
+// lists gets a cell of its own; cells owning nothing are dropped.  So every
+// feature is in exactly one cell (proofs/hierarchy.md section 3).
+struct CellList {
+  int face = -1;
+  std::vector<std::uint32_t> edges, vertices;
+};
+
 struct FeatureList {
   std::vector<std::pair<std::vector<Vec3E>, int>> faces;
   std::vector<std::pair<std::array<Vec3E, 2>, int>> edges;
   std::vector<std::pair<Vec3E, int>> vertices;
+  std::vector<CellList> cells;
 };
 
 FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E&)>& place) {
@@ -146,18 +158,28 @@ FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E
   const int first_segment = static_cast<int>(body.polygons.size());
   const int first_point = first_segment + static_cast<int>(body.segments.size());
   std::map<std::pair<Vec3E, Vec3E>, bool> seen;
+  std::map<Vec3E, std::size_t> vertex_cell;  // the first piece's cell listing a placed vertex
   for (const ConvexPiece& piece : body.pieces) {
+    CellList cell;
     std::vector<Vec3E> v;
     for (const Vec3E& x : piece.vertices) v.push_back(place(x));
     // Degenerate only under a singular pose: its point set is then the union
     // of its edges, which stay features.
-    if (!collinear(v[0], v[1], v[2])) out.faces.push_back({v, piece.polygon});
+    if (!collinear(v[0], v[1], v[2])) {
+      cell.face = static_cast<int>(out.faces.size());
+      out.faces.push_back({v, piece.polygon});
+    }
     for (std::size_t k = 0; k < v.size(); ++k) {
       const Vec3E& p = v[k];
       const Vec3E& q = v[(k + 1) % v.size()];
       auto key = p < q ? std::pair{p, q} : std::pair{q, p};
-      if (seen.emplace(key, true).second) out.edges.push_back({{p, q}, piece.polygon});
+      if (seen.emplace(key, true).second) {
+        cell.edges.push_back(static_cast<std::uint32_t>(out.edges.size()));
+        out.edges.push_back({{p, q}, piece.polygon});
+      }
     }
+    for (const Vec3E& x : v) vertex_cell.emplace(x, out.cells.size());
+    out.cells.push_back(std::move(cell));
   }
   // Vertices once each (a vertex shared by polygons is one feature; the
   // first polygon names it).
@@ -165,11 +187,19 @@ FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E
   for (std::size_t i = 0; i < body.polygons.size(); ++i)
     for (const Vec3E& x : body.polygons[i]) {
       Vec3E p = place(x);
-      if (vertex_seen.insert(p).second) out.vertices.push_back({std::move(p), static_cast<int>(i)});
+      if (!vertex_seen.insert(p).second) continue;
+      const auto index = static_cast<std::uint32_t>(out.vertices.size());
+      const auto owner = vertex_cell.find(p);
+      if (owner != vertex_cell.end()) out.cells[owner->second].vertices.push_back(index);
+      else out.cells.push_back(CellList{-1, {}, {index}});
+      out.vertices.push_back({std::move(p), static_cast<int>(i)});
     }
+  std::erase_if(out.cells, [](const CellList& c) { return c.face < 0 && c.edges.empty() && c.vertices.empty(); });
   for (std::size_t i = 0; i < body.segments.size(); ++i) {
     const int part = first_segment + static_cast<int>(i);
     const Vec3E p = place(body.segments[i][0]), q = place(body.segments[i][1]);
+    const auto e = static_cast<std::uint32_t>(out.edges.size()), w = static_cast<std::uint32_t>(out.vertices.size());
+    out.cells.push_back(CellList{-1, {e}, {w, w + 1}});
     out.edges.push_back({{p, q}, part});
     out.vertices.push_back({p, part});
     out.vertices.push_back({q, part});
@@ -177,6 +207,8 @@ FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E
   for (std::size_t i = 0; i < body.points.size(); ++i) {
     const int part = first_point + static_cast<int>(i);
     const Vec3E p = place(body.points[i]);
+    out.cells.push_back(CellList{-1, {static_cast<std::uint32_t>(out.edges.size())},
+                                 {static_cast<std::uint32_t>(out.vertices.size())}});
     out.edges.push_back({{p, p}, part});
     out.vertices.push_back({p, part});
   }
@@ -284,20 +316,37 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
   for (FeatureTable* t : {&vertices, &edges, &faces})
     for (const auto& f : t->interval) t->approx.push_back(midpoint(f));
 
-  // Hierarchies over each kind of feature (spheres around the vertex
-  // enclosures).
-  std::vector<std::vector<Vec3<Interval>>> points;
+  // A sphere per feature and the hierarchy over the cells (spheres around
+  // the vertex enclosures; a cell's sphere around those of all its
+  // features).
+  std::vector<std::vector<Vec3<Interval>>> face_points, edge_points, vertex_points;
   for (const auto& [v, part] : list.faces) {
-    points.emplace_back();
-    for (const Vec3E& x : v) points.back().push_back(enclose3(x));
+    face_points.emplace_back();
+    for (const Vec3E& x : v) face_points.back().push_back(enclose3(x));
   }
-  faces.tree = build_tree(points, g);
-  points.clear();
-  for (const auto& [e, part] : list.edges) points.push_back({enclose3(e[0]), enclose3(e[1])});
-  edges.tree = build_tree(points, g);
-  points.clear();
-  for (const auto& [v, part] : list.vertices) points.push_back({enclose3(v)});
-  vertices.tree = build_tree(points, g);
+  for (const auto& [e, part] : list.edges) edge_points.push_back({enclose3(e[0]), enclose3(e[1])});
+  for (const auto& [v, part] : list.vertices) vertex_points.push_back({enclose3(v)});
+  faces.spheres = item_spheres(face_points, g);
+  edges.spheres = item_spheres(edge_points, g);
+  vertices.spheres = item_spheres(vertex_points, g);
+  std::vector<std::vector<Vec3<Interval>>> cell_points;
+  for (const CellList& c : list.cells) {
+    cells.face.push_back(c.face);
+    cell_points.emplace_back();
+    std::vector<Vec3<Interval>>& pts = cell_points.back();
+    if (c.face >= 0) pts = face_points[c.face];
+    for (std::uint32_t e : c.edges) {
+      cells.edges.push_back(e);
+      pts.insert(pts.end(), edge_points[e].begin(), edge_points[e].end());
+    }
+    for (std::uint32_t w : c.vertices) {
+      cells.vertices.push_back(w);
+      pts.push_back(vertex_points[w][0]);
+    }
+    cells.edge_begin.push_back(static_cast<std::uint32_t>(cells.edges.size()));
+    cells.vertex_begin.push_back(static_cast<std::uint32_t>(cells.vertices.size()));
+  }
+  build_cell_tree(cells, cell_points, g);
 }
 
 const Metric& PreparedBody::exact_metric() const {

@@ -24,7 +24,7 @@ struct FeatureTable {
   std::vector<FeatureGeometry<Interval>> interval;  // enclose the exact features
   std::vector<FeatureGeometry<double>> approx;      // for the fast kernel only
   std::vector<int> part;                            // index into PreparedBody::parts
-  BvTree tree;                                      // leaves in table order
+  std::vector<BvNode> spheres;                      // one per feature, certainly holding it
   std::size_t size() const { return interval.size(); }
 };
 
@@ -53,6 +53,9 @@ class PreparedBody {
   // body frame.
   std::vector<StaticPart> parts;
   FeatureTable vertices, edges, faces;
+  // The body's hierarchy: cells (a convex piece with the edges and vertices
+  // it owns; segments, points) over the three tables (proofs/hierarchy.md).
+  CellTree cells;
   // Moving bodies only.
   MetricData metric_data;
   HomogeneousCurve<Exact> curve;

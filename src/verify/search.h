@@ -222,13 +222,11 @@ struct Check {
     std::set<std::pair<int, int>> parts;
     bool all = false;
     for (const PairRef& p : alive) {
-      const FeatureTable& X = moving_table(moving, p.kind);
-      const FeatureTable& Y = other_table(other, p.kind);
-      if (!X.tree.leaf(p.i) || !Y.tree.leaf(p.j)) {
+      if (p.nodes) {
         all = true;
         break;
       }
-      parts.insert({X.part[p.i], Y.part[p.j]});
+      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
     }
     if (auto hit = static_test(u, all ? nullptr : &parts)) {
       set_witness(u, *hit);
@@ -246,29 +244,45 @@ struct Check {
     if (!result.first_contact) result.first_contact = std::pair{t0, t1};
   }
 
-  // The tests of one piece.  A feature pair gets the contact test; with the
-  // hierarchy, every pair first gets the sphere test.  A pair of hierarchy
-  // nodes that is not cleared is descended on this piece (its child pairs
-  // tested in turn) when `expand_all` or when a node is larger in the world
-  // than the piece's fattening R rho; otherwise it is carried as it is to
-  // the sub-pieces, where the smaller balls make descending worthwhile.
-  // Leaves `alive` with the pairs not cleared (proofs/hierarchy.md).
+  // The tests of one piece.  A feature pair gets the sphere test on the
+  // two features' spheres, then the contact test.  A pair of hierarchy
+  // nodes (cells of the two bodies' trees) gets the sphere test; if it is
+  // not cleared, it is descended on this piece (its child pairs tested in
+  // turn) when `expand_all`, when few feature pairs are below, or when a
+  // node is larger in the world than kDescend times the piece's fattening; otherwise
+  // it is carried as it is to the sub-pieces, where the smaller balls make
+  // descending worthwhile.  A pair of two cells is replaced by its feature
+  // pairs (vertices owned by the first x face of the second, owned edges x
+  // owned edges, face of the first x vertices owned by the second), each
+  // tested as above.  Leaves `alive` with the pairs not cleared, in a
+  // deterministic order (proofs/hierarchy.md).
   template <class Policy>
   struct Spheres {
     using FT = typename Policy::SphereFT;
-    std::array<SphereCache<FT>, 3> moving, other;  // by contact kind
-    std::uint32_t piece = 0;
+    SphereCache<FT> moving_cells, other_cells;
+    std::array<SphereCache<FT>, 3> moving, other;  // by table: vertices, edges, faces
+    std::uint64_t piece = 0;
     Spheres(const PreparedBody& m, const PreparedBody& f) {
-      for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
-        moving[static_cast<int>(k)].reset(moving_table(m, k).tree.nodes.size());
-        other[static_cast<int>(k)].reset(other_table(f, k).tree.nodes.size());
-      }
+      moving_cells.reset(m.cells.tree.nodes.size());
+      other_cells.reset(f.cells.tree.nodes.size());
+      int t = 0;
+      for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) moving[t++].reset(x->size());
+      t = 0;
+      for (const FeatureTable* x : {&f.vertices, &f.edges, &f.faces}) other[t++].reset(x->size());
     }
   };
 
+  // The table (0 vertices, 1 edges, 2 faces) of each body for a kind.
+  static constexpr int moving_index(ContactKind k) { return static_cast<int>(k); }
+  static constexpr int other_index(ContactKind k) { return 2 - static_cast<int>(k); }
+
   // Node pairs with at most this many feature pairs below are descended at
-  // once.
+  // once; others when a node's world size exceeds kDescend times the
+  // piece's fattening R (p_a + p_b) (a tuning choice: on the paper grid,
+  // 2 tests far fewer feature pairs than 1 on pieces whose balls are still
+  // too large to clear them).
   static constexpr std::uint64_t kExpandPairs = 64;
+  static constexpr double kDescend = 2;
 
   template <class Policy>
   void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all,
@@ -282,8 +296,21 @@ struct Check {
     using FT = typename Policy::SphereFT;
     [[maybe_unused]] RoundingFor<FT> rounding;  // the contact tests' exact fallbacks are rounding-independent
     const SphereFrame<FT> frame = policy.frame(ball);
-    const std::uint32_t piece = ++spheres.piece;
+    const std::uint64_t piece = ++spheres.piece;
     const double n1 = CGAL::to_double(frame.n1), n2 = CGAL::to_double(frame.n2), radius = CGAL::to_double(frame.R);
+    const CellTree& X = moving.cells;
+    const CellTree& Y = other.cells;
+    const FeatureTable* moving_tables[3] = {&moving.vertices, &moving.edges, &moving.faces};
+    const FeatureTable* other_tables[3] = {&other.vertices, &other.edges, &other.faces};
+    // A feature pair: its sphere test, then its contact test.
+    auto feature = [&](const PairRef& p) {
+      const int a = moving_index(p.kind), b = other_index(p.kind);
+      ++stats.sphere_tests;
+      if (world_spheres_apart(spheres.moving[a].get(piece, frame, true, moving_tables[a]->spheres, p.i),
+                              spheres.other[b].get(piece, frame, false, other_tables[b]->spheres, p.j)))
+        return;
+      if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
+    };
     std::vector<PairRef> work;
     work.swap(alive);
     alive.reserve(work.size());
@@ -291,48 +318,56 @@ struct Check {
     while (!work.empty()) {
       const PairRef p = work.back();
       work.pop_back();
-      const int k = static_cast<int>(p.kind);
-      const BvTree& X = moving_table(moving, p.kind).tree;
-      const BvTree& Y = other_table(other, p.kind).tree;
-      ++stats.sphere_tests;
-      if (world_spheres_apart(spheres.moving[k].get(piece, frame, true, X, p.i),
-                              spheres.other[k].get(piece, frame, false, Y, p.j)))
-        continue;
-      const bool leaf_a = X.leaf(p.i), leaf_b = Y.leaf(p.j);
-      if (leaf_a && leaf_b) {
-        if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
+      if (!p.nodes) {
+        feature(p);
         continue;
       }
-      const BvNode& a = X.nodes[p.i];
-      const BvNode& b = Y.nodes[p.j];
+      ++stats.sphere_tests;
+      if (world_spheres_apart(spheres.moving_cells.get(piece, frame, true, X.tree.nodes, p.i),
+                              spheres.other_cells.get(piece, frame, false, Y.tree.nodes, p.j)))
+        continue;
+      const bool leaf_a = X.tree.leaf(p.i), leaf_b = Y.tree.leaf(p.j);
+      if (leaf_a && leaf_b) {
+        // Two cells: their feature pairs, in a fixed order.
+        const std::int32_t face_a = X.face[p.i], face_b = Y.face[p.j];
+        if (face_b >= 0)
+          for (std::uint32_t k = X.vertex_begin[p.i]; k < X.vertex_begin[p.i + 1]; ++k)
+            feature(feature_pair(ContactKind::VertexFace, X.vertices[k], static_cast<std::uint32_t>(face_b)));
+        for (std::uint32_t k = X.edge_begin[p.i]; k < X.edge_begin[p.i + 1]; ++k)
+          for (std::uint32_t l = Y.edge_begin[p.j]; l < Y.edge_begin[p.j + 1]; ++l)
+            feature(feature_pair(ContactKind::EdgeEdge, X.edges[k], Y.edges[l]));
+        if (face_a >= 0)
+          for (std::uint32_t l = Y.vertex_begin[p.j]; l < Y.vertex_begin[p.j + 1]; ++l)
+            feature(feature_pair(ContactKind::FaceVertex, static_cast<std::uint32_t>(face_a), Y.vertices[l]));
+        continue;
+      }
+      const BvNode& a = X.tree.nodes[p.i];
+      const BvNode& b = Y.tree.nodes[p.j];
       const double size_a = leaf_a ? -1 : n1 * a.r, size_b = leaf_b ? -1 : n2 * b.r;
       // Few feature pairs under the pair: test them now (cheaper than
       // carrying them down the pieces, and as tight as all pairs).
-      const bool small = std::uint64_t(a.leaves) * b.leaves <= kExpandPairs;
-      if (!expand_all && !small && !(std::max(size_a, size_b) > radius * (a.p + b.p))) {
+      const bool small = CellTree::pairs_below(X, p.i, Y, p.j) <= kExpandPairs;
+      if (!expand_all && !small && !(std::max(size_a, size_b) > kDescend * radius * (a.p + b.p))) {
         alive.push_back(p);
         continue;
       }
       // Children pushed right first: the left one is tested first.
       if (size_a >= size_b) {
-        work.push_back({p.kind, a.right, p.j});
-        work.push_back({p.kind, a.left, p.j});
+        work.push_back(node_pair(a.right, p.j));
+        work.push_back(node_pair(a.left, p.j));
       } else {
-        work.push_back({p.kind, p.i, b.right});
-        work.push_back({p.kind, p.i, b.left});
+        work.push_back(node_pair(p.i, b.right));
+        work.push_back(node_pair(p.i, b.left));
       }
     }
   }
 
   std::vector<PairRef> root_pairs() const {
     if (!options.hierarchy) return all_pairs(moving, other);
-    std::vector<PairRef> out;
-    for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
-      const BvTree& X = moving_table(moving, k).tree;
-      const BvTree& Y = other_table(other, k).tree;
-      if (!X.empty() && !Y.empty()) out.push_back({k, X.root(), Y.root()});
-    }
-    return out;
+    const BvTree& X = moving.cells.tree;
+    const BvTree& Y = other.cells.tree;
+    if (X.empty() || Y.empty()) return {};
+    return {node_pair(X.root(), Y.root())};
   }
 
   template <class Policy>

@@ -1,13 +1,15 @@
 // Bounding-volume hierarchies (src/verify/hierarchy.{h,cpp},
 // proofs/hierarchy.md), checked in exact arithmetic:
 //
-//  a. tree invariants: every vertex of every feature lies in the sphere of
-//     its leaf and of every ancestor (|x - c|^2 <= r^2 exactly), rho <= p on
-//     the features and on sampled points of every sphere (moving bodies),
-//     and the tree is a tree over exactly the features;
+//  a. tree invariants: every feature is owned by exactly one cell; every
+//     vertex (and a random point) of every feature a cell owns lies in the
+//     sphere of the cell and of every ancestor (|x - c|^2 <= r^2 exactly)
+//     and in its own feature sphere, with rho <= p there (moving bodies);
+//     the tree is a tree over exactly the cells, with the right feature
+//     counts per node;
 //  b. the sphere test: whenever it clears a node pair for a ball of affine
-//     maps, no map of the ball brings a point of one sphere onto a point of
-//     the other.  Checked at worst-case points with the cheapest contact
+//     maps, no map of the ball brings a point of a feature under one node
+//     onto a point of a feature under the other.  Checked at worst-case points with the cheapest contact
 //     maps built explicitly, on balls tuned to the decision boundary, and
 //     shown able to fail by catching deliberately wrong variants;
 //  c. the search with the hierarchy against the all-pairs reference
@@ -347,43 +349,132 @@ std::array<double, 3> rho_gradient(const Metric& m, const Vec3E& x) {
   return g;
 }
 
-// Points of the sphere S(c, r): the centre, the points where rho is largest
-// (approximately) and random boundary and interior points.
-std::vector<Vec3E> sphere_samples(Rng& rng, const BvNode& n, const Metric* metric, int random_count) {
-  const Vec3E c = center_of(n);
-  const Exact r(n.r);
-  std::vector<Vec3E> out = {c};
-  if (metric) {
-    const auto g = rho_gradient(*metric, c);
-    const Vec3E u = exact_unit(g[0], g[1], g[2]);
-    out.push_back(vadd(c, vmul(r, u)));
-    out.push_back(vsub(c, vmul(r, u)));
+// A random point of a feature: a convex combination of its vertices with
+// random rational weights (the feature is their convex hull).
+Vec3E random_feature_point(Rng& rng, const std::vector<Vec3E>& vs) {
+  std::vector<Exact> w;
+  Exact sum(0);
+  for (std::size_t k = 0; k < vs.size(); ++k) {
+    w.push_back(Exact(rng.i(0, 8)));
+    sum += w.back();
   }
-  for (int k = 0; k < random_count; ++k) {
-    const Vec3E u = random_unit(rng);
-    const Exact s = k % 2 ? Exact(1) : Exact(rng.i(0, 16), 16);
-    out.push_back(vadd(c, vmul(s * r, u)));
-  }
+  if (sum == 0) return vs[0];
+  Vec3E x{0, 0, 0};
+  for (std::size_t k = 0; k < vs.size(); ++k) x = vadd(x, vmul(w[k] / sum, vs[k]));
+  return x;
+}
+
+// The exact features (as vertex lists) of cell k of a body.
+std::vector<std::vector<Vec3E>> cell_features(const CellTree& ct, const ExactFeatures& ex, std::size_t k) {
+  std::vector<std::vector<Vec3E>> out;
+  if (ct.face[k] >= 0) out.push_back(feature_vertices(ex.faces[ct.face[k]]));
+  for (std::uint32_t e = ct.edge_begin[k]; e < ct.edge_begin[k + 1]; ++e) out.push_back(feature_vertices(ex.edges[ct.edges[e]]));
+  for (std::uint32_t v = ct.vertex_begin[k]; v < ct.vertex_begin[k + 1]; ++v)
+    out.push_back(feature_vertices(ex.vertices[ct.vertices[v]]));
   return out;
 }
 
 struct TreeStats {
-  long vertex_checks = 0, rho_checks = 0, nodes = 0;
+  long vertex_checks = 0, rho_checks = 0, nodes = 0, cells = 0;
 };
 
-// Checks one hierarchy against the exact features it was built over.
-void check_tree(const std::string& where, const BvTree& tree, const std::vector<FeatureGeometry<Exact>>& features,
-                const Metric* metric, Rng& rng, Failures& fail, TreeStats& stats) {
-  if (tree.leaves != features.size()) {
-    fail(where + ": " + std::to_string(tree.leaves) + " leaves for " + std::to_string(features.size()) + " features");
+// Every vertex of `features` and one random point of each inside S(c, r) of
+// node `n` exactly, and rho <= p there.
+void check_in_node(const std::string& where, const BvNode& n, const std::vector<std::vector<Vec3E>>& features,
+                   const Metric* metric, Rng& rng, Failures& fail, TreeStats& stats) {
+  const Vec3E c = center_of(n);
+  const Exact r2 = Exact(n.r) * Exact(n.r), p2 = Exact(n.p) * Exact(n.p);
+  for (std::size_t f = 0; f < features.size(); ++f) {
+    std::vector<Vec3E> pts = features[f];
+    if (pts.size() > 1) pts.push_back(random_feature_point(rng, features[f]));
+    for (std::size_t v = 0; v < pts.size(); ++v) {
+      ++stats.vertex_checks;
+      const std::string what = (v < features[f].size() ? "vertex " + std::to_string(v) : std::string("a point")) +
+                               " of feature " + std::to_string(f) + " of " + where;
+      if (!(dist2(pts[v], c) <= r2)) fail(what + " outside the sphere");
+      if (metric) {
+        ++stats.rho_checks;
+        if (!(metric->rho2(pts[v]) <= p2)) fail("rho at " + what + " exceeds p");
+      }
+    }
+  }
+}
+
+bool node_finite(const BvNode& n) {
+  return std::isfinite(n.c[0]) && std::isfinite(n.c[1]) && std::isfinite(n.c[2]) && std::isfinite(n.r) &&
+         std::isfinite(n.p) && n.r >= 0 && n.p >= 0;
+}
+
+// Checks a body's cell hierarchy and feature spheres against the exact
+// features they were built over.
+void check_tree(const std::string& where, const PreparedBody& pb, const ExactFeatures& ex, const Metric* metric,
+                Rng& rng, Failures& fail, TreeStats& stats) {
+  const CellTree& ct = pb.cells;
+  const BvTree& tree = ct.tree;
+  const std::size_t cells = ct.face.size();
+  // Cells: offsets well formed, every feature owned exactly once.
+  if (ct.edge_begin.size() != cells + 1 || ct.vertex_begin.size() != cells + 1 || ct.edge_begin[0] != 0 ||
+      ct.vertex_begin[0] != 0 || ct.edge_begin.back() != ct.edges.size() || ct.vertex_begin.back() != ct.vertices.size()) {
+    fail(where + ": malformed cell offsets");
     return;
   }
-  if (features.empty()) {
-    if (!tree.empty()) fail(where + ": nodes without features");
+  for (std::size_t k = 0; k < cells; ++k)
+    if (ct.edge_begin[k] > ct.edge_begin[k + 1] || ct.vertex_begin[k] > ct.vertex_begin[k + 1]) {
+      fail(where + ": decreasing cell offsets");
+      return;
+    }
+  std::vector<int> faces(ex.faces.size(), 0), edges(ex.edges.size(), 0), vertices(ex.vertices.size(), 0);
+  bool bad_index = false;
+  for (std::size_t k = 0; k < cells; ++k) {
+    if (ct.face[k] >= 0) {
+      if (static_cast<std::size_t>(ct.face[k]) < faces.size()) ++faces[ct.face[k]];
+      else bad_index = true;
+    }
+    const bool empty = ct.face[k] < 0 && ct.edge_begin[k] == ct.edge_begin[k + 1] && ct.vertex_begin[k] == ct.vertex_begin[k + 1];
+    if (empty) fail(where + ": cell " + std::to_string(k) + " owns nothing");
+  }
+  for (std::uint32_t e : ct.edges) e < edges.size() ? void(++edges[e]) : void(bad_index = true);
+  for (std::uint32_t v : ct.vertices) v < vertices.size() ? void(++vertices[v]) : void(bad_index = true);
+  if (bad_index) {
+    fail(where + ": a cell names a feature outside the tables");
+    return;
+  }
+  for (const auto& [name, count] : {std::pair{"face", &faces}, std::pair{"edge", &edges}, std::pair{"vertex", &vertices}})
+    for (std::size_t i = 0; i < count->size(); ++i)
+      if ((*count)[i] != 1)
+        fail(where + ": " + name + " " + std::to_string(i) + " owned by " + std::to_string((*count)[i]) + " cells");
+  stats.cells += static_cast<long>(cells);
+  // Feature spheres: one per feature, holding it, rho <= p on it.
+  const FeatureTable* tables[3] = {&pb.vertices, &pb.edges, &pb.faces};
+  const std::vector<FeatureGeometry<Exact>>* exact[3] = {&ex.vertices, &ex.edges, &ex.faces};
+  for (int t = 0; t < 3; ++t) {
+    if (tables[t]->spheres.size() != exact[t]->size()) {
+      fail(where + ": feature spheres not one per feature");
+      continue;
+    }
+    for (std::size_t i = 0; i < exact[t]->size(); ++i) {
+      const BvNode& n = tables[t]->spheres[i];
+      if (!node_finite(n)) fail(where + ": a non-finite feature sphere");
+      if (!metric && n.p != 0) fail(where + ": a fixed body's feature sphere with p != 0");
+      check_in_node(where + " table " + std::to_string(t) + " sphere " + std::to_string(i), n,
+                    {feature_vertices((*exact[t])[i])}, metric, rng, fail, stats);
+    }
+  }
+  // The tree over the cells.
+  if (tree.leaves != cells) {
+    fail(where + ": " + std::to_string(tree.leaves) + " leaves for " + std::to_string(cells) + " cells");
+    return;
+  }
+  if (cells == 0) {
+    if (!tree.empty()) fail(where + ": nodes without cells");
     return;
   }
   const std::size_t count = tree.nodes.size();
-  if (count != 2 * features.size() - 1) fail(where + ": " + std::to_string(count) + " nodes, expected 2 leaves - 1");
+  if (count != 2 * cells - 1) fail(where + ": " + std::to_string(count) + " nodes, expected 2 leaves - 1");
+  if (ct.below.size() != count) {
+    fail(where + ": feature counts not one per node");
+    return;
+  }
   // Every node reached exactly once from the root; children valid.
   std::vector<int> reached(count, 0);
   std::vector<long> parent(count, -1);
@@ -418,49 +509,30 @@ void check_tree(const std::string& where, const BvTree& tree, const std::vector<
     }
   for (std::size_t i = 0; i < count; ++i) {
     const BvNode& n = tree.nodes[i];
-    const bool finite = std::isfinite(n.c[0]) && std::isfinite(n.c[1]) && std::isfinite(n.c[2]) && std::isfinite(n.r) &&
-                        std::isfinite(n.p) && n.r >= 0 && n.p >= 0;
-    if (!finite) {
+    if (!node_finite(n)) {
       fail(where + ": node " + std::to_string(i) + " has a non-finite or negative centre, radius or bound");
       return;
     }
     if (!metric && n.p != 0) fail(where + ": a fixed body's node with p != 0");
+    // Feature counts: a cell's own, or the sum of the children's.
+    std::array<std::uint32_t, 3> want;
+    if (tree.leaf(i)) want = {ct.vertex_begin[i + 1] - ct.vertex_begin[i], ct.edge_begin[i + 1] - ct.edge_begin[i], ct.face[i] >= 0 ? 1u : 0u};
+    else
+      for (int c = 0; c < 3; ++c) want[c] = ct.below[n.left][c] + ct.below[n.right][c];
+    if (ct.below[i] != want) fail(where + ": wrong feature counts below node " + std::to_string(i));
   }
-  // Every vertex of every feature in the leaf's sphere and every ancestor's;
-  // rho <= p there.
-  for (std::size_t k = 0; k < features.size(); ++k) {
-    const std::vector<Vec3E> vs = feature_vertices(features[k]);
-    std::vector<Exact> rho2;
-    if (metric)
-      for (const Vec3E& x : vs) rho2.push_back(metric->rho2(x));
-    for (long j = static_cast<long>(k); j != -1; j = parent[j]) {
-      const BvNode& n = tree.nodes[j];
-      const Vec3E c = center_of(n);
-      const Exact r2 = Exact(n.r) * Exact(n.r), p2 = Exact(n.p) * Exact(n.p);
-      for (std::size_t v = 0; v < vs.size(); ++v) {
-        ++stats.vertex_checks;
-        if (!(dist2(vs[v], c) <= r2))
-          fail(where + ": vertex " + std::to_string(v) + " of feature " + std::to_string(k) + " outside the sphere of node " +
-               std::to_string(j));
-        if (metric) {
-          ++stats.rho_checks;
-          if (!(rho2[v] <= p2))
-            fail(where + ": rho at vertex " + std::to_string(v) + " of feature " + std::to_string(k) +
-                 " exceeds p of node " + std::to_string(j));
-        }
-      }
-    }
+  const std::array<std::uint32_t, 3> all = {static_cast<std::uint32_t>(ex.vertices.size()),
+                                             static_cast<std::uint32_t>(ex.edges.size()),
+                                             static_cast<std::uint32_t>(ex.faces.size())};
+  if (ct.below[tree.root()] != all) fail(where + ": the root's feature counts are not the tables' sizes");
+  // Every vertex (and a random point) of every feature a cell owns in the
+  // sphere of the cell and of every ancestor; rho <= p there.
+  for (std::size_t k = 0; k < cells; ++k) {
+    const std::vector<std::vector<Vec3E>> fs = cell_features(ct, ex, k);
+    for (long j = static_cast<long>(k); j != -1; j = parent[j])
+      check_in_node(where + " cell " + std::to_string(k) + " node " + std::to_string(j), tree.nodes[j], fs, metric, rng,
+                    fail, stats);
   }
-  // rho <= p over each node's sphere, at sampled points.
-  if (metric)
-    for (std::size_t i = 0; i < count; ++i) {
-      const BvNode& n = tree.nodes[i];
-      const Exact p2 = Exact(n.p) * Exact(n.p);
-      for (const Vec3E& x : sphere_samples(rng, n, metric, 4)) {
-        ++stats.rho_checks;
-        if (!(metric->rho2(x) <= p2)) fail(where + ": rho exceeds p at a point of the sphere of node " + std::to_string(i));
-      }
-    }
   stats.nodes += static_cast<long>(count);
 }
 
@@ -514,13 +586,13 @@ BOOST_AUTO_TEST_CASE(tree_invariants_on_random_bodies) {
     for (const auto& f : ex.edges)
       for (const Vec3E& x : feature_vertices(f))
         if (!placed.count(x)) fail(where0 + ": an edge ends off the placed vertices");
-    check_tree(where0 + " vertices", pb.vertices.tree, ex.vertices, metric, rng, fail, stats);
-    check_tree(where0 + " edges", pb.edges.tree, ex.edges, metric, rng, fail, stats);
-    check_tree(where0 + " faces", pb.faces.tree, ex.faces, metric, rng, fail, stats);
+    check_tree(where0, pb, ex, metric, rng, fail, stats);
   }
   BOOST_TEST(fail.count == 0, "seed " << seed << ": " << fail.count << " tree invariant failures");
   BOOST_TEST(moving_bodies >= 25);
   BOOST_TEST(posed_bodies >= 25);
+  BOOST_TEST_MESSAGE("cells " << stats.cells << " nodes " << stats.nodes << " vertex checks " << stats.vertex_checks
+                              << " rho checks " << stats.rho_checks);
   BOOST_TEST(stats.vertex_checks > 20000);
   BOOST_TEST(stats.rho_checks > 10000);
 }
@@ -529,18 +601,48 @@ namespace {
 
 // ------------------------------------------------------------------ sphere test
 
-// A random node of one of the body's trees (half leaves, half internal).
-// A quarter are vertex leaves, whose spheres have radius 0 when the vertex
-// is a double: there the test's bound is attained, at the centre.
-std::pair<const BvTree*, std::uint32_t> random_node(Rng& r, const PreparedBody& b) {
-  if (r.i(0, 3) == 0 && !b.vertices.tree.empty())
-    return {&b.vertices.tree, static_cast<std::uint32_t>(r.i(0, static_cast<int>(b.vertices.tree.leaves) - 1))};
+// A node for the sphere test: a node of the body's cell tree or a feature's
+// sphere, with the features (vertex lists) it holds.
+struct NodePick {
+  const BvNode* node = nullptr;
+  std::vector<std::vector<Vec3E>> features;
+  std::string name;
+};
+
+// A quarter are vertex spheres, whose radius is 0 when the vertex is a
+// double: there the test's bound is attained, at the centre.  Of the rest,
+// half are nodes of the cell tree (half leaves, half internal), half
+// spheres of vertices, edges and faces.
+NodePick random_node(Rng& r, const PreparedBody& b, const ExactFeatures& ex) {
+  const FeatureTable* tables[3] = {&b.vertices, &b.edges, &b.faces};
+  const std::vector<FeatureGeometry<Exact>>* exact[3] = {&ex.vertices, &ex.edges, &ex.faces};
+  const int first = r.i(0, 3) == 0 ? 0 : -1;
   for (;;) {
-    const int k = r.i(0, 2);
-    const BvTree& t = k == 0 ? b.vertices.tree : k == 1 ? b.edges.tree : b.faces.tree;
+    const int k = first >= 0 ? first : r.i(0, 5);
+    if (k < 3) {
+      if (exact[k]->empty()) continue;
+      const int i = r.i(0, static_cast<int>(exact[k]->size()) - 1);
+      return {&tables[k]->spheres[i], {feature_vertices((*exact[k])[i])}, "feature sphere " + std::to_string(k) + "/" + std::to_string(i)};
+    }
+    const CellTree& ct = b.cells;
+    const BvTree& t = ct.tree;
     if (t.empty()) continue;
-    if (r.i(0, 1) || t.nodes.size() == 1) return {&t, static_cast<std::uint32_t>(r.i(0, static_cast<int>(t.leaves) - 1))};
-    return {&t, static_cast<std::uint32_t>(r.i(static_cast<int>(t.leaves), static_cast<int>(t.nodes.size()) - 1))};
+    const std::uint32_t i = r.i(0, 1) || t.nodes.size() == 1
+                                ? static_cast<std::uint32_t>(r.i(0, static_cast<int>(t.leaves) - 1))
+                                : static_cast<std::uint32_t>(r.i(static_cast<int>(t.leaves), static_cast<int>(t.nodes.size()) - 1));
+    NodePick pick{&t.nodes[i], {}, "cell node " + std::to_string(i)};
+    std::vector<std::uint32_t> stack = {i};
+    while (!stack.empty()) {
+      const std::uint32_t j = stack.back();
+      stack.pop_back();
+      if (!t.leaf(j)) {
+        stack.push_back(t.nodes[j].left);
+        stack.push_back(t.nodes[j].right);
+        continue;
+      }
+      for (auto& f : cell_features(ct, ex, j)) pick.features.push_back(std::move(f));
+    }
+    return pick;
   }
 }
 
@@ -562,6 +664,18 @@ std::array<double, 3> at_e(const std::array<double, 12>& g, const std::array<dou
   return v;
 }
 
+// The sphere test's bound of the operator norm of g's linear part, in
+// doubles (to tune the cases only).
+double norm_bound(const std::array<double, 12>& g) { return detail::operator_norm_bound<double>(g); }
+
+// The longest column of g's linear part: a lower bound of its operator
+// norm, so a wrong bound for the test (a mutant).
+double max_column(const std::array<double, 12>& g) {
+  double m = 0;
+  for (int j = 0; j < 3; ++j) m = std::max(m, std::sqrt(g[j] * g[j] + g[4 + j] * g[4 + j] + g[8 + j] * g[8 + j]));
+  return m;
+}
+
 double frob(const std::array<double, 12>& g) {
   double s = 0;
   for (int i = 0; i < 3; ++i)
@@ -569,13 +683,47 @@ double frob(const std::array<double, 12>& g) {
   return std::sqrt(s);
 }
 
-// Points of the sphere S(c, r) of `n` that reach farthest in direction d
-// under the map g, and where rho is largest, their blends, random points
-// and the centre.
-std::vector<Vec3E> worst_points(Rng& rng, const BvNode& n, const std::array<double, 12>* g,
+// The unit direction (in doubles) from a node's centre to the farthest
+// vertex of its features; 0 if they are all at the centre.
+std::array<double, 3> farthest_direction(const NodePick& pick) {
+  const std::array<double, 3> c = pick.node->c;
+  std::array<double, 3> best{0, 0, 0};
+  double top = 0;
+  for (const auto& f : pick.features)
+    for (const Vec3E& x : f) {
+      const std::array<double, 3> d = {CGAL::to_double(x[0]) - c[0], CGAL::to_double(x[1]) - c[1], CGAL::to_double(x[2]) - c[2]};
+      const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (n > top) top = n, best = {d[0] / n, d[1] / n, d[2] / n};
+    }
+  return best;
+}
+
+// rho^2 in doubles (to choose sample points only).
+double rho2_approx(const std::array<double, 16>& gi, const Vec3E& x) {
+  const double h[4] = {CGAL::to_double(x[0]), CGAL::to_double(x[1]), CGAL::to_double(x[2]), 1};
+  double q = 0;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) q += h[r] * gi[4 * r + c] * h[c];
+  return q;
+}
+
+std::array<double, 16> inverse_approx(const Metric& m) {
+  std::array<double, 16> out;
+  for (int e = 0; e < 16; ++e) out[e] = CGAL::to_double(m.inverse()[e]);
+  return out;
+}
+
+// Points of the features of a node: the vertices that reach farthest in
+// direction d under the map g, farthest in blends of that direction with
+// the one where rho grows fastest, where rho is largest, a random vertex
+// and a random point of a random feature.
+std::vector<Vec3E> worst_points(Rng& rng, const NodePick& pick, const std::array<double, 12>* g,
                                 const std::array<double, 3>& d, const Metric* metric) {
+  const BvNode& n = *pick.node;
   const Vec3E c = center_of(n);
-  const Exact r(n.r);
+  std::vector<const Vec3E*> vs;
+  for (const auto& f : pick.features)
+    for (const Vec3E& x : f) vs.push_back(&x);
   std::vector<std::array<double, 3>> dirs;
   const std::array<double, 3> push = g ? at_e(*g, d) : d;
   dirs.push_back(push);
@@ -590,10 +738,27 @@ std::vector<Vec3E> worst_points(Rng& rng, const BvNode& n, const std::array<doub
         dirs.push_back(v);
       }
   }
-  std::vector<Vec3E> out = {c};
-  for (const auto& v : dirs) out.push_back(vadd(c, vmul(r, exact_unit(v[0], v[1], v[2]))));
-  out.push_back(vadd(c, vmul(r, random_unit(rng))));
-  out.push_back(vadd(c, vmul(r * Exact(rng.i(0, 8), 8), random_unit(rng))));
+  std::vector<Vec3E> out;
+  for (const auto& v : dirs) {
+    const Vec3E* best = vs[0];
+    double top = -std::numeric_limits<double>::infinity();
+    for (const Vec3E* x : vs) {
+      const std::array<double, 3> xd = to_d(*x);
+      const double s = v[0] * xd[0] + v[1] * xd[1] + v[2] * xd[2];
+      if (s > top) top = s, best = x;
+    }
+    out.push_back(*best);
+  }
+  if (metric) {
+    const std::array<double, 16> gi = inverse_approx(*metric);
+    const Vec3E* best = vs[0];
+    double top = -1;
+    for (const Vec3E* x : vs)
+      if (const double q = rho2_approx(gi, *x); q > top) top = q, best = x;
+    out.push_back(*best);
+  }
+  out.push_back(*vs[rng.i(0, static_cast<int>(vs.size()) - 1)]);
+  out.push_back(random_feature_point(rng, pick.features[rng.i(0, static_cast<int>(pick.features.size()) - 1)]));
   return out;
 }
 
@@ -623,25 +788,29 @@ Mat34E madd(const Mat34E& a, const Mat34E& b) {
 
 }  // namespace
 
-// b. Sphere-test soundness.  For random node pairs (body 1 moving; body 2
-// fixed with a pose, or moving) and balls B((g1, g2), R) tuned so that the
-// test is near its decision boundary: whenever spheres_clear says "clear",
-// for worst-case and random points x of sphere a and y of sphere b,
+// b. Sphere-test soundness.  For random node pairs (cell-tree nodes or
+// feature spheres; body 1 moving; body 2 fixed with a pose, or moving) and
+// balls B((g1, g2), R) tuned so that the test is near its decision
+// boundary: whenever spheres_clear says "clear", for worst-case and random
+// points x of the features under node a and y of those under node b,
 //   Phi = |g1(x) - g2(y)|^2 - R^2 (rho1(x)^2 + rho2(y)^2) > 0   (exact),
 // and the cheapest pair of maps that brings x onto y, built explicitly
 // (alpha_i = g_i + delta_i with delta1 = w (G1^-1 x^)^T / s,
 // delta2 = -w (G2^-1 y^)^T / s, w = g2(y) - g1(x), s = rho1^2 + rho2^2),
 // really maps x onto y and lies outside the ball (its norm by
 // Metric::norm2, the definition).  Random maps inside the ball never map x
-// onto y either.  Three wrong variants of the test (no square root on R^2,
-// |A| taken as 1, rho bounded by rho at the centre) are run on the same
-// cases and must be caught: the sampling is strong enough to fail.
+// onto y either.  Four wrong variants of the test (no square root on R^2,
+// |A| taken as 1, |A| taken as its longest column, rho bounded by rho at the
+// centre) are run on the same cases and must be caught: the sampling is
+// strong enough to fail.
+constexpr int kMutants = 4;
+
 BOOST_AUTO_TEST_CASE(sphere_test_never_clears_a_reachable_contact) {
   const unsigned seed = seed_or_env(31337);
   Rng rng(seed);
   Failures fail;
   int cases = 0, cleared = 0, near_boundary = 0, pairs = 0;
-  int mutant_cleared[3] = {}, mutant_caught[3] = {};
+  int mutant_cleared[kMutants] = {}, mutant_caught[kMutants] = {};
   for (int scene = 0; scene < 36; ++scene) {
     const bool two_moving = scene % 3 == 2;
     Body b1 = random_body(rng, "one", {0, 0, 0}, rng.i(0, 1) ? 2.0 : 0.5, rng.i(1, 12), rng.i(0, 2), rng.i(0, 2));
@@ -655,27 +824,36 @@ BOOST_AUTO_TEST_CASE(sphere_test_never_clears_a_reachable_contact) {
       b2.motion = random_pose(rng);
     }
     const PreparedBody p1(b1), p2(b2);
+    const ExactFeatures& ex1 = p1.exact();
+    const ExactFeatures& ex2 = p2.exact();
     const Metric* m1 = &p1.exact_metric();
     const Metric* m2 = two_moving ? &p2.exact_metric() : nullptr;
     for (int iter = 0; iter < 60; ++iter) {
       ++cases;
       std::ostringstream where;
       where << "seed " << seed << " scene " << scene << " case " << iter;
-      const auto [ta, ia] = random_node(rng, p1);
-      const auto [tb, ib] = random_node(rng, p2);
-      const BvNode& na = ta->nodes[ia];
-      const BvNode& nb = tb->nodes[ib];
-      // Direction from body 1 toward body 2, and the centre maps.
-      const Vec3E e_exact = random_unit(rng);
-      const std::array<double, 3> e = to_d(e_exact);
+      const NodePick pa = random_node(rng, p1, ex1);
+      const NodePick pb = random_node(rng, p2, ex2);
+      const BvNode& na = *pa.node;
+      const BvNode& nb = *pb.node;
+      // The directions from each node's centre to its farthest feature
+      // vertex: where the spheres' bounds are nearly attained.
+      const std::array<double, 3> ua = farthest_direction(pa), ub = farthest_direction(pb);
+      // Direction from body 1 toward body 2 (for a fixed body 2, usually
+      // against its farthest vertex, which then faces body 1), and the
+      // centre maps.
+      const bool facing = !two_moving && rng.i(0, 1) && (ub[0] != 0 || ub[1] != 0 || ub[2] != 0);
+      const std::array<double, 3> e = facing ? to_d(exact_unit(-ub[0], -ub[1], -ub[2])) : to_d(random_unit(rng));
       const int style = rng.i(0, 2);  // 0 near a rotation, 1 rank one along e, 2 tiny linear part
       auto linear = [&](std::array<double, 12>& g, double sign) {
         if (style == 0) {
           const Mat34E rot = random_rotation(rng, 3);
           for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) g[4 * i + j] = CGAL::to_double(rot[4 * i + j]) * (1 + 0.25 * rng.noise()) + 0.1 * rng.noise();
-        } else if (style == 1) {
-          const std::array<double, 3> v = to_d(random_unit(rng));
+        } else if (style == 1) {  // stretching along the farthest vertex's direction, mostly
+          const std::array<double, 3> far = sign > 0 ? ua : ub;
+          const bool along = rng.i(0, 3) > 0 && (far[0] != 0 || far[1] != 0 || far[2] != 0);
+          const std::array<double, 3> v = along ? far : to_d(random_unit(rng));
           const double s = 0.5 + 4.5 * std::abs(rng.noise());
           for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) g[4 * i + j] = sign * s * e[i] * v[j] + 0.01 * rng.noise();
@@ -696,7 +874,8 @@ BOOST_AUTO_TEST_CASE(sphere_test_never_clears_a_reachable_contact) {
       // g1's translation placing sphere a's centre at the chosen distance.
       std::array<double, 3> wb{};
       for (int i = 0; i < 3; ++i) wb[i] = g2[4 * i] * nb.c[0] + g2[4 * i + 1] * nb.c[1] + g2[4 * i + 2] * nb.c[2] + g2[4 * i + 3];
-      const double n1 = frob(g1), n2 = two_moving ? frob(g2) : 1.0;
+      // The test's bounds of the operator norms (what its decision uses).
+      const double n1 = norm_bound(g1), n2 = two_moving ? norm_bound(g2) : 1.0;
       const double fixed_reach = n1 * na.r + n2 * nb.r, per_r = na.p + (two_moving ? nb.p : 0.0);
       const double u_r = rng.noise(), r_star = 0.05 + 2.5 * u_r * u_r;  // small radii more often
       const double dist = fixed_reach + r_star * per_r;
@@ -731,19 +910,21 @@ BOOST_AUTO_TEST_CASE(sphere_test_never_clears_a_reachable_contact) {
       }();
       const double rho_ca = std::sqrt(CGAL::to_double(m1->rho2(center_of(na))));
       const double rho_cb = m2 ? std::sqrt(CGAL::to_double(m2->rho2(center_of(nb)))) : 0.0;
-      const bool mutant[3] = {
+      const double c1 = max_column(g1), c2 = two_moving ? max_column(g2) : 1.0;
+      const bool mutant[kMutants] = {
           dd > fixed_reach + r2d * per_r,             // R^2 for R
           dd > na.r + nb.r + R * per_r,               // |A| = 1
+          dd > c1 * na.r + c2 * nb.r + R * per_r,     // |A| by its longest column (a lower bound)
           dd > fixed_reach + R * (rho_ca + rho_cb),   // rho(c) for p
       };
-      if (!clear && !mutant[0] && !mutant[1] && !mutant[2]) continue;
+      if (!clear && std::none_of(mutant, mutant + kMutants, [](bool m) { return m; })) continue;
       if (clear) ++cleared;
       // Worst-case points and exact Phi.
       const Mat34E G1 = to_exact(g1), G2 = to_exact(g2);
       const Exact R2(r2d);
-      const std::vector<Vec3E> xs = worst_points(rng, na, &g1, e, m1);
+      const std::vector<Vec3E> xs = worst_points(rng, pa, &g1, e, m1);
       const std::array<double, 3> minus_e = {-e[0], -e[1], -e[2]};
-      const std::vector<Vec3E> ys = worst_points(rng, nb, two_moving ? &g2 : nullptr, minus_e, m2);
+      const std::vector<Vec3E> ys = worst_points(rng, pb, two_moving ? &g2 : nullptr, minus_e, m2);
       std::vector<Vec3E> wx, wy;
       std::vector<Exact> rx, ry;
       for (const Vec3E& x : xs) wx.push_back(place_pt(G1, x)), rx.push_back(m1->rho2(x));
@@ -762,10 +943,10 @@ BOOST_AUTO_TEST_CASE(sphere_test_never_clears_a_reachable_contact) {
             if (!worst_rel || rel < *worst_rel) worst_rel = rel, wi = i, wj = j;
           }
           if (clear && !(phi > 0))
-            fail(where.str() + ": sphere test cleared nodes " + std::to_string(ia) + ", " + std::to_string(ib) +
+            fail(where.str() + ": sphere test cleared " + pa.name + ", " + pb.name +
                  " but a map of the ball brings x onto y (Phi = " + std::to_string(CGAL::to_double(phi)) + ")");
         }
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < kMutants; ++k)
         if (mutant[k] && !clear) {
           ++mutant_cleared[k];
           if (caught) ++mutant_caught[k];
@@ -807,13 +988,16 @@ BOOST_AUTO_TEST_CASE(sphere_test_never_clears_a_reachable_contact) {
     }
   }
   BOOST_TEST(fail.count == 0, "seed " << seed << ": " << fail.count << " sphere-test failures");
-  BOOST_TEST_MESSAGE("cases " << cases << " cleared " << cleared << " near " << near_boundary << " mutants " << mutant_cleared[0] << "/" << mutant_caught[0] << " " << mutant_cleared[1] << "/" << mutant_caught[1] << " " << mutant_cleared[2] << "/" << mutant_caught[2] << " pairs " << pairs);
+  std::ostringstream mutants;
+  for (int k = 0; k < kMutants; ++k) mutants << " " << mutant_cleared[k] << "/" << mutant_caught[k];
+  BOOST_TEST_MESSAGE("cases " << cases << " cleared " << cleared << " near " << near_boundary << " mutants" << mutants.str()
+                              << " pairs " << pairs);
   // The cases must reach the decision boundary, and the sampling must be
   // able to expose a wrong factor in the test.
   BOOST_TEST(cleared * 4 > cases, "seed " << seed << ": only " << cleared << " of " << cases << " cases cleared");
   BOOST_TEST(near_boundary * 10 > cleared,
              "seed " << seed << ": only " << near_boundary << " of " << cleared << " cleared cases within 2 % of Phi = 0");
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < kMutants; ++k)
     BOOST_TEST(mutant_caught[k] > 0, "seed " << seed << ": wrong variant " << k << " of the sphere test not caught ("
                                              << mutant_cleared[k] << " extra clearances)");
   BOOST_TEST(pairs > 10000);
