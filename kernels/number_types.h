@@ -16,6 +16,8 @@
 #include <CGAL/enum.h>
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace tmcert {
@@ -32,8 +34,27 @@ using Vec3E = std::array<Exact, 3>;
 // A 3x4 affine map [A | a], row-major: m[4*r + c]; x -> A x + a.
 using Mat34E = std::array<Exact, 12>;
 
-// Smallest interval containing an exact rational.  Valid in any rounding mode.
-inline Interval to_interval(const Exact& q) { return Interval(CGAL::to_interval(q)); }
+// Smallest interval containing an exact rational.  Valid in any rounding
+// mode.  Fast path: mpq_get_d truncates toward zero, so a normal result d
+// and its neighbour away from zero bracket q (a point when q is a double);
+// zero, subnormal and out-of-range values go through CGAL's MPFR rounding.
+// Both give the same interval (tests/unit/test_number_types.cpp).
+inline Interval to_interval(const Exact& q) {
+  mpq_srcptr r = q.mpq();
+  const int s = mpq_sgn(r);
+  if (s == 0) return Interval(0);
+  const double d = mpq_get_d(r);
+  if (!(std::fabs(d) >= std::numeric_limits<double>::min()) || !std::isfinite(d))
+    return Interval(CGAL::to_interval(q));
+  mpz_srcptr den = mpq_denref(r);
+  const bool dyadic = mpz_scan1(den, 0) + 1 == mpz_sizeinbase(den, 2);
+  mpz_srcptr num = mpq_numref(r);
+  if (dyadic && mpz_sizeinbase(num, 2) - mpz_scan1(num, 0) <= 53) return Interval(d);  // q is exactly d
+  const double away = std::nextafter(d, s > 0 ? std::numeric_limits<double>::infinity()
+                                              : -std::numeric_limits<double>::infinity());
+  if (!std::isfinite(away)) return Interval(CGAL::to_interval(q));
+  return s > 0 ? Interval(d, away) : Interval(away, d);
+}
 
 // Exact value of a finite double (every finite double is a rational).
 inline Exact to_exact(double d) { return Exact(d); }

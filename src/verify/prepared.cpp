@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace tmcert {
 
@@ -109,9 +111,41 @@ FeatureGeometry<FT> make_face(const std::vector<Vec3<FT>>& v, const std::array<F
 }
 
 bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
+  {  // an interval filter proves most triangles non-degenerate
+    RoundingGuard guard;
+    const Interval ax = to_interval(a[0]), ay = to_interval(a[1]), az = to_interval(a[2]);
+    const Interval ux = to_interval(b[0]) - ax, uy = to_interval(b[1]) - ay, uz = to_interval(b[2]) - az;
+    const Interval wx = to_interval(c[0]) - ax, wy = to_interval(c[1]) - ay, wz = to_interval(c[2]) - az;
+    for (const Interval& n : {uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx})
+      if (n.inf() > 0 || n.sup() < 0) return false;
+  }
   const Vec3E u = sub(b, a), w = sub(c, a);
   return u[1] * w[2] - u[2] * w[1] == 0 && u[2] * w[0] - u[0] * w[2] == 0 && u[0] * w[1] - u[1] * w[0] == 0;
 }
+
+// Distinct exact points, numbered in order of first appearance (hashed by
+// their double approximations, compared exactly).
+class PointIds {
+ public:
+  std::uint32_t id(const Vec3E& p) {
+    const auto [it, fresh] = ids_.emplace(p, static_cast<std::uint32_t>(points_.size()));
+    if (fresh) points_.push_back(p);
+    return it->second;
+  }
+  const Vec3E& point(std::uint32_t id) const { return points_[id]; }
+  std::size_t size() const { return points_.size(); }
+
+ private:
+  struct Hash {
+    std::size_t operator()(const Vec3E& p) const {
+      std::size_t h = 0;
+      for (const Exact& x : p) h = h * 1000003u ^ std::hash<double>()(mpq_get_d(x.mpq()));
+      return h;
+    }
+  };
+  std::unordered_map<Vec3E, std::uint32_t, Hash> ids_;
+  std::vector<Vec3E> points_;
+};
 
 Vec3<Interval> enclose3(const Vec3E& x) { return {to_interval(x[0]), to_interval(x[1]), to_interval(x[2])}; }
 
@@ -157,12 +191,23 @@ FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E
   FeatureList out;
   const int first_segment = static_cast<int>(body.polygons.size());
   const int first_point = first_segment + static_cast<int>(body.segments.size());
-  std::map<std::pair<Vec3E, Vec3E>, bool> seen;
-  std::map<Vec3E, std::size_t> vertex_cell;  // the first piece's cell listing a placed vertex
+  // Each distinct input vertex is placed once; placed points are numbered
+  // (a singular pose may merge input vertices).
+  PointIds inputs, placed;
+  std::vector<std::uint32_t> placed_of;  // input id -> placed id
+  auto placed_id = [&](const Vec3E& x) {
+    const std::uint32_t i = inputs.id(x);
+    if (i == placed_of.size()) placed_of.push_back(placed.id(place(x)));
+    return placed_of[i];
+  };
+  std::unordered_set<std::uint64_t> seen;               // edges by their two placed ids
+  std::vector<std::int64_t> vertex_cell;                // placed id -> first piece's cell listing it
   for (const ConvexPiece& piece : body.pieces) {
     CellList cell;
+    std::vector<std::uint32_t> ids;
+    for (const Vec3E& x : piece.vertices) ids.push_back(placed_id(x));
     std::vector<Vec3E> v;
-    for (const Vec3E& x : piece.vertices) v.push_back(place(x));
+    for (std::uint32_t id : ids) v.push_back(placed.point(id));
     // Degenerate only under a singular pose: its point set is then the union
     // of its edges, which stay features.
     if (!collinear(v[0], v[1], v[2])) {
@@ -170,29 +215,31 @@ FeatureList feature_list(const Body& body, const std::function<Vec3E(const Vec3E
       out.faces.push_back({v, piece.polygon});
     }
     for (std::size_t k = 0; k < v.size(); ++k) {
-      const Vec3E& p = v[k];
-      const Vec3E& q = v[(k + 1) % v.size()];
-      auto key = p < q ? std::pair{p, q} : std::pair{q, p};
-      if (seen.emplace(key, true).second) {
+      const std::uint32_t a = ids[k], b = ids[(k + 1) % v.size()];
+      const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+      if (seen.insert(key).second) {
         cell.edges.push_back(static_cast<std::uint32_t>(out.edges.size()));
-        out.edges.push_back({{p, q}, piece.polygon});
+        out.edges.push_back({{v[k], v[(k + 1) % v.size()]}, piece.polygon});
       }
     }
-    for (const Vec3E& x : v) vertex_cell.emplace(x, out.cells.size());
+    if (vertex_cell.size() < placed.size()) vertex_cell.resize(placed.size(), -1);
+    for (std::uint32_t id : ids)
+      if (vertex_cell[id] < 0) vertex_cell[id] = static_cast<std::int64_t>(out.cells.size());
     out.cells.push_back(std::move(cell));
   }
   // Vertices once each (a vertex shared by polygons is one feature; the
   // first polygon names it).
-  std::set<Vec3E> vertex_seen;
+  std::vector<char> vertex_seen;
   for (std::size_t i = 0; i < body.polygons.size(); ++i)
     for (const Vec3E& x : body.polygons[i]) {
-      Vec3E p = place(x);
-      if (!vertex_seen.insert(p).second) continue;
+      const std::uint32_t id = placed_id(x);
+      if (vertex_seen.size() < placed.size()) vertex_seen.resize(placed.size(), 0);
+      if (vertex_seen[id]) continue;
+      vertex_seen[id] = 1;
       const auto index = static_cast<std::uint32_t>(out.vertices.size());
-      const auto owner = vertex_cell.find(p);
-      if (owner != vertex_cell.end()) out.cells[owner->second].vertices.push_back(index);
+      if (id < vertex_cell.size() && vertex_cell[id] >= 0) out.cells[vertex_cell[id]].vertices.push_back(index);
       else out.cells.push_back(CellList{-1, {}, {index}});
-      out.vertices.push_back({std::move(p), static_cast<int>(i)});
+      out.vertices.push_back({placed.point(id), static_cast<int>(i)});
     }
   std::erase_if(out.cells, [](const CellList& c) { return c.face < 0 && c.edges.empty() && c.vertices.empty(); });
   for (std::size_t i = 0; i < body.segments.size(); ++i) {
