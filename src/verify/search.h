@@ -262,6 +262,7 @@ struct Check {
     SphereCache<FT> moving_cells, other_cells;
     std::array<SphereCache<FT>, 3> moving, other;  // by table: vertices, edges, faces
     std::uint64_t piece = 0;
+    std::vector<PairRef> scratch;  // prune's work stack
     Spheres(const PreparedBody& m, const PreparedBody& f) {
       moving_cells.reset(m.cells.tree.nodes.size());
       other_cells.reset(f.cells.tree.nodes.size());
@@ -311,10 +312,9 @@ struct Check {
         return;
       if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
     };
-    std::vector<PairRef> work;
-    work.swap(alive);
-    alive.reserve(work.size());
-    std::reverse(work.begin(), work.end());  // a stack that pops in list order
+    std::vector<PairRef>& work = spheres.scratch;  // reused: no allocation per piece
+    work.assign(alive.rbegin(), alive.rend());     // a stack that pops in list order
+    alive.clear();
     while (!work.empty()) {
       const PairRef p = work.back();
       work.pop_back();
@@ -507,9 +507,20 @@ struct Check {
           entries.push_back({std::move(item), {}});
           continue;
         }
+        Item<Policy> left, right;
+        if (entries.empty()) {
+          // Nothing waits before this piece: its outcome goes straight into
+          // the result (the common case of small checks: no copies).
+          const Outcome outcome = visit(policy, item, left, right, spheres);
+          if (outcome == Outcome::Witness) return;
+          if (outcome == Outcome::Split) {
+            stack.push_back(std::move(right));
+            stack.push_back(std::move(left));
+          }
+          continue;
+        }
         CheckResult part;
         Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, part};
-        Item<Policy> left, right;
         const Outcome outcome = sub.visit(policy, item, left, right, spheres);
         if (outcome == Outcome::Split || outcome == Outcome::Cleared) {
           merge(part);  // statistics only
