@@ -19,14 +19,20 @@ namespace tmcert::detail {
 struct PairRef {
   ContactKind kind;
   bool nodes;
+  // A feature pair: the depth of the piece where the hierarchy made it (0
+  // for pairs carried from the root); the pieces above that depth are
+  // re-tested at a stop so that the surviving pairs are those of all pairs.
+  std::uint8_t born = 0;
   std::uint32_t i;
   std::uint32_t j;
 };
 
 static_assert(sizeof(PairRef) == 12, "alive lists hold many pairs: keep them small");
 
-inline PairRef node_pair(std::uint32_t i, std::uint32_t j) { return {ContactKind::VertexFace, true, i, j}; }
-inline PairRef feature_pair(ContactKind k, std::uint32_t i, std::uint32_t j) { return {k, false, i, j}; }
+inline PairRef node_pair(std::uint32_t i, std::uint32_t j) { return {ContactKind::VertexFace, true, 0, i, j}; }
+inline PairRef feature_pair(ContactKind k, std::uint32_t i, std::uint32_t j, std::uint8_t born = 0) {
+  return {k, false, born, i, j};
+}
 
 inline const FeatureTable& moving_table(const PreparedBody& b, ContactKind k) {
   return k == ContactKind::VertexFace ? b.vertices : k == ContactKind::EdgeEdge ? b.edges : b.faces;

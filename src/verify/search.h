@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 #include <cmath>
@@ -287,7 +288,8 @@ struct Check {
 
   template <class Policy>
   void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all,
-             Spheres<Policy>& spheres) {
+             Spheres<Policy>& spheres, int depth) {
+    const auto born = static_cast<std::uint8_t>(std::min(depth, 255));
     if (!ball.valid()) return;  // nothing is cleared by an unbounded ball
     CheckStats& stats = result.stats;
     if (!options.hierarchy) {
@@ -332,13 +334,13 @@ struct Check {
         const std::int32_t face_a = X.face[p.i], face_b = Y.face[p.j];
         if (face_b >= 0)
           for (std::uint32_t k = X.vertex_begin[p.i]; k < X.vertex_begin[p.i + 1]; ++k)
-            feature(feature_pair(ContactKind::VertexFace, X.vertices[k], static_cast<std::uint32_t>(face_b)));
+            feature(feature_pair(ContactKind::VertexFace, X.vertices[k], static_cast<std::uint32_t>(face_b), born));
         for (std::uint32_t k = X.edge_begin[p.i]; k < X.edge_begin[p.i + 1]; ++k)
           for (std::uint32_t l = Y.edge_begin[p.j]; l < Y.edge_begin[p.j + 1]; ++l)
-            feature(feature_pair(ContactKind::EdgeEdge, X.edges[k], Y.edges[l]));
+            feature(feature_pair(ContactKind::EdgeEdge, X.edges[k], Y.edges[l], born));
         if (face_a >= 0)
           for (std::uint32_t l = Y.vertex_begin[p.j]; l < Y.vertex_begin[p.j + 1]; ++l)
-            feature(feature_pair(ContactKind::FaceVertex, static_cast<std::uint32_t>(face_a), Y.vertices[l]));
+            feature(feature_pair(ContactKind::FaceVertex, static_cast<std::uint32_t>(face_a), Y.vertices[l], born));
         continue;
       }
       const BvNode& a = X.tree.nodes[p.i];
@@ -370,11 +372,40 @@ struct Check {
     return {node_pair(X.root(), Y.root())};
   }
 
+  // The ball of a piece on the path to the current one (the hierarchy's
+  // re-test at stops, below).  Shared read-only by the pieces under it.
+  template <class Policy>
+  struct Ancestor {
+    typename Policy::Ball ball;
+    std::shared_ptr<const Ancestor> up;
+    int depth;
+  };
+
   template <class Policy>
   struct Item {
     Node node;
     typename Policy::Piece piece;
+    std::shared_ptr<const Ancestor<Policy>> parent;  // hierarchy only
   };
+
+  // With the hierarchy, a feature pair made at depth d was not tested on the
+  // pieces above d, where carrying every pair (all pairs) would have tested
+  // it.  At a stop, test it there too and drop it if any of those pieces
+  // clears it: the pairs left are then exactly those all pairs leaves, so
+  // the verdict, witness and undecided pieces are the same with or without
+  // the hierarchy (proofs/hierarchy.md).
+  template <class Policy>
+  void retest_above(const Policy& policy, const Item<Policy>& item, std::vector<PairRef>& alive) {
+    std::erase_if(alive, [&](const PairRef& p) {
+      if (p.nodes) return false;
+      for (const Ancestor<Policy>* a = item.parent.get(); a; a = a->up.get()) {
+        if (a->depth >= p.born) continue;
+        typename Policy::Ball ball = a->ball;  // a copy: the test may fill its exact form
+        if (ball.valid() && policy.test(ball, p, result.stats) == CGAL::POSITIVE) return true;
+      }
+      return false;
+    });
+  }
 
   // What a node's tests decided.
   enum class Outcome { Cleared, Split, Stopped, Witness };
@@ -390,14 +421,17 @@ struct Check {
     ++stats.nodes;
     stats.max_depth = std::max(stats.max_depth, node.depth);
     typename Policy::Ball ball = policy.ball(item.piece);
-    prune(policy, ball, node.alive, false, spheres);  // keep the pairs not cleared on this piece
+    prune(policy, ball, node.alive, false, spheres, node.depth);  // keep the pairs not cleared on this piece
     if (node.alive.empty()) return Outcome::Cleared;  // cleared on the whole piece
     std::optional<StopReason> stop;
     if (node.depth >= std::min(options.max_depth, kDepthCap)) stop = StopReason::Depth;
     else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
     if (stop) {
       // A stop is final: descend the hierarchy to feature pairs here.
-      if (options.hierarchy) prune(policy, ball, node.alive, true, spheres);
+      if (options.hierarchy) {
+        prune(policy, ball, node.alive, true, spheres, node.depth);
+        retest_above(policy, item, node.alive);
+      }
       if (node.alive.empty()) return Outcome::Cleared;
       // Witness candidates: the midpoint, the end, and the scene time with
       // the smallest denominator in the piece (a contact at a "round"
@@ -415,8 +449,10 @@ struct Check {
       record(node, *stop);
       return Outcome::Stopped;
     }
-    left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}};
-    right = Item<Policy>{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}};
+    std::shared_ptr<const Ancestor<Policy>> here;
+    if (options.hierarchy) here = std::make_shared<const Ancestor<Policy>>(Ancestor<Policy>{ball, item.parent, node.depth});
+    left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}, here};
+    right = Item<Policy>{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}, here};
     policy.split(item.piece, left.piece, right.piece);
     return Outcome::Split;
   }
@@ -499,7 +535,7 @@ struct Check {
     Spheres<Policy> spheres(moving, other);
     {
       std::vector<Item<Policy>> stack;
-      stack.push_back({Node{0, 0, root_pairs()}, policy.root()});
+      stack.push_back({Node{0, 0, root_pairs()}, policy.root(), nullptr});
       while (!stack.empty()) {
         Item<Policy> item = std::move(stack.back());
         stack.pop_back();
