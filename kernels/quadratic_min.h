@@ -49,15 +49,32 @@ namespace detail {
 
 // The sign of the smallest of candidate values seen so far; an early
 // NEGATIVE ends the search (the minimum is negative).
+// Over intervals, a candidate whose sign is not certain (or whose presence
+// could not be settled) marks the result `uncertain`: the search goes on,
+// since a later candidate that is certainly negative still decides the
+// minimum (NEGATIVE); otherwise the exact run decides.
 struct MinSign {
   CGAL::Sign sign = CGAL::POSITIVE;
+  bool uncertain = false;
   bool negative() const { return sign == CGAL::NEGATIVE; }
 };
 
 template <class FT>
 void take(MinSign& m, const FT& value) {
-  if (value < FT(0)) m.sign = CGAL::NEGATIVE;
-  else if (m.sign == CGAL::POSITIVE && !(value > FT(0))) m.sign = CGAL::ZERO;
+  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) {
+    if (value.sup() < 0) {
+      m.sign = CGAL::NEGATIVE;
+    } else if (value.inf() > 0) {
+      // positive: nothing to record
+    } else if (value.inf() == 0 && value.sup() == 0) {
+      if (m.sign == CGAL::POSITIVE) m.sign = CGAL::ZERO;  // exactly zero
+    } else {
+      m.uncertain = true;  // straddles zero, or NaN
+    }
+  } else {
+    if (value < FT(0)) m.sign = CGAL::NEGATIVE;
+    else if (m.sign == CGAL::POSITIVE && !(value > FT(0))) m.sign = CGAL::ZERO;
+  }
 }
 
 // An uncertain comparison the enclosures below could not settle: hand over
@@ -112,10 +129,26 @@ bool positive_on_box(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
 // whose existence or position is uncertain is settled, where possible, by
 // an interval extension of q over a superset (the edge, the domain's box)
 // being certainly positive; otherwise the exact run decides.
+namespace detail {
+template <class FT>
+CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m);
+}  // namespace detail
+
 template <class FT>
 CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
-  using Bool = decltype(FT(0) < FT(0));  // bool, or CGAL::Uncertain<bool> over intervals
   detail::MinSign m;
+  const CGAL::Sign sign = detail::min_sign_candidates(q, d, m);
+  if (m.uncertain && sign != CGAL::NEGATIVE) detail::undecided();
+  return sign;
+}
+
+namespace detail {
+
+// The candidates of min_sign; over intervals, candidates it cannot settle
+// set m.uncertain instead of ending the search.
+template <class FT>
+CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m) {
+  using Bool = decltype(FT(0) < FT(0));  // bool, or CGAL::Uncertain<bool> over intervals
   const FT zero(0);
   // Vertices.
   for (std::size_t i = 0; i < d.count; ++i) {
@@ -152,7 +185,7 @@ CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
     }
     // Only intervals get here (an uncertain comparison): q positive on the
     // whole edge settles it; otherwise the exact run decides.
-    if (!detail::positive_on_edge(alpha, beta, gamma)) detail::undecided();
+    if (!detail::positive_on_edge(alpha, beta, gamma)) m.uncertain = true;
   }
   if (d.count < 3) return m.sign;
   // Interior: only a positive definite Hessian has an interior minimum.
@@ -182,8 +215,10 @@ CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
   }
   // Only intervals get here: q positive on the domain's bounding box
   // settles it; otherwise the exact run decides.
-  if (!detail::positive_on_box(q, d)) detail::undecided();
+  if (!detail::positive_on_box(q, d)) m.uncertain = true;
   return m.sign;
 }
+
+}  // namespace detail
 
 }  // namespace tmcert

@@ -223,6 +223,32 @@ BOOST_AUTO_TEST_CASE(uncertain_candidates_are_settled_by_enclosures_or_exactly) 
     FilterCounters counters;
     BOOST_CHECK_MESSAGE(filtered_sign(q, counters) == on_square(q), "iteration " << iter);
   }
+  // Vertex values whose signs intervals cannot tell (q(0, 0) = tiny, enclosed
+  // as [0, smallest double]) no longer end the interval run: the certainly
+  // negative interior minimum decides NEGATIVE without exact work.
+  // q = s1^2 + s2^2 - s1 - s2 + tiny: minimum -1/2 + tiny at (1/2, 1/2).
+  {
+    const Quadratic2<Exact> q{Exact(1), Exact(0), Exact(1), Exact(-1), Exact(-1), tiny};
+    BOOST_CHECK_THROW(([&] {
+                        RoundingGuard guard;
+                        Interval v = to_interval(tiny);
+                        if (v > Interval(0)) return;  // an uncertain comparison throws
+                      })(),
+                      CGAL::Uncertain_conversion_exception);
+    FilterCounters counters;
+    BOOST_CHECK(filtered_sign(q, counters) == CGAL::NEGATIVE);
+    BOOST_CHECK(on_square(q) == CGAL::NEGATIVE);
+    BOOST_CHECK_EQUAL(counters.exact_fallbacks, 0u);
+  }
+  // The same uncertain vertex with every other candidate positive: the
+  // exact run decides (here ZERO at the vertex (0, 0)).
+  {
+    const Quadratic2<Exact> q{Exact(1), Exact(0), Exact(1), tiny, Exact(0), Exact(0)};
+    FilterCounters counters;
+    BOOST_CHECK(filtered_sign(q, counters) == on_square(q));
+    BOOST_CHECK(on_square(q) == CGAL::ZERO);
+    BOOST_CHECK_EQUAL(counters.exact_fallbacks, 1u);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
