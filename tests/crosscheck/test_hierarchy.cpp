@@ -23,6 +23,7 @@
 #include "src/verify/hierarchy.h"
 #include "src/verify/prepared.h"
 #include "src/verify/verify.h"
+#include "tests/support/exact_oracle.h"
 #include "tests/support/random_geometry.h"
 
 #include <boost/test/unit_test.hpp>
@@ -40,6 +41,9 @@
 #include <vector>
 
 using namespace tmcert;
+using tmcert::testing::eval_motion;
+using tmcert::testing::in_triangle;
+using tmcert::testing::on_segment;
 using tmcert::testing::Rng;
 
 namespace {
@@ -139,39 +143,6 @@ Exact rq(Rng& r, double lo, double hi) {
 
 Vec3E rpoint(Rng& r, const Vec3E& c, double half) {
   return {c[0] + rq(r, -half, half), c[1] + rq(r, -half, half), c[2] + rq(r, -half, half)};
-}
-
-// Rational Bezier evaluation at scene parameter t, written independently of
-// src/motion (de Casteljau on (w P, w)).
-Mat34E eval_motion(const Motion& m, const Exact& t) {
-  if (m.control_points.size() == 1) return m.control_points[0];
-  const Exact u = (t - m.t0) / (m.t1 - m.t0);
-  const std::size_t n = m.control_points.size();
-  std::vector<std::array<Exact, 13>> h(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    for (int e = 0; e < 12; ++e) h[k][e] = m.weights[k] * m.control_points[k][e];
-    h[k][12] = m.weights[k];
-  }
-  for (std::size_t level = 1; level < n; ++level)
-    for (std::size_t k = 0; k + level < n; ++k)
-      for (int e = 0; e < 13; ++e) h[k][e] = (1 - u) * h[k][e] + u * h[k + 1][e];
-  Mat34E out;
-  for (int e = 0; e < 12; ++e) out[e] = h[0][e] / h[0][12];
-  return out;
-}
-
-bool on_segment(const Vec3E& p, const Vec3E& a, const Vec3E& b) {
-  if (a == b) return p == a;
-  const Vec3E ab = vsub(b, a), ap = vsub(p, a);
-  return vzero(vcross(ab, ap)) && vdot(ap, ab) >= 0 && vdot(vsub(p, b), vsub(a, b)) >= 0;
-}
-
-bool in_triangle(const Vec3E& p, const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  const Vec3E n = vcross(vsub(b, a), vsub(c, a));
-  if (vzero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, a, c);
-  if (vdot(n, vsub(p, a)) != 0) return false;
-  return vdot(vcross(vsub(b, a), vsub(p, a)), n) >= 0 && vdot(vcross(vsub(c, b), vsub(p, b)), n) >= 0 &&
-         vdot(vcross(vsub(a, c), vsub(p, c)), n) >= 0;
 }
 
 // Does the body, placed at scene parameter t, contain p?  (The oracle for
@@ -1053,13 +1024,7 @@ Motion approach_motion(Rng& r, int degree, const Exact& t0, const Exact& t1, con
 // Replaces every coordinate of a body's own frame by f(coordinate).
 template <class F>
 void map_body(Body& b, F f) {
-  for (auto& poly : b.polygons)
-    for (Vec3E& v : poly) v = f(v);
-  for (ConvexPiece& p : b.pieces)
-    for (Vec3E& v : p.vertices) v = f(v);
-  for (auto& s : b.segments)
-    for (Vec3E& v : s) v = f(v);
-  for (Vec3E& v : b.points) v = f(v);
+  tmcert::testing::map_coordinates(b, f);
   if (b.mass_is_default) b.mass = default_mass(body_vertices(b), Exact(1));
   else
     for (Vec3E& v : b.mass.points) v = f(v);

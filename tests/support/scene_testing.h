@@ -14,6 +14,7 @@
 #include "src/metric/metric.h"
 #include "src/scene/model.h"
 #include "src/verify/verify.h"
+#include "tests/support/exact_oracle.h"
 
 #include <boost/test/unit_test.hpp>
 #include <rapidcheck.h>
@@ -33,14 +34,8 @@ namespace tmcert::testing {
 
 // ------------------------------------------------------------------ exact geometry (the oracle)
 
-inline Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 inline Vec3E add(const Vec3E& a, const Vec3E& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
 inline Vec3E mul(const Exact& s, const Vec3E& a) { return {s * a[0], s * a[1], s * a[2]}; }
-inline Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec3E cross(const Vec3E& a, const Vec3E& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
 inline Vec3E lerp(const Vec3E& a, const Vec3E& b, const Exact& t) { return add(mul(1 - t, a), mul(t, b)); }
 
 inline Vec3E place(const Mat34E& m, const Vec3E& x) {
@@ -65,40 +60,6 @@ inline const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
 inline Mat34E translation(const Exact& x, const Exact& y, const Exact& z) {
   return {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z};
-}
-
-// The rational Bezier motion at scene parameter t, exactly: de Casteljau on
-// the homogeneous points (w_k P_k, w_k).
-inline Mat34E eval_motion(const Motion& m, const Exact& t) {
-  const Exact u = (t - m.t0) / (m.t1 - m.t0);
-  const std::size_t n = m.control_points.size();
-  std::vector<std::array<Exact, 13>> h(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    for (int e = 0; e < 12; ++e) h[k][e] = m.weights[k] * m.control_points[k][e];
-    h[k][12] = m.weights[k];
-  }
-  for (std::size_t level = 1; level < n; ++level)
-    for (std::size_t k = 0; k + level < n; ++k)
-      for (int e = 0; e < 13; ++e) h[k][e] = (1 - u) * h[k][e] + u * h[k + 1][e];
-  Mat34E out;
-  for (int e = 0; e < 12; ++e) out[e] = h[0][e] / h[0][12];
-  return out;
-}
-
-inline bool on_segment(const Vec3E& p, const Vec3E& a, const Vec3E& b) {
-  if (a == b) return p == a;
-  const Vec3E ab = sub(b, a), ap = sub(p, a);
-  return is_zero(cross(ab, ap)) && dot(ap, ab) >= 0 && dot(sub(p, b), sub(a, b)) >= 0;
-}
-
-// p in the closed triangle abc, which may be degenerate (a singular affine
-// map flattens it to a segment or a point).
-inline bool in_triangle(const Vec3E& p, const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  const Vec3E n = cross(sub(b, a), sub(c, a));
-  if (is_zero(n)) return on_segment(p, a, b) || on_segment(p, b, c) || on_segment(p, a, c);
-  if (dot(n, sub(p, a)) != 0) return false;
-  return dot(cross(sub(b, a), sub(p, a)), n) >= 0 && dot(cross(sub(c, b), sub(p, b)), n) >= 0 &&
-         dot(cross(sub(a, c), sub(p, c)), n) >= 0;
 }
 
 inline bool nondegenerate(const std::vector<Vec3E>& tri) {
@@ -168,19 +129,6 @@ inline VerifyOptions options_for(const Exact& epsilon, KernelKind kernel, std::u
 }
 
 // ------------------------------------------------------------------ transformations
-
-// Replaces every coordinate of the body in its own frame (polygons, convex
-// pieces, segments, points) by f(coordinate).
-template <class F>
-void map_coordinates(Body& b, F f) {
-  for (auto& poly : b.polygons)
-    for (Vec3E& v : poly) v = f(v);
-  for (ConvexPiece& piece : b.pieces)
-    for (Vec3E& v : piece.vertices) v = f(v);
-  for (auto& seg : b.segments)
-    for (Vec3E& v : seg) v = f(v);
-  for (Vec3E& v : b.points) v = f(v);
-}
 
 // Applies the affine world map W to the scene: moving (and posed) bodies'
 // control points [A | a] -> W o [A | a]; plain fixed bodies' coordinates
