@@ -95,15 +95,39 @@ HomogeneousCurve<Exact, 2> joint_curve(const Motion& first, const Motion& second
 
 template <int B>
 Mat34E evaluate(const HomogeneousCurve<Exact, B>& curve, const Exact& u, int block) {
-  // De Casteljau with exact rationals.
-  HomogeneousCurve<Exact, B> work(curve);
-  const Exact v = Exact(1) - u;
+  // The Bernstein sum with integer weights: for u = p/q in lowest terms,
+  // q^n B_k(u) = C(n, k) p^k (q - p)^(n - k) is an integer, and the common
+  // factor q^n cancels in numerator / weight.  Each entry is one sum over a
+  // running denominator (ExactSum): no gcd per term, unlike de Casteljau.
   const std::size_t w = kHomogeneousSize<B> - 1;
-  for (std::size_t level = 1; level < work.size(); ++level)
-    for (std::size_t k = 0; k + level < work.size(); ++k)
-      for (std::size_t e = 0; e <= w; ++e) work[k][e] = v * work[k][e] + u * work[k + 1][e];
+  const std::size_t n = curve.size() - 1;
+  mpz_srcptr p = mpq_numref(u.mpq()), q = mpq_denref(u.mpq());
+  CGAL::Gmpz r;
+  mpz_sub(r.mpz(), q, p);
+  std::vector<CGAL::Gmpz> c(n + 1);
+  for (std::size_t k = 0; k <= n; ++k) {
+    CGAL::Gmpz t, a;
+    mpz_bin_uiui(c[k].mpz(), n, k);
+    mpz_pow_ui(t.mpz(), p, k);
+    mpz_pow_ui(a.mpz(), r.mpz(), n - k);
+    mpz_mul(c[k].mpz(), c[k].mpz(), t.mpz());
+    mpz_mul(c[k].mpz(), c[k].mpz(), a.mpz());
+  }
+  std::array<ExactSum, 13> sums;  // the block's 12 entries, then the weight
+  CGAL::Gmpz term;
+  for (std::size_t k = 0; k <= n; ++k) {
+    if (mpz_sgn(c[k].mpz()) == 0) continue;
+    for (int e = 0; e < 13; ++e) {
+      const Exact& h = curve[k][e < 12 ? 12 * block + e : w];
+      mpz_mul(term.mpz(), mpq_numref(h.mpq()), c[k].mpz());
+      CGAL::Gmpz den;
+      mpz_set(den.mpz(), mpq_denref(h.mpq()));
+      sums[e].add(term, den);
+    }
+  }
+  const Exact weight = sums[12].value();
   Mat34E m;
-  for (int e = 0; e < 12; ++e) m[e] = work[0][12 * block + e] / work[0][w];
+  for (int e = 0; e < 12; ++e) m[e] = sums[e].value() / weight;
   return m;
 }
 
