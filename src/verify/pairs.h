@@ -62,7 +62,7 @@ inline std::vector<PairRef> all_pairs(const PreparedBody& m, const PreparedBody&
   if (total > kMaxPairs)
     throw ResourceLimit("check of \"" + m.body->name + "\" and \"" + f.body->name + "\": " + std::to_string(total) +
                         " feature pairs exceed the limit of " + std::to_string(kMaxPairs) +
-                        " (bodies this large need the bounding-volume hierarchy of a later version)");
+                        " with --all-pairs (run without it: the hierarchy has no such limit)");
   std::vector<PairRef> pairs;
   pairs.reserve(total);
   for (ContactKind k : {ContactKind::VertexFace, ContactKind::EdgeEdge, ContactKind::FaceVertex}) {
