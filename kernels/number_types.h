@@ -16,6 +16,10 @@
 #include <CGAL/enum.h>
 
 #include <array>
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+#include <vector>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -75,6 +79,30 @@ class ExactSum {
 
  private:
   CGAL::Gmpz num_, den_;
+};
+
+// Distinct exact points, numbered in order of first appearance (hashed by
+// their double approximations, compared exactly).
+class PointIds {
+ public:
+  std::uint32_t id(const Vec3E& p) {
+    const auto [it, fresh] = ids_.emplace(p, static_cast<std::uint32_t>(points_.size()));
+    if (fresh) points_.push_back(p);
+    return it->second;
+  }
+  const Vec3E& point(std::uint32_t id) const { return points_[id]; }
+  std::size_t size() const { return points_.size(); }
+
+ private:
+  struct Hash {
+    std::size_t operator()(const Vec3E& p) const {
+      std::size_t h = 0;
+      for (const Exact& x : p) h = h * 1000003u ^ std::hash<double>()(mpq_get_d(x.mpq()));
+      return h;
+    }
+  };
+  std::unordered_map<Vec3E, std::uint32_t, Hash> ids_;
+  std::vector<Vec3E> points_;
 };
 
 // "p/q" in lowest terms, or "p" when the denominator is 1.

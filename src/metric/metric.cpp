@@ -40,11 +40,20 @@ Metric Metric::from_mass(const MassDistribution& mass) {
   Metric metric;
   // G = sum w h h^T, h = (p, 1): the 10 distinct entries as integer
   // products over running denominators (ExactSum), no per-term gcd.
+  // Repeated points (a default mass lists a vertex once per polygon) are
+  // merged first, their weights summed: the same G, fewer terms.
+  PointIds ids;
+  std::vector<Exact> weight;
+  for (std::size_t i = 0; i < mass.points.size(); ++i) {
+    const std::uint32_t k = ids.id(mass.points[i]);
+    if (k == weight.size()) weight.push_back(mass.weights[i]);
+    else weight[k] += mass.weights[i];
+  }
   std::array<ExactSum, 16> sums;
   CGAL::Gmpz one(1), num, den;
-  for (std::size_t i = 0; i < mass.points.size(); ++i) {
-    const Vec3E& p = mass.points[i];
-    const Exact& w = mass.weights[i];
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const Vec3E& p = ids.point(static_cast<std::uint32_t>(i));
+    const Exact& w = weight[i];
     mpz_srcptr hn[4] = {mpq_numref(p[0].mpq()), mpq_numref(p[1].mpq()), mpq_numref(p[2].mpq()), one.mpz()};
     mpz_srcptr hd[4] = {mpq_denref(p[0].mpq()), mpq_denref(p[1].mpq()), mpq_denref(p[2].mpq()), one.mpz()};
     for (int r = 0; r < 4; ++r)
@@ -118,12 +127,15 @@ MassDistribution default_mass(const std::vector<Vec3E>& vertices, const Exact& f
   if (size == 0) size = fallback_size > 0 ? fallback_size : Exact(1);
   const Exact offset = size / 10;
 
-  // Affine rank of the vertex set, exactly.
+  // Affine rank of the vertex set, exactly (over the distinct vertices).
+  PointIds distinct;
+  for (const Vec3E& v : vertices) distinct.id(v);
   const Vec3E& p0 = vertices[0];
   std::optional<Vec3E> dir;      // first nonzero difference
   std::optional<Vec3E> normal;   // first nonzero cross product
   bool full = false;
-  for (const Vec3E& v : vertices) {
+  for (std::uint32_t i = 0; i < distinct.size(); ++i) {
+    const Vec3E& v = distinct.point(i);
     const Vec3E d = sub(v, p0);
     if (is_zero(d)) continue;
     if (!dir) { dir = d; continue; }

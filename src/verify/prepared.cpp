@@ -123,30 +123,6 @@ bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
   return u[1] * w[2] - u[2] * w[1] == 0 && u[2] * w[0] - u[0] * w[2] == 0 && u[0] * w[1] - u[1] * w[0] == 0;
 }
 
-// Distinct exact points, numbered in order of first appearance (hashed by
-// their double approximations, compared exactly).
-class PointIds {
- public:
-  std::uint32_t id(const Vec3E& p) {
-    const auto [it, fresh] = ids_.emplace(p, static_cast<std::uint32_t>(points_.size()));
-    if (fresh) points_.push_back(p);
-    return it->second;
-  }
-  const Vec3E& point(std::uint32_t id) const { return points_[id]; }
-  std::size_t size() const { return points_.size(); }
-
- private:
-  struct Hash {
-    std::size_t operator()(const Vec3E& p) const {
-      std::size_t h = 0;
-      for (const Exact& x : p) h = h * 1000003u ^ std::hash<double>()(mpq_get_d(x.mpq()));
-      return h;
-    }
-  };
-  std::unordered_map<Vec3E, std::uint32_t, Hash> ids_;
-  std::vector<Vec3E> points_;
-};
-
 Vec3<Interval> enclose3(const Vec3E& x) { return {to_interval(x[0]), to_interval(x[1]), to_interval(x[2])}; }
 
 FeatureGeometry<double> midpoint(const FeatureGeometry<Interval>& e) {
