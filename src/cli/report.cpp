@@ -36,6 +36,7 @@ nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
                 {"face_vertex_exact", s.by_kind[2].exact_fallbacks},
                 {"exact_static_tests", s.static_tests},
                 {"sphere_tests", s.sphere_tests},
+                {"slab_clears", s.slab_clears},
                 {"prefiltered", s.prefiltered},
                 {"seconds", s.seconds}};
   return j;

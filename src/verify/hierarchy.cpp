@@ -56,7 +56,44 @@ struct Builder {
     for (const auto& x : pts) r = std::max(r, distance(x, n.c).sup());
     n.r = std::isnan(r) ? kInf : r;
     n.p = rho_points(pts);
+    // A flat item (three or more points): the slab along its normal.
+    if (pts.size() >= 3) {
+      auto mid = [](const Vec3<Interval>& x) {
+        return std::array<double, 3>{CGAL::to_double(x[0]), CGAL::to_double(x[1]), CGAL::to_double(x[2])};
+      };
+      const auto p0 = mid(pts[0]);
+      std::array<double, 3> best{};
+      double best2 = 0;
+      for (std::size_t i = 1; i < pts.size(); ++i)
+        for (std::size_t j = i + 1; j < pts.size() && j < i + 3; ++j) {
+          const auto pi = mid(pts[i]), pj = mid(pts[j]);
+          const std::array<double, 3> u{pi[0] - p0[0], pi[1] - p0[1], pi[2] - p0[2]};
+          const std::array<double, 3> v{pj[0] - p0[0], pj[1] - p0[1], pj[2] - p0[2]};
+          const std::array<double, 3> c{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+          const double c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+          if (c2 > best2) { best2 = c2; best = c; }
+        }
+      if (best2 > 0 && std::isfinite(best2)) {
+        const double len = std::sqrt(best2);
+        for (int i = 0; i < 3; ++i) n.slab_n[i] = best[i] / len;
+        set_slab(n, pts);
+      }
+    }
     return n;
+  }
+
+  // The slab of node n along n.slab_n over the points, rounded outward (any
+  // direction gives a sound slab; a flat set gives a thin one).
+  static void set_slab(BvNode& n, const std::vector<Vec3<Interval>>& pts) {
+    double lo = kInf, hi = -kInf;
+    for (const auto& x : pts) {
+      const Interval d = Interval(n.slab_n[0]) * x[0] + Interval(n.slab_n[1]) * x[1] + Interval(n.slab_n[2]) * x[2];
+      lo = std::min(lo, d.inf());
+      hi = std::max(hi, d.sup());
+    }
+    n.slab = std::isfinite(lo) && std::isfinite(hi) && lo <= hi;
+    n.slab_lo = lo;
+    n.slab_hi = hi;
   }
 
   // Builds the subtree over order[first, last) and returns its node index.
@@ -95,6 +132,23 @@ struct Builder {
     }
     n.r = std::isnan(r) || !std::isfinite(r) ? kInf : r;
     n.p = p;
+    // Flat when every leaf is flat with (nearly) the first leaf's normal, up
+    // to sign; the slab is then measured over all their points.
+    const BvNode& first_leaf = tree.nodes[order[first]];
+    bool flat = first_leaf.slab;
+    for (std::size_t k = first; flat && k < last; ++k) {
+      const BvNode& l = tree.nodes[order[k]];
+      double dot = 0;
+      for (int i = 0; i < 3; ++i) dot += l.slab_n[i] * first_leaf.slab_n[i];
+      flat = l.slab && std::fabs(std::fabs(dot) - 1) < 1e-9;
+    }
+    if (flat) {
+      n.slab_n = first_leaf.slab_n;
+      std::vector<Vec3<Interval>> pts;
+      for (std::size_t k = first; k < last; ++k)
+        pts.insert(pts.end(), features[order[k]].begin(), features[order[k]].end());
+      set_slab(n, pts);
+    }
     n.left = left;
     n.right = right;
     n.leaves = static_cast<std::uint32_t>(last - first);

@@ -40,6 +40,12 @@ struct BvNode {
   double p = 0;                // >= max rho over the sphere, rounded upward
   std::uint32_t left = 0, right = 0;  // children of an internal node
   std::uint32_t leaves = 1;           // items under the node
+  // A slab {x : lo <= n.x <= hi} holding the node's items (n a unit-ish
+  // double vector, lo and hi rounded outward), when the node is flat: its
+  // items have (nearly) parallel normals.  Used by slab_test.
+  bool slab = false;
+  std::array<double, 3> slab_n{};
+  double slab_lo = 0, slab_hi = 0;
 };
 
 struct BvTree {
@@ -190,6 +196,52 @@ template <class FT>
 bool spheres_clear(const SphereFrame<FT>& f, const BvNode& a, const BvNode& b) {
   return world_spheres_apart(world_sphere(f, true, a), world_sphere(f, false, b));
 }
+
+// The slab test of a moving flat node `a` (body frame) against a fixed flat
+// node `b` (world) on a piece (proofs/hierarchy.md §1b).  For x in a's items,
+// n_b.(g(x) + delta(x)) = m.x + n_b.t + n_b.delta(x) with m = A^T n_b, and
+// m.x = alpha (n_a.x) + (m - alpha n_a).x for any alpha, where n_a.x lies in
+// a's slab, x in a's sphere and |delta(x)| <= R p_a.  `apart`: the range of
+// that projection certainly misses b's slab, so no feature pair under the
+// two nodes can touch on the piece.  `size` (the part of the range that
+// shrinks when a is split) and `fat` (R p_a |n_b|) guide the descent only.
+struct SlabTest {
+  bool applicable = false, apart = false;
+  double size = 0, fat = 0;
+};
+
+// Call under RoundingGuard.
+inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const BvNode& b) {
+  SlabTest out;
+  if (!a.slab || !b.slab || f.body2_moving) return out;
+  Interval m[3];
+  for (int j = 0; j < 3; ++j)
+    m[j] = f.g1[j] * Interval(b.slab_n[0]) + f.g1[4 + j] * Interval(b.slab_n[1]) + f.g1[8 + j] * Interval(b.slab_n[2]);
+  double alpha = 0;
+  for (int j = 0; j < 3; ++j) alpha += CGAL::to_double(m[j]) * a.slab_n[j];
+  if (!std::isfinite(alpha)) return out;
+  Interval perp_c(0), perp2(0), nb2(0), shift(0);
+  for (int j = 0; j < 3; ++j) {
+    const Interval perp = m[j] - Interval(alpha) * Interval(a.slab_n[j]);
+    perp_c += perp * Interval(a.c[j]);
+    perp2 += CGAL::square(perp);
+  }
+  for (int i = 0; i < 3; ++i) {
+    nb2 += CGAL::square(Interval(b.slab_n[i]));
+    shift += Interval(b.slab_n[i]) * f.g1[4 * i + 3];
+  }
+  const Interval size = CGAL::sqrt(Interval(0, perp2.sup())) * Interval(a.r);
+  const Interval fat = CGAL::sqrt(Interval(0, nb2.sup())) * f.R * Interval(a.p);
+  const double spread = (size + fat).sup();
+  if (!(spread >= 0) || !std::isfinite(spread)) return out;  // NaN or unbounded: no claim
+  const Interval w = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-spread, spread);
+  out.applicable = true;
+  out.apart = w.sup() < b.slab_lo || w.inf() > b.slab_hi;
+  out.size = size.sup();
+  out.fat = fat.sup();
+  return out;
+}
+inline SlabTest slab_test(const SphereFrame<double>&, const BvNode&, const BvNode&) { return {}; }
 
 // The placed spheres of the nodes of one tree (or of one feature table),
 // computed once per piece (`stamp` says for which piece an entry is current;

@@ -328,7 +328,20 @@ struct Check {
       if (world_spheres_apart(spheres.moving_cells.get(piece, frame, true, X.tree.nodes, p.i),
                               spheres.other_cells.get(piece, frame, false, Y.tree.nodes, p.j)))
         continue;
+      // Flat against fixed flat: their slabs (proofs/hierarchy.md §1b).
+      const SlabTest slab = slab_test(frame, X.tree.nodes[p.i], Y.tree.nodes[p.j]);
+      if (slab.apart) {
+        ++stats.slab_clears;
+        continue;
+      }
       const bool leaf_a = X.tree.leaf(p.i), leaf_b = Y.tree.leaf(p.j);
+      // Two flat nodes whose slab test fails by the piece's fattening rather
+      // than by the node's extent: splitting or expanding them cannot help on
+      // this piece, while a smaller piece can clear the whole pair at once.
+      if (!expand_all && slab.applicable && !(slab.size > slab.fat)) {
+        alive.push_back(p);
+        continue;
+      }
       if (leaf_a && leaf_b) {
         // Two cells: their feature pairs, in a fixed order.
         const std::int32_t face_a = X.face[p.i], face_b = Y.face[p.j];
@@ -499,6 +512,7 @@ struct Check {
     for (int k = 0; k < 3; ++k) s.by_kind[k] += p.by_kind[k];
     s.static_tests += p.static_tests;
     s.sphere_tests += p.sphere_tests;
+    s.slab_clears += p.slab_clears;
     for (const UndecidedInterval& u : part.undecided) {
       if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)
         result.undecided.back().t1 = u.t1;

@@ -60,6 +60,7 @@ struct CheckStats {
   std::array<FilterCounters, 3> by_kind;  // vertex-face, edge-edge, face-vertex
   std::uint64_t static_tests = 0;
   std::uint64_t sphere_tests = 0;  // hierarchy node pairs tested
+  std::uint64_t slab_clears = 0;   // node pairs cleared by their slabs
   bool prefiltered = false;      // cleared by the swept-box prefilter alone
   double seconds = 0;
 };

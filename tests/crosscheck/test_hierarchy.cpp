@@ -1291,4 +1291,122 @@ BOOST_AUTO_TEST_CASE(hierarchy_agrees_with_all_pairs) {
   BOOST_TEST(st.truth[static_cast<int>(Truth::NearClear)] >= 10);
 }
 
+// §1b. The slab test never clears a pair that can touch: two flat grids
+// (the moving one in its frame, the fixed one tilted and lifted in the
+// world), balls whose centres keep the grids nearly parallel at a height
+// near the fattening, and node pairs of both cell trees.  Whenever
+// slab_test says apart, Phi(x, y) = |g(x) - y|^2 - R^2 rho(x)^2 > 0 exactly
+// at the vertices and random points of every feature under the two nodes.
+// (Dropping the fattening term R p from the test - tried on a copy of the
+// code - makes this fail.)
+BOOST_AUTO_TEST_CASE(slab_test_never_clears_a_reachable_contact) {
+  const unsigned seed = seed_or_env(4343);
+  Rng rng(seed);
+  Failures fail;
+  int apart = 0, checked_points = 0, cases = 0;
+  for (int c = 0; c < 30; ++c) {
+    // Two k x k grids of unit size in z = 0.
+    const int k = rng.i(2, 5);
+    auto grid = [&](const std::string& name) {
+      Body b;
+      b.name = name;
+      for (int i = 0; i < k; ++i)
+        for (int j = 0; j < k; ++j) {
+          const std::vector<Vec3E> sq = {{Exact(i, k), Exact(j, k), 0}, {Exact(i + 1, k), Exact(j, k), 0},
+                                         {Exact(i + 1, k), Exact(j + 1, k), 0}, {Exact(i, k), Exact(j + 1, k), 0}};
+          b.polygons.push_back(sq);
+          b.pieces.push_back(ConvexPiece{static_cast<int>(b.polygons.size() - 1), sq});
+        }
+      b.mass = default_mass(body_vertices(b), Exact(1));
+      return b;
+    };
+    Body moving = grid("moving"), fixed = grid("fixed");
+    moving.motion = Motion{};
+    moving.motion->control_points = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}};
+    moving.motion->weights = {1, 1};
+    // The fixed grid: rotated by a small rational rotation, in world coordinates.
+    const Mat34E W = rng.i(0, 1) ? random_rotation(rng, 40) : Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    map_body(fixed, [&](const Vec3E& v) { return place_pt(W, v); });
+    const PreparedBody pm(moving), pf(fixed);
+    const ExactFeatures& em = pm.exact();
+    const ExactFeatures& ef = pf.exact();
+    const Metric& metric = pm.exact_metric();
+    for (int trial = 0; trial < 15; ++trial) {
+      ++cases;
+      // Ball centre: the world rotation W with a small tilt, lifted by h along
+      // the fixed grid's normal; radius R near h / p.
+      const double tilt = rng.i(0, 2) == 0 ? 0.0 : 1e-3 * rng.noise();
+      const double h = std::pow(10.0, -rng.d(1, 4, 1)) * (rng.i(0, 1) ? 1 : -1);
+      std::array<double, 12> g{};
+      for (int e = 0; e < 12; ++e) g[e] = CGAL::to_double(W[e]);
+      g[2] += tilt;
+      g[8] -= tilt;
+      const std::array<double, 3> normal = {CGAL::to_double(W[2]), CGAL::to_double(W[6]), CGAL::to_double(W[10])};
+      for (int i = 0; i < 3; ++i) g[4 * i + 3] += h * normal[i] + 0.3 * rng.noise() * (i == 2 ? 0 : 1);
+      const BvNode& root = pm.cells.tree.nodes[pm.cells.tree.root()];
+      const double R = std::fabs(h) / std::max(root.p, 1e-300) * (0.2 + 1.6 * rng.d(0, 100, 100));
+      Placement<Interval> pl;
+      for (int e = 0; e < 12; ++e) pl.g1[e] = Interval(g[e]);
+      pl.r2 = Interval(R * R);
+      SphereFrame<Interval> frame;
+      {
+        RoundingGuard guard;
+        frame = sphere_frame(pl);
+      }
+      const Mat34E ge = to_exact(g);
+      const Exact R2 = Exact(R * R);
+      for (int pick = 0; pick < 4; ++pick) {
+        const BvTree& tm = pm.cells.tree;
+        const BvTree& tf = pf.cells.tree;
+        const std::uint32_t a = static_cast<std::uint32_t>(rng.i(0, static_cast<int>(tm.nodes.size()) - 1));
+        const std::uint32_t b = static_cast<std::uint32_t>(rng.i(0, static_cast<int>(tf.nodes.size()) - 1));
+        SlabTest st;
+        {
+          RoundingGuard guard;
+          st = slab_test(frame, tm.nodes[a], tf.nodes[b]);
+        }
+        if (!st.apart) continue;
+        ++apart;
+        auto features_under = [&](const BvTree& t, const CellTree& ct, const ExactFeatures& ex, std::uint32_t i) {
+          std::vector<std::vector<Vec3E>> out;
+          std::vector<std::uint32_t> stack = {i};
+          while (!stack.empty()) {
+            const std::uint32_t j = stack.back();
+            stack.pop_back();
+            if (!t.leaf(j)) {
+              stack.push_back(t.nodes[j].left);
+              stack.push_back(t.nodes[j].right);
+              continue;
+            }
+            for (auto& f : cell_features(ct, ex, j)) out.push_back(std::move(f));
+          }
+          return out;
+        };
+        std::vector<Vec3E> xs, ys;
+        for (const auto& f : features_under(tm, pm.cells, em, a)) {
+          xs.insert(xs.end(), f.begin(), f.end());
+          xs.push_back(random_feature_point(rng, f));
+        }
+        for (const auto& f : features_under(tf, pf.cells, ef, b)) {
+          ys.insert(ys.end(), f.begin(), f.end());
+          ys.push_back(random_feature_point(rng, f));
+        }
+        for (const Vec3E& x : xs) {
+          const Vec3E gx = place_pt(ge, x);
+          const Exact bound = R2 * metric.rho2(x);
+          for (const Vec3E& y : ys) {
+            ++checked_points;
+            if (!(dist2(gx, y) > bound))
+              fail("seed " + std::to_string(seed) + " case " + std::to_string(c) + "/" + std::to_string(trial) +
+                   ": slab_test cleared a pair with Phi <= 0 (h " + std::to_string(h) + ", R " + std::to_string(R) + ")");
+          }
+        }
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("slab test: " << cases << " balls, " << apart << " cleared node pairs, " << checked_points
+                                    << " point pairs checked");
+  BOOST_TEST(apart > 50);  // the test exercises clears, not only refusals
+}
+
 BOOST_AUTO_TEST_SUITE_END()
