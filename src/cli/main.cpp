@@ -1,5 +1,7 @@
 // tmcert command line (SCENE_FORMAT.md): exit 0 safe, 1 collision,
 // 2 undecided, 3 bad input or usage, 4 internal error or resource limit.
+#include "src/certificate/check.h"
+#include "src/certificate/writer.h"
 #include "src/cli/report.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
@@ -10,6 +12,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -82,8 +85,9 @@ int run_verify(const VerifyArgs& args) {
   }
   options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
   options.hierarchy = !args.all_pairs;
-  if (!args.certificate.empty())
-    throw InputError("--certificate: certificates are not supported by this version yet");
+  options.record_cover = !args.certificate.empty();
+  if (options.record_cover && options.kernel == KernelKind::Fast)
+    throw InputError("--certificate: the fast kernel is not certified; use --kernel filtered or exact");
   require_supported(scene);
   std::shared_ptr<Progress> progress;
   if (isatty(STDERR_FILENO)) {
@@ -93,8 +97,37 @@ int run_verify(const VerifyArgs& args) {
   const SceneResult result = verify_scene(scene, options, args.threads);
   options.progress = nullptr;
   progress.reset();  // erases the progress line before the result is printed
+  if (!args.certificate.empty()) {
+    // Written before the verdict is printed: a certificate that cannot be
+    // written is an error (exit 4), not a verdict without its proof.
+    certificate::WriteStats stats;
+    const std::string document = certificate::certificate_json(scene, result, &stats);
+    std::ofstream out(args.certificate, std::ios::binary);
+    out << document;
+    out.close();
+    if (!out) throw std::runtime_error("--certificate: cannot write '" + args.certificate + "'");
+    std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
+              << stats.separations << " separations, " << stats.seconds << " s)\n";
+  }
   std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
   return exit_code(result.verdict);
+}
+
+// `tmcert check CERTIFICATE SCENE`: 0 every claim holds, 1 rejected (one
+// line on stderr naming the claim), 3 bad input, 4 internal error.
+int run_certificate_check(const std::string& certificate_file, const std::string& scene_file) {
+  using namespace tmcert;
+  const Scene scene = parse_scene_file(scene_file);
+  const nlohmann::json doc = certificate::read_certificate_file(certificate_file);
+  const certificate::CheckOutcome outcome = certificate::check_certificate(scene, doc, certificate_file);
+  if (!outcome.ok) {
+    std::cerr << "tmcert: rejected: " << outcome.message << "\n";
+    return 1;
+  }
+  std::cout << "tmcert: certificate holds: every claim is proven\n";
+  for (const std::string& line : outcome.proven) std::cout << "  " << line << "\n";
+  std::cout << std::flush;
+  return 0;
 }
 
 }  // namespace
@@ -112,15 +145,16 @@ int main(int argc, char** argv) {
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
-  verify->add_option("--certificate", args.certificate, "write a certificate (not available yet)");
+  verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   verify->add_flag("--all-pairs", args.all_pairs,
                    "carry every feature pair from the start instead of the bounding-volume hierarchies "
                    "(the reference the hierarchy is tested against; slow for large bodies)");
-  CLI::App* check = app.add_subcommand("check", "re-verify a certificate (not available yet)");
+  CLI::App* check = app.add_subcommand("check", "re-verify a certificate in exact arithmetic "
+                                                "(0 every claim holds, 1 rejected, 3 bad input)");
   std::string cert_file, cert_scene;
-  check->add_option("certificate", cert_file)->required();
-  check->add_option("scene", cert_scene)->required();
+  check->add_option("certificate", cert_file, "certificate file (tmcert-certificate/1)")->required();
+  check->add_option("scene", cert_scene, "the scene it certifies (tmcert-scene/1)")->required();
 
   try {
     app.parse(argc, argv);
@@ -132,10 +166,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (check->parsed()) {
-      std::cerr << "tmcert check: certificates are not supported by this version yet\n";
-      return kExitBadInput;
-    }
+    if (check->parsed()) return run_certificate_check(cert_file, cert_scene);
     return run_verify(args);
   } catch (const tmcert::InputError& e) {
     std::cerr << "tmcert: " << e.what() << "\n";

@@ -236,6 +236,11 @@ struct Check {
     return false;
   }
 
+  // A piece cleared entirely (options.record_cover), for certificates.
+  void cleared(const Node& n) {
+    if (options.record_cover) result.cleared.push_back({n.index, n.depth});
+  }
+
   void record(const Node& n, StopReason reason) {
     const Exact t0 = scene_t(n.u0()), t1 = scene_t(n.u1());
     if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
@@ -435,7 +440,10 @@ struct Check {
     stats.max_depth = std::max(stats.max_depth, node.depth);
     typename Policy::Ball ball = policy.ball(item.piece);
     prune(policy, ball, node.alive, false, spheres, node.depth);  // keep the pairs not cleared on this piece
-    if (node.alive.empty()) return Outcome::Cleared;  // cleared on the whole piece
+    if (node.alive.empty()) {  // cleared on the whole piece
+      cleared(node);
+      return Outcome::Cleared;
+    }
     std::optional<StopReason> stop;
     if (node.depth >= std::min(options.max_depth, kDepthCap)) stop = StopReason::Depth;
     else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
@@ -445,7 +453,10 @@ struct Check {
         prune(policy, ball, node.alive, true, spheres, node.depth);
         retest_above(policy, item, node.alive);
       }
-      if (node.alive.empty()) return Outcome::Cleared;
+      if (node.alive.empty()) {
+        cleared(node);
+        return Outcome::Cleared;
+      }
       // Witness candidates: the midpoint, the end, and the scene time with
       // the smallest denominator in the piece (a contact at a "round"
       // rational time, such as 1/3 or 0.137, is found exactly there).
@@ -513,6 +524,7 @@ struct Check {
     s.static_tests += p.static_tests;
     s.sphere_tests += p.sphere_tests;
     s.slab_clears += p.slab_clears;
+    result.cleared.insert(result.cleared.end(), part.cleared.begin(), part.cleared.end());
     for (const UndecidedInterval& u : part.undecided) {
       if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)
         result.undecided.back().t1 = u.t1;

@@ -40,6 +40,9 @@ struct VerifyOptions {
   // Called (from any thread, serialized by the caller's function if needed)
   // with the fraction of a check's pieces done; empty: no reports.
   std::function<void(double)> progress;
+  // Keep the pieces the search cleared (CheckResult::cleared), for
+  // certificates.
+  bool record_cover = false;
 };
 
 struct Witness {
@@ -65,12 +68,23 @@ struct CheckStats {
   double seconds = 0;
 };
 
+// The piece [index, index + 1] / 2^depth of a check's curve parameter.
+struct CoverPiece {
+  std::uint64_t index = 0;
+  int depth = 0;
+};
+
 struct CheckResult {
   std::array<int, 2> bodies;  // indices into Scene::bodies, in the order of the check
   Verdict verdict = Verdict::Undecided;
   std::optional<std::pair<Exact, Exact>> first_contact;
   std::optional<Witness> witness;
   std::vector<UndecidedInterval> undecided;
+  // With VerifyOptions::record_cover: the pieces the search cleared,
+  // disjoint, in the order the search's tasks were merged (sort them by
+  // their start for parameter order); empty for a check decided without a
+  // search (prefiltered, motionless, or a collision at the start).
+  std::vector<CoverPiece> cleared;
   CheckStats stats;
 };
 

@@ -138,5 +138,77 @@ for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPE
   fi
 done
 
+# 3. `tmcert check CERTIFICATE SCENE` (docs/certificate-format.md): exit 0
+#    with the proven claims on stdout, 1 for a false claim or another scene,
+#    3 for unreadable input; nothing on stdout unless 0, the substring on
+#    stdout (exit 0) or stderr (otherwise).
+expect_check() {
+  local want=$1 substring=$2 code stream
+  shift 2
+  run 60 "$tmcert" check "$@"
+  code=$?
+  stream="$work/err"
+  [ "$want" -eq 0 ] && stream="$work/out"
+  if [ "$code" -ne "$want" ]; then
+    fail "tmcert check $*: exit code $code, expected $want"
+  elif [ "$want" -ne 0 ] && [ -s "$work/out" ]; then
+    fail "tmcert check $*: output on stdout with exit code $code"
+  elif ! grep -qF -- "$substring" "$stream"; then
+    fail "tmcert check $*: output does not contain '$substring'"
+  else
+    pass
+  fi
+}
+certs="$data/certificates"
+if [ -d "$certs" ]; then
+  expect_check 0 "probe x tri: safe proven (3 pieces, 4 separations)" "$certs/probe-safe.cert.json" "$certs/probe-safe.json"
+  expect_check 0 "drop x tri: collision proven at t = 1/2" "$certs/drop-collision.cert.json" "$certs/drop.json"
+  expect_check 0 "tri x box: safe proven" "$certs/solid-outside.cert.json" "$certs/solid-outside.json"
+  expect_check 1 "pieces[0] [0, 1/4]: proof (groups 0, 0): separation fails at control point 0" \
+    "$certs/probe-safe-tampered.cert.json" "$certs/probe-safe.json"
+  expect_check 1 "the ray crosses 1 polygon, an odd number" "$certs/solid-inside-safe.cert.json" "$certs/solid-inside.json"
+  expect_check 1 "belongs to another scene" "$certs/drop-collision.cert.json" "$certs/probe-safe.json"
+  expect_check 3 "garbage.cert.json: not JSON" "$certs/garbage.cert.json" "$certs/probe-safe.json"
+  expect_check 3 "format: unknown format" "$certs/probe-safe.json" "$certs/probe-safe.json"
+  expect_check 3 "does-not-exist.cert.json" "$certs/does-not-exist.cert.json" "$certs/probe-safe.json"
+  expect_check 3 "does-not-exist.json" "$certs/probe-safe.cert.json" "$data/bad/does-not-exist.json"
+  expect_check 3 "scene" "$certs/probe-safe.cert.json"
+fi
+
+# 4. Round trip: every scene with a known verdict, verified with
+#    --certificate (same verdict and exit code as without), and the
+#    certificate re-checked by `tmcert check` (exit 0, same verdict proven).
+expect_round_trip() {
+  local scene=$1 verdict=$2 code want
+  case "$verdict" in safe) want=0 ;; collision) want=1 ;; *) want=2 ;; esac
+  run 300 "$tmcert" verify "$scene" --certificate "$work/cert.json"
+  code=$?
+  if [ "$code" -ne "$want" ]; then
+    fail "tmcert verify $scene --certificate: exit code $code, expected $want ($(head -c 300 "$work/err"))"
+    return
+  fi
+  run 300 "$tmcert" check "$work/cert.json" "$scene"
+  code=$?
+  if [ "$code" -ne 0 ]; then
+    fail "tmcert check (certificate of $scene): exit code $code: $(head -c 300 "$work/err")"
+  elif ! grep -qE ": ($verdict proven|$verdict: no contact before)" "$work/out"; then
+    fail "tmcert check (certificate of $scene): '$verdict' not proven in the output"
+  else
+    pass
+  fi
+}
+for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED"; do
+  if [ -f "$list" ]; then
+    for_each_line "$list" expect_round_trip
+  fi
+done
+# The same certificate with its first separation direction negated (which
+# can never separate) is rejected.
+run 60 "$tmcert" verify "$examples/octagons-near.json" --certificate "$work/cert.json"
+sed -E '0,/"sep":\[/s/"sep":\["([^"]*)","([^"]*)","([^"]*)"\]/"sep":["-\1","-\2","-\3"]/' "$work/cert.json" |
+  sed 's/"--/"/g' >"$work/tampered.json"
+if cmp -s "$work/cert.json" "$work/tampered.json"; then fail "the tampering did not change the certificate"; fi
+expect_check 1 "separation fails" "$work/tampered.json" "$examples/octagons-near.json"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,0 +1,181 @@
+// Certificates written after a verification are accepted by the checker,
+// and altered ones are rejected (docs/certificate-format.md,
+// proofs/certificates.md).
+#include "src/certificate/check.h"
+#include "src/certificate/writer.h"
+#include "src/scene/parse.h"
+#include "src/verify/verify.h"
+
+#include <boost/test/unit_test.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace tmcert;
+using json = nlohmann::json;
+
+std::string data(const std::string& name) { return std::string(TMCERT_TEST_DATA) + "/" + name; }
+std::string example(const std::string& name) { return std::string(TMCERT_TEST_DATA) + "/../../examples/" + name; }
+
+struct Verified {
+  Scene scene;
+  SceneResult result;
+  json certificate;
+};
+
+Verified verified(const std::string& path, KernelKind kernel = KernelKind::Filtered) {
+  Verified v{parse_scene_file(path), {}, {}};
+  VerifyOptions options;
+  options.kernel = kernel;
+  options.epsilon = v.scene.epsilon ? *v.scene.epsilon : default_epsilon(v.scene);
+  options.max_depth = v.scene.max_depth;
+  options.record_cover = true;
+  v.result = verify_scene(v.scene, options);
+  v.certificate = json::parse(certificate::certificate_json(v.scene, v.result));
+  return v;
+}
+
+Exact rational_of(const json& x) {
+  Exact q;
+  BOOST_REQUIRE(parse_exact(x.get<std::string>(), q));
+  return q;
+}
+
+bool accepted(const Verified& v, const json& certificate) {
+  try {
+    return certificate::check_certificate(v.scene, certificate, "certificate").ok;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+// Every scene with a known verdict: the certificate of its verification is
+// accepted, and says the same verdicts.
+std::vector<std::string> scenes() {
+  std::vector<std::string> out;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(TMCERT_TEST_DATA) + "/scenes"))
+    if (entry.path().extension() == ".json") out.push_back(entry.path().string());
+  for (const char* name : {"octagons-clear.json", "octagons-near.json", "octagons-collision.json",
+                           "vertex-face-linear.json"})
+    out.push_back(example(name));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(certificate_roundtrip)
+
+BOOST_AUTO_TEST_CASE(certificates_of_every_test_scene_are_accepted) {
+  int safe = 0, collision = 0, undecided = 0, pieces = 0;
+  for (const std::string& path : scenes()) {
+    BOOST_TEST_CONTEXT(path) {
+      for (KernelKind kernel : {KernelKind::Filtered, KernelKind::Exact}) {
+        if (kernel == KernelKind::Exact && path.find("grid") != std::string::npos) continue;
+        const Verified v = verified(path, kernel);
+        const certificate::CheckOutcome outcome = certificate::check_certificate(v.scene, v.certificate, path);
+        BOOST_TEST(outcome.ok, outcome.message);
+        BOOST_REQUIRE_EQUAL(v.certificate["checks"].size(), v.result.checks.size());
+        for (std::size_t k = 0; k < v.result.checks.size(); ++k) {
+          BOOST_TEST(v.certificate["checks"][k]["verdict"].get<std::string>() ==
+                     to_string(v.result.checks[k].verdict));
+          const Verdict verdict = v.result.checks[k].verdict;
+          safe += verdict == Verdict::Safe;
+          collision += verdict == Verdict::Collision;
+          undecided += verdict == Verdict::Undecided;
+          pieces += static_cast<int>(v.certificate["checks"][k]["pieces"].size());
+        }
+      }
+    }
+  }
+  // The set exercises every verdict and real proofs, not only trivial ones.
+  BOOST_TEST(safe > 3);
+  BOOST_TEST(collision > 3);
+  BOOST_TEST(pieces > 20);
+  BOOST_TEST_MESSAGE("checks: " << safe << " safe, " << collision << " collision, " << undecided << " undecided; "
+                                << pieces << " pieces");
+}
+
+BOOST_AUTO_TEST_CASE(the_fast_kernel_gets_no_certificate) {
+  Scene scene = parse_scene_file(example("octagons-clear.json"));
+  VerifyOptions options;
+  options.kernel = KernelKind::Fast;
+  options.epsilon = default_epsilon(scene);
+  options.record_cover = true;
+  const SceneResult result = verify_scene(scene, options);
+  BOOST_CHECK_THROW(certificate::certificate_json(scene, result), InputError);
+}
+
+// Visits every separation direction of a proof tree.
+void each_direction(json& proof, const std::function<void(json&)>& f) {
+  if (proof.contains("sep")) return f(proof["sep"]);
+  for (json& part : proof["parts"]) each_direction(part, f);
+}
+
+BOOST_AUTO_TEST_CASE(altered_certificates_are_rejected) {
+  const Verified clear = verified(example("octagons-near.json"));
+  const Verified collision = verified(example("octagons-collision.json"));
+  BOOST_REQUIRE(accepted(clear, clear.certificate));
+  BOOST_REQUIRE(accepted(collision, collision.certificate));
+  BOOST_REQUIRE(clear.certificate["checks"][0]["pieces"].size() >= 2);
+
+  int rejected = 0, tried = 0;
+  auto expect_rejected = [&](const Verified& v, const json& altered, const std::string& what) {
+    ++tried;
+    const bool ok = accepted(v, altered);
+    BOOST_TEST(!ok, "accepted after: " << what);
+    rejected += !ok;
+  };
+
+  // Each separation direction negated, one at a time (a negated separating
+  // direction can never separate).
+  {
+    const json& pieces = clear.certificate["checks"][0]["pieces"];
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      json altered = clear.certificate;
+      bool done = false;
+      each_direction(altered["checks"][0]["pieces"][p]["proof"], [&](json& n) {
+        if (done) return;
+        for (json& x : n) x = to_string(-rational_of(x));
+        done = true;
+      });
+      expect_rejected(clear, altered, "negated direction in piece " + std::to_string(p));
+    }
+  }
+  // A piece boundary moved: a gap in the cover.
+  {
+    json altered = clear.certificate;
+    json& t = altered["checks"][0]["pieces"][1]["t"];
+    t[0] = to_string((rational_of(t[0]) + rational_of(t[1])) / 2);
+    expect_rejected(clear, altered, "gap between pieces 0 and 1");
+  }
+  // The last piece dropped: the cover no longer reaches t1.
+  {
+    json altered = clear.certificate;
+    altered["checks"][0]["pieces"].erase(altered["checks"][0]["pieces"].size() - 1);
+    expect_rejected(clear, altered, "last piece dropped");
+  }
+  // A collision certificate claimed as safe.
+  {
+    json altered = collision.certificate;
+    altered["checks"][0]["verdict"] = "safe";
+    expect_rejected(collision, altered, "collision relabelled safe");
+  }
+  // The witness point moved.
+  {
+    json altered = collision.certificate;
+    json& x = altered["checks"][0]["witness"]["point"][0];
+    x = to_string(rational_of(x) + Exact(1, 1000000));
+    expect_rejected(collision, altered, "witness point moved");
+  }
+  // The certificate of one scene against another.
+  expect_rejected(collision, clear.certificate, "certificate of octagons-near checked against octagons-collision");
+  BOOST_TEST(rejected == tried);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
