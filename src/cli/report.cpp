@@ -35,8 +35,12 @@ nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
                 {"face_vertex_calls", s.by_kind[2].calls},
                 {"face_vertex_exact", s.by_kind[2].exact_fallbacks},
                 {"exact_static_tests", s.static_tests},
+                {"static_configurations", s.static_configurations},
+                {"static_filter_pairs", s.static_filter_pairs},
+                {"static_filter_exact", s.static_filter_exact},
                 {"sphere_tests", s.sphere_tests},
                 {"slab_clears", s.slab_clears},
+                {"hull_clears", s.hull_clears},
                 {"prefiltered", s.prefiltered},
                 {"seconds", s.seconds}};
   return j;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "kernels/filtered.h"
+#include "kernels/separation.h"
 #include "src/verify/pairs.h"
 #include "src/verify/verify.h"
 
@@ -82,6 +83,18 @@ struct FilteredPolicy {
         },
         stats.by_kind[static_cast<int>(p.kind)]);
   }
+  // The hull test of a feature pair on the piece (proofs/hull-test.md):
+  // candidate planes from the approximate features and piece, certified
+  // over the intervals enclosing the control points and features.  An
+  // uncertain comparison only means "not cleared": no exact fallback.
+  bool hull(const Piece& piece, const PairRef& p) const {
+    const FeatureTable& X = moving_table(m, p.kind);
+    const FeatureTable& Y = other_table(f, p.kind);
+    return hull_search<B>(piece, X.approx[p.i], Y.approx[p.j], [&](const HullPlane& plane) {
+      RoundingGuard guard;
+      return hull_apart<B>(piece, X.interval[p.i], Y.interval[p.j], plane);
+    });
+  }
 };
 
 template <int B>
@@ -122,6 +135,13 @@ struct ExactPolicy {
     return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j],
                                b.placement);
   }
+  // The hull test, decided exactly (proofs/hull-test.md).
+  bool hull(const Piece& piece, const PairRef& p) const {
+    return hull_search<B>(piece, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
+                          [&](const HullPlane& plane) {
+                            return hull_apart<B>(piece, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], plane);
+                          });
+  }
 };
 
 template <int B>
@@ -150,6 +170,12 @@ struct FastPolicy {
     ++stats.by_kind[static_cast<int>(p.kind)].calls;
     return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
                                 b.placement);
+  }
+  // The hull test in double (not certified, like everything here).
+  bool hull(const Piece& piece, const PairRef& p) const {
+    const FeatureGeometry<double>& X = moving_table(m, p.kind).approx[p.i];
+    const FeatureGeometry<double>& Y = other_table(f, p.kind).approx[p.j];
+    return hull_search<B>(piece, X, Y, [&](const HullPlane& plane) { return hull_apart<B>(piece, X, Y, plane); });
   }
 };
 

@@ -44,9 +44,51 @@ inline std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, cons
 
 // ------------------------------------------------------------------ search
 
+// simplest_between for 0 < a/b <= c/d in 64-bit integers (b, d > 0): the
+// same descent as below (the integer parts of the two continued fractions
+// while they agree), folded back into p/q.  Every quantity stays between 0
+// and max(a, b, c, d); false if the expansion is deeper than expected (it
+// never is: each step at least halves a denominator), leaving the exact path.
+inline bool simplest_between_small(std::int64_t a, std::int64_t b, std::int64_t c, std::int64_t d, Exact& out) {
+  std::int64_t terms[130];
+  int n = 0;
+  for (;;) {
+    if (n == 128) return false;
+    const std::int64_t q = a / b;  // floor: both positive
+    if (q * b == a) {  // lo is the integer q
+      terms[n++] = q;
+      break;
+    }
+    if (c - q * d >= d) {  // q + 1 <= hi
+      terms[n++] = q + 1;
+      break;
+    }
+    // Both in (q, q + 1): recurse on 1 / (hi - q) <= 1 / (lo - q).
+    terms[n++] = q;
+    const std::int64_t na = d, nb = c - q * d, nc = b, nd = a - q * b;
+    a = na, b = nb, c = nc, d = nd;
+  }
+  // Fold q0 + 1 / (q1 + 1 / (... + 1 / q_last)).
+  CGAL::Gmpz num(static_cast<long>(terms[n - 1])), den(1);
+  for (int k = n - 2; k >= 0; --k) {
+    CGAL::Gmpz next = CGAL::Gmpz(static_cast<long>(terms[k])) * num + den;
+    den = num;
+    num = next;
+  }
+  out = Exact(num, den);
+  return true;
+}
+
 // The rational with the smallest denominator in the closed interval
 // [lo, hi] (continued fractions, i.e. the Stern-Brocot descent).
 inline Exact simplest_between(const Exact& lo, const Exact& hi) {
+  if (lo > 0 && hi > lo && mpz_fits_slong_p(lo.numerator().mpz()) && mpz_fits_slong_p(lo.denominator().mpz()) &&
+      mpz_fits_slong_p(hi.numerator().mpz()) && mpz_fits_slong_p(hi.denominator().mpz())) {
+    Exact out;
+    if (simplest_between_small(mpz_get_si(lo.numerator().mpz()), mpz_get_si(lo.denominator().mpz()),
+                               mpz_get_si(hi.numerator().mpz()), mpz_get_si(hi.denominator().mpz()), out))
+      return out;
+  }
   if (lo <= 0 && hi >= 0) return Exact(0);
   if (hi < 0) return -simplest_between(-hi, -lo);
   CGAL::Gmpz fl;
@@ -103,6 +145,7 @@ struct Check {
   // The configuration at curve parameter u: interval maps first (cheap),
   // exact only for simplex pairs the interval filter cannot separate.
   std::optional<StaticHit> static_test(const Exact& u, const std::set<std::pair<int, int>>* only) {
+    ++result.stats.static_configurations;
     std::array<std::array<Interval, 12>, B> maps;
     {
       RoundingGuard guard;
@@ -177,7 +220,9 @@ struct Check {
       };
       auto consider = [&](const Item& x, const Item& y) {  // x from the moving body
         if (only && !only->count({x.part, y.part})) return;
+        ++result.stats.static_filter_pairs;
         if (!overlap(x, y) || certainly_disjoint(x.s, y.s)) return;
+        ++result.stats.static_filter_exact;
         candidates.push_back({x.part, y.part, x.index, y.index});
       };
       std::size_t first_b = 0;
@@ -291,14 +336,53 @@ struct Check {
   static constexpr std::uint64_t kExpandPairs = 64;
   static constexpr double kDescend = 2;
 
+  // A feature pair is cleared on a piece when its hull test on the piece's
+  // control points clears it (proofs/hull-test.md), or when the piece's ball
+  // is valid and its contact test is POSITIVE (the sphere test only skips
+  // contact tests that would be POSITIVE).  The same function of (pair,
+  // piece) on every path: with and without the hierarchy, and in the re-test
+  // above a stop, whatever order the tests run in.
   template <class Policy>
-  void prune(const Policy& policy, typename Policy::Ball& ball, std::vector<PairRef>& alive, bool expand_all,
-             Spheres<Policy>& spheres, int depth) {
+  bool hull_clears(const Policy& policy, const typename Policy::Piece& piece, const PairRef& p, CheckStats& stats) {
+    if (!policy.hull(piece, p)) return false;
+    ++stats.hull_clears;
+    return true;
+  }
+
+  template <class Policy>
+  bool clears(const Policy& policy, typename Policy::Ball& ball, const typename Policy::Piece& piece,
+              const PairRef& p, CheckStats& stats) {
+    return hull_clears(policy, piece, p, stats) || (ball.valid() && policy.test(ball, p, stats) == CGAL::POSITIVE);
+  }
+
+  // At most this many feature pairs (and no node pair): the hull test runs
+  // first, alone, and a piece it clears entirely needs no ball (the common
+  // case of continuous-collision queries).  Longer lists get the cheap
+  // sphere test first.
+  static constexpr std::size_t kHullFirst = 16;
+
+  // `get_ball()` returns the piece's ball, computed on first use.
+  template <class Policy, class GetBall>
+  void prune(const Policy& policy, GetBall&& get_ball, const typename Policy::Piece& controls,
+             std::vector<PairRef>& alive, bool expand_all, Spheres<Policy>& spheres, int depth) {
     const auto born = static_cast<std::uint8_t>(std::min(depth, 255));
-    if (!ball.valid()) return;  // nothing is cleared by an unbounded ball
     CheckStats& stats = result.stats;
+    const bool hull_first =
+        alive.size() <= kHullFirst && std::none_of(alive.begin(), alive.end(), [](const PairRef& p) { return p.nodes; });
+    if (hull_first) {
+      std::erase_if(alive, [&](const PairRef& p) { return hull_clears(policy, controls, p, stats); });
+      if (alive.empty()) return;
+    }
+    typename Policy::Ball& ball = get_ball();
+    if (!ball.valid()) {  // an unbounded ball clears nothing; the hull test needs none
+      if (!hull_first)
+        std::erase_if(alive, [&](const PairRef& p) { return !p.nodes && hull_clears(policy, controls, p, stats); });
+      return;
+    }
     if (!options.hierarchy) {
-      std::erase_if(alive, [&](const PairRef& p) { return policy.test(ball, p, stats) == CGAL::POSITIVE; });
+      std::erase_if(alive, [&](const PairRef& p) {
+        return (!hull_first && hull_clears(policy, controls, p, stats)) || policy.test(ball, p, stats) == CGAL::POSITIVE;
+      });
       return;
     }
     using FT = typename Policy::SphereFT;
@@ -310,13 +394,15 @@ struct Check {
     const CellTree& Y = other.cells;
     const FeatureTable* moving_tables[3] = {&moving.vertices, &moving.edges, &moving.faces};
     const FeatureTable* other_tables[3] = {&other.vertices, &other.edges, &other.faces};
-    // A feature pair: its sphere test, then its contact test.
-    auto feature = [&](const PairRef& p) {
+    // A feature pair: its sphere test, its hull test (unless it ran
+    // first), then its contact test.
+    auto feature = [&](const PairRef& p, bool hull_tested) {
       const int a = moving_index(p.kind), b = other_index(p.kind);
       ++stats.sphere_tests;
       if (world_spheres_apart(spheres.moving[a].get(piece, frame, true, moving_tables[a]->spheres, p.i),
                               spheres.other[b].get(piece, frame, false, other_tables[b]->spheres, p.j)))
         return;
+      if (!hull_tested && hull_clears(policy, controls, p, stats)) return;
       if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
     };
     std::vector<PairRef>& work = spheres.scratch;  // reused: no allocation per piece
@@ -326,7 +412,7 @@ struct Check {
       const PairRef p = work.back();
       work.pop_back();
       if (!p.nodes) {
-        feature(p);
+        feature(p, hull_first);
         continue;
       }
       ++stats.sphere_tests;
@@ -352,13 +438,13 @@ struct Check {
         const std::int32_t face_a = X.face[p.i], face_b = Y.face[p.j];
         if (face_b >= 0)
           for (std::uint32_t k = X.vertex_begin[p.i]; k < X.vertex_begin[p.i + 1]; ++k)
-            feature(feature_pair(ContactKind::VertexFace, X.vertices[k], static_cast<std::uint32_t>(face_b), born));
+            feature(feature_pair(ContactKind::VertexFace, X.vertices[k], static_cast<std::uint32_t>(face_b), born), false);
         for (std::uint32_t k = X.edge_begin[p.i]; k < X.edge_begin[p.i + 1]; ++k)
           for (std::uint32_t l = Y.edge_begin[p.j]; l < Y.edge_begin[p.j + 1]; ++l)
-            feature(feature_pair(ContactKind::EdgeEdge, X.edges[k], Y.edges[l], born));
+            feature(feature_pair(ContactKind::EdgeEdge, X.edges[k], Y.edges[l], born), false);
         if (face_a >= 0)
           for (std::uint32_t l = Y.vertex_begin[p.j]; l < Y.vertex_begin[p.j + 1]; ++l)
-            feature(feature_pair(ContactKind::FaceVertex, static_cast<std::uint32_t>(face_a), Y.vertices[l], born));
+            feature(feature_pair(ContactKind::FaceVertex, static_cast<std::uint32_t>(face_a), Y.vertices[l], born), false);
         continue;
       }
       const BvNode& a = X.tree.nodes[p.i];
@@ -395,6 +481,7 @@ struct Check {
   template <class Policy>
   struct Ancestor {
     typename Policy::Ball ball;
+    typename Policy::Piece piece;  // for the hull test
     std::shared_ptr<const Ancestor> up;
     int depth;
   };
@@ -419,7 +506,7 @@ struct Check {
       for (const Ancestor<Policy>* a = item.parent.get(); a; a = a->up.get()) {
         if (a->depth >= p.born) continue;
         typename Policy::Ball ball = a->ball;  // a copy: the test may fill its exact form
-        if (ball.valid() && policy.test(ball, p, result.stats) == CGAL::POSITIVE) return true;
+        if (clears(policy, ball, a->piece, p, result.stats)) return true;
       }
       return false;
     });
@@ -438,19 +525,24 @@ struct Check {
     CheckStats& stats = result.stats;
     ++stats.nodes;
     stats.max_depth = std::max(stats.max_depth, node.depth);
-    typename Policy::Ball ball = policy.ball(item.piece);
-    prune(policy, ball, node.alive, false, spheres, node.depth);  // keep the pairs not cleared on this piece
+    std::optional<typename Policy::Ball> lazy;  // the piece's ball, computed when first needed
+    auto get_ball = [&]() -> typename Policy::Ball& {
+      if (!lazy) lazy.emplace(policy.ball(item.piece));
+      return *lazy;
+    };
+    prune(policy, get_ball, item.piece, node.alive, false, spheres, node.depth);  // keep the pairs not cleared on this piece
     if (node.alive.empty()) {  // cleared on the whole piece
       cleared(node);
       return Outcome::Cleared;
     }
+    typename Policy::Ball& ball = get_ball();
     std::optional<StopReason> stop;
     if (node.depth >= std::min(options.max_depth, kDepthCap)) stop = StopReason::Depth;
     else if (ball.valid() && ball.r2() * rho2_sum < eps2) stop = StopReason::Epsilon;
     if (stop) {
       // A stop is final: descend the hierarchy to feature pairs here.
       if (options.hierarchy) {
-        prune(policy, ball, node.alive, true, spheres, node.depth);
+        prune(policy, get_ball, item.piece, node.alive, true, spheres, node.depth);
         retest_above(policy, item, node.alive);
       }
       if (node.alive.empty()) {
@@ -473,11 +565,13 @@ struct Check {
       record(node, *stop);
       return Outcome::Stopped;
     }
-    std::shared_ptr<const Ancestor<Policy>> here;
-    if (options.hierarchy) here = std::make_shared<const Ancestor<Policy>>(Ancestor<Policy>{ball, item.parent, node.depth});
-    left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}, here};
-    right = Item<Policy>{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}, here};
+    left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}, nullptr};
+    right = Item<Policy>{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}, nullptr};
     policy.split(item.piece, left.piece, right.piece);
+    if (options.hierarchy) {  // the piece is no longer needed here: the ancestor keeps it
+      left.parent = right.parent = std::make_shared<const Ancestor<Policy>>(
+          Ancestor<Policy>{ball, std::move(item.piece), item.parent, node.depth});
+    }
     return Outcome::Split;
   }
 
@@ -522,8 +616,12 @@ struct Check {
     s.contact += p.contact;
     for (int k = 0; k < 3; ++k) s.by_kind[k] += p.by_kind[k];
     s.static_tests += p.static_tests;
+    s.static_configurations += p.static_configurations;
+    s.static_filter_pairs += p.static_filter_pairs;
+    s.static_filter_exact += p.static_filter_exact;
     s.sphere_tests += p.sphere_tests;
     s.slab_clears += p.slab_clears;
+    s.hull_clears += p.hull_clears;
     result.cleared.insert(result.cleared.end(), part.cleared.begin(), part.cleared.end());
     for (const UndecidedInterval& u : part.undecided) {
       if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)

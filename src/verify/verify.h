@@ -62,8 +62,17 @@ struct CheckStats {
   FilterCounters contact;        // all contact tests
   std::array<FilterCounters, 3> by_kind;  // vertex-face, edge-edge, face-vertex
   std::uint64_t static_tests = 0;
+  // The interval filter in front of the exact static tests (start check and
+  // witness candidates): configurations tested, simplex pairs it looked at
+  // (interval boxes overlapping along x), and those it could not separate,
+  // left to exact arithmetic (static_tests counts the exact tests run: fewer
+  // when a hit ends the configuration early).
+  std::uint64_t static_configurations = 0;
+  std::uint64_t static_filter_pairs = 0;
+  std::uint64_t static_filter_exact = 0;
   std::uint64_t sphere_tests = 0;  // hierarchy node pairs tested
   std::uint64_t slab_clears = 0;   // node pairs cleared by their slabs
+  std::uint64_t hull_clears = 0;   // feature pairs cleared by the hull test (contact test failed)
   bool prefiltered = false;      // cleared by the swept-box prefilter alone
   double seconds = 0;
 };

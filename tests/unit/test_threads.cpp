@@ -47,7 +47,7 @@ void require_same(const CheckResult& a, const CheckResult& b, const std::string&
 BOOST_AUTO_TEST_SUITE(threads)
 
 BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_the_thread_count) {
-  for (const char* name : {"octagons-near.json", "octagons-collision.json", "gripper/gripper-collision.json"}) {
+  for (const char* name : {"vertex-face-linear.json", "octagons-collision.json", "gripper/gripper-collision.json"}) {
     const Scene scene = parse_scene_file(kExamples + name);
     for (const std::uint64_t budget : {std::uint64_t(2'000'000), std::uint64_t(40), std::uint64_t(12)}) {
       VerifyOptions options;
@@ -70,7 +70,7 @@ BOOST_AUTO_TEST_CASE(the_result_does_not_depend_on_the_thread_count) {
 // With a budget that runs out, the undecided "limit" pieces are those of
 // the sequential search: nothing is cleared or witnessed past the budget.
 BOOST_AUTO_TEST_CASE(a_small_node_budget_ends_undecided_with_limit_pieces) {
-  const Scene scene = parse_scene_file(kExamples + "octagons-near.json");
+  const Scene scene = parse_scene_file(kExamples + "octagons-collision.json");
   VerifyOptions options;
   options.epsilon = *scene.epsilon;
   options.max_depth = scene.max_depth;
