@@ -207,6 +207,9 @@ bool spheres_clear(const SphereFrame<FT>& f, const BvNode& a, const BvNode& b) {
 // shrinks when a is split) and `fat` (R p_a |n_b|) guide the descent only.
 struct SlabTest {
   bool applicable = false, apart = false;
+  // Apart without the piece's fattening: what a smaller piece could reach
+  // (for the descent decision only).
+  bool apart_unfattened = false;
   double size = 0, fat = 0;
 };
 
@@ -237,6 +240,9 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   const Interval w = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-spread, spread);
   out.applicable = true;
   out.apart = w.sup() < b.slab_lo || w.inf() > b.slab_hi;
+  const double reach = size.sup();
+  const Interval w0 = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-reach, reach);
+  out.apart_unfattened = w0.sup() < b.slab_lo || w0.inf() > b.slab_hi;
   out.size = size.sup();
   out.fat = fat.sup();
   return out;

@@ -427,9 +427,12 @@ struct Check {
       }
       const bool leaf_a = X.tree.leaf(p.i), leaf_b = Y.tree.leaf(p.j);
       // Two flat nodes whose slab test fails by the piece's fattening rather
-      // than by the node's extent: splitting or expanding them cannot help on
-      // this piece, while a smaller piece can clear the whole pair at once.
-      if (!expand_all && slab.applicable && !(slab.size > slab.fat)) {
+      // than by the node's extent, and that would be apart without it:
+      // splitting or expanding them cannot help on this piece, while a
+      // smaller piece can clear the whole pair at once.  (Slabs that overlap
+      // even unfattened - flat nodes side by side in one plane - are
+      // descended: no piece clears them by their slabs.)
+      if (!expand_all && slab.applicable && slab.apart_unfattened && !(slab.size > slab.fat)) {
         alive.push_back(p);
         continue;
       }
