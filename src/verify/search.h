@@ -381,7 +381,7 @@ struct Check {
     }
     if (!options.hierarchy) {
       std::erase_if(alive, [&](const PairRef& p) {
-        return (!hull_first && hull_clears(policy, controls, p, stats)) || policy.test(ball, p, stats) == CGAL::POSITIVE;
+        return policy.test(ball, p, stats) == CGAL::POSITIVE || (!hull_first && hull_clears(policy, controls, p, stats));
       });
       return;
     }
@@ -402,8 +402,11 @@ struct Check {
       if (world_spheres_apart(spheres.moving[a].get(piece, frame, true, moving_tables[a]->spheres, p.i),
                               spheres.other[b].get(piece, frame, false, other_tables[b]->spheres, p.j)))
         return;
+      // The contact test before the hull test here: on long lists (meshes)
+      // it is the cheaper of the two and clears most pairs.
+      if (policy.test(ball, p, stats) == CGAL::POSITIVE) return;
       if (!hull_tested && hull_clears(policy, controls, p, stats)) return;
-      if (policy.test(ball, p, stats) != CGAL::POSITIVE) alive.push_back(p);
+      alive.push_back(p);
     };
     std::vector<PairRef>& work = spheres.scratch;  // reused: no allocation per piece
     work.assign(alive.rbegin(), alive.rend());     // a stack that pops in list order
