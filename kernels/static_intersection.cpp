@@ -20,17 +20,6 @@ using Triangle = K::Triangle_3;
 
 Point to_point(const Vec3E& v) { return Point(v[0], v[1], v[2]); }
 
-bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  {  // an interval filter proves most triangles non-degenerate
-    RoundingGuard guard;
-    const Interval ax = to_interval(a[0]), ay = to_interval(a[1]), az = to_interval(a[2]);
-    const Interval ux = to_interval(b[0]) - ax, uy = to_interval(b[1]) - ay, uz = to_interval(b[2]) - az;
-    const Interval wx = to_interval(c[0]) - ax, wy = to_interval(c[1]) - ay, wz = to_interval(c[2]) - az;
-    for (const Interval& n : {uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx})
-      if (n.inf() > 0 || n.sup() < 0) return false;
-  }
-  return CGAL::collinear(to_point(a), to_point(b), to_point(c));
-}
 
 Exact dist2(const Vec3E& a, const Vec3E& b) {
   return CGAL::squared_distance(to_point(a), to_point(b));
@@ -48,6 +37,18 @@ std::optional<Vec3E> point_in(const Vec3E& p, const Simplex& s) {
 }
 
 }  // namespace
+
+bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
+  {  // an interval filter proves most triangles non-degenerate
+    RoundingGuard guard;
+    const Interval ax = to_interval(a[0]), ay = to_interval(a[1]), az = to_interval(a[2]);
+    const Interval ux = to_interval(b[0]) - ax, uy = to_interval(b[1]) - ay, uz = to_interval(b[2]) - az;
+    const Interval wx = to_interval(c[0]) - ax, wy = to_interval(c[1]) - ay, wz = to_interval(c[2]) - az;
+    for (const Interval& n : {uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx})
+      if (n.inf() > 0 || n.sup() < 0) return false;
+  }
+  return CGAL::collinear(to_point(a), to_point(b), to_point(c));
+}
 
 Simplex canonical(const Simplex& s) {
   if (s.count == 1) return s;

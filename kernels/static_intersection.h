@@ -22,6 +22,10 @@ struct Simplex {
 // farthest vertices, equal points collapse).
 Simplex canonical(const Simplex& s);
 
+// Whether three points are collinear (or equal), exactly; an interval
+// filter settles most non-degenerate triples.
+bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c);
+
 // A point common to both closed simplices, computed exactly, or nothing when
 // they are disjoint.  The point is re-checked to lie on both (exact has_on
 // tests), so a reported point never rests on construction code alone.

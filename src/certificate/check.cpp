@@ -11,6 +11,7 @@
 // when the numbers fit (60-bit limbs, coordinates below 2^62), GMP integers
 // otherwise.  No floating point is used anywhere.
 #include "src/certificate/check.h"
+#include "src/scene/parse.h"
 
 #include <gmp.h>
 
@@ -466,26 +467,6 @@ namespace {
 
 // ---------------------------------------------------------------- messages
 
-std::string quote(const std::string& s) {
-  constexpr std::size_t kShown = 60;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < s.size() && i < kShown; ++i) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20 || c == 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      out += "\\u00";
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  if (s.size() > kShown) out += "...";
-  return out + "\"";
-}
 
 const char* describe(const json& v) {
   switch (v.type()) {
@@ -583,11 +564,11 @@ class Reader {
                         std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
         if (ok && std::stol(digits) > kMaxDecimalExponent)
           bad(path(), "decimal exponent beyond " + std::to_string(kMaxDecimalExponent) + " in magnitude");
-        if (!ok) bad(path(), "not a rational: " + quote(s));
+        if (!ok) bad(path(), "not a rational: " + quote_text(s));
       }
     }
     Exact out;
-    if (!parse_exact(s, out)) bad(path(), "not a rational: " + quote(s));
+    if (!parse_exact(s, out)) bad(path(), "not a rational: " + quote_text(s));
     return out;
   }
   Vec3E vec3(const json& v, const std::string& path) const {
@@ -818,7 +799,7 @@ class Checker {
     in_.object(doc, "");
     const json& format = in_.member(doc, "format", "");
     if (!format.is_string() || format.get_ref<const std::string&>() != kFormat)
-      in_.bad("format", std::string("unknown format ") + (format.is_string() ? quote(format.get<std::string>())
+      in_.bad("format", std::string("unknown format ") + (format.is_string() ? quote_text(format.get<std::string>())
                                                                            : std::string(describe(format))) +
                             ", expected \"" + kFormat + "\"");
 
@@ -835,8 +816,8 @@ class Checker {
                                       "an element count");
       const Body& b = scene_.bodies[i];
       if (name != b.name || n != element_count(b))
-        reject(path + ": " + quote(name) + " with " + std::to_string(n) + " elements, but the scene's body " +
-               std::to_string(i) + " is " + quote(b.name) + " with " + std::to_string(element_count(b)) +
+        reject(path + ": " + quote_text(name) + " with " + std::to_string(n) + " elements, but the scene's body " +
+               std::to_string(i) + " is " + quote_text(b.name) + " with " + std::to_string(element_count(b)) +
                " elements (the certificate belongs to another scene)");
     }
 
@@ -859,7 +840,7 @@ class Checker {
   std::pair<Exact, Exact> check_interval(const Body& a, const Body& b, const std::string& label) const {
     const bool ma = a.motion && a.motion->degree() >= 1, mb = b.motion && b.motion->degree() >= 1;
     if (ma && mb && (a.motion->t0 != b.motion->t0 || a.motion->t1 != b.motion->t1))
-      throw InputError(scene_.source + ": checks: [" + quote(a.name) + ", " + quote(b.name) +
+      throw InputError(scene_.source + ": checks: [" + quote_text(a.name) + ", " + quote_text(b.name) +
                        "]: two moving bodies must share their motion interval (" + label + " cannot be certified)");
     const Motion* m = ma ? &*a.motion : mb ? &*b.motion : a.motion ? &*a.motion : b.motion ? &*b.motion : nullptr;
     if (!m) return {Exact(0), Exact(1)};
@@ -876,15 +857,15 @@ class Checker {
     const auto [ia, ib] = scene_.checks[ci];
     ctx->body[0] = &scene_.bodies[ia];
     ctx->body[1] = &scene_.bodies[ib];
-    ctx->label = ctx->path + " (" + quote(ctx->body[0]->name) + " x " + quote(ctx->body[1]->name) + ")";
+    ctx->label = ctx->path + " (" + quote_text(ctx->body[0]->name) + " x " + quote_text(ctx->body[1]->name) + ")";
     const std::string& P = ctx->path;
     in_.object(c, P);
     const json& bodies = in_.array(in_.member(c, "bodies", P), mem(P, "bodies"), 2);
     const std::string& na = in_.string(bodies[0], idx(mem(P, "bodies"), 0));
     const std::string& nb = in_.string(bodies[1], idx(mem(P, "bodies"), 1));
     if (na != ctx->body[0]->name || nb != ctx->body[1]->name)
-      reject(P + ".bodies: [" + quote(na) + ", " + quote(nb) + "], but the scene's check " + std::to_string(ci) +
-             " is [" + quote(ctx->body[0]->name) + ", " + quote(ctx->body[1]->name) +
+      reject(P + ".bodies: [" + quote_text(na) + ", " + quote_text(nb) + "], but the scene's check " + std::to_string(ci) +
+             " is [" + quote_text(ctx->body[0]->name) + ", " + quote_text(ctx->body[1]->name) +
              "] (the certificate belongs to another scene)");
     std::tie(ctx->t0, ctx->t1) = check_interval(*ctx->body[0], *ctx->body[1], ctx->label);
     const auto [ilo, ihi] = in_.pair(in_.member(c, "interval", P), mem(P, "interval"));
@@ -904,7 +885,7 @@ class Checker {
     ctx.verdict = in_.string(in_.member(c, "verdict", P), mem(P, "verdict"));
     const std::string& verdict = ctx.verdict;
     if (verdict != "safe" && verdict != "collision" && verdict != "undecided")
-      in_.bad(mem(P, "verdict"), "expected \"safe\", \"collision\" or \"undecided\", got " + quote(verdict));
+      in_.bad(mem(P, "verdict"), "expected \"safe\", \"collision\" or \"undecided\", got " + quote_text(verdict));
 
     read_groups(c, ctx);
 
@@ -1028,7 +1009,7 @@ class Checker {
           for (std::size_t i = 0; i < elems->size(); ++i)
             gs.items[k].push_back(static_cast<std::uint32_t>(
                 in_.index((*elems)[i], idx(ep, i), E,
-                          quote(gs.body->body->name) + " has " + std::to_string(E) + " elements")));
+                          quote_text(gs.body->body->name) + " has " + std::to_string(E) + " elements")));
         } else {
           const std::string cp = mem(p, "children");
           in_.array(*children, cp);
@@ -1064,7 +1045,7 @@ class Checker {
       } else {
         const BodyData& bd = *ctx.data[s];
         side.element = in_.index(in_.member(x, "element", sp), mem(sp, "element"), bd.elems.size(),
-                                 quote(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
+                                 quote_text(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
         const std::size_t nv = bd.elems[side.element].size();
         const json& ws = in_.array(in_.member(x, "weights", sp), mem(sp, "weights"));
         if (ws.size() != nv)
@@ -1086,9 +1067,9 @@ class Checker {
       const std::string ep = idx(sp, k);
       in_.object(e, ep);
       const std::string& which = in_.string(in_.member(e, "solid", ep), mem(ep, "solid"));
-      if (which != "a" && which != "b") in_.bad(mem(ep, "solid"), "expected \"a\" or \"b\", got " + quote(which));
+      if (which != "a" && which != "b") in_.bad(mem(ep, "solid"), "expected \"a\" or \"b\", got " + quote_text(which));
       const int s = which == "a" ? 0 : 1;
-      if (seen[s]) in_.bad(mem(ep, "solid"), "a second entry for " + quote(which));
+      if (seen[s]) in_.bad(mem(ep, "solid"), "a second entry for " + quote_text(which));
       seen[s] = true;
       const BodyData& other = *ctx.data[1 - s];
       const json& pts = in_.array(in_.member(e, "points", ep), mem(ep, "points"));
@@ -1098,7 +1079,7 @@ class Checker {
         in_.object(pts[i], pp);
         StartPoint p;
         p.element = in_.index(in_.member(pts[i], "element", pp), mem(pp, "element"), other.elems.size(),
-                              quote(other.body->name) + " has " + std::to_string(other.elems.size()) + " elements");
+                              quote_text(other.body->name) + " has " + std::to_string(other.elems.size()) + " elements");
         const std::size_t nv = other.elems[p.element].size();
         p.vertex = in_.index(in_.member(pts[i], "vertex", pp), mem(pp, "vertex"), nv,
                              "element " + std::to_string(p.element) + " has " + std::to_string(nv) + " vertices");
@@ -1225,7 +1206,7 @@ class Checker {
       for (std::size_t e = 0; e < E; ++e)
         if (!covered[e])
           reject(ctx.label + ": groups[" + std::to_string(side) + "]: group 0 does not reach element " +
-                 std::to_string(e) + " of " + quote(gs.body->body->name));
+                 std::to_string(e) + " of " + quote_text(gs.body->body->name));
     }
   }
 
@@ -1243,9 +1224,9 @@ class Checker {
       const Body& body = *ctx.body[s];
       const Mat34E pose = pose_at(body, t);
       if (side.interior) {
-        if (!body.solid) reject(L + "." + key + ": " + quote(body.name) + " is not solid, it has no interior");
+        if (!body.solid) reject(L + "." + key + ": " + quote_text(body.name) + " is not solid, it has no interior");
         if (sgn(determinant(pose)) == 0)
-          reject(L + "." + key + ": the pose of " + quote(body.name) + " at t = " + str(t) +
+          reject(L + "." + key + ": the pose of " + quote_text(body.name) + " at t = " + str(t) +
                  " is singular (no interior point can be proven)");
         const std::optional<int> n = ray_crossings(placed(*ctx.data[s], pose), point, side.ray);
         if (!n)
@@ -1253,7 +1234,7 @@ class Checker {
                  " is degenerate (through a vertex or an edge, in a polygon's plane, or the point on the surface)");
         if (*n % 2 == 0)
           reject(L + "." + key + ".interior: the ray crosses " + std::to_string(*n) +
-                 (*n == 1 ? " polygon of " : " polygons of ") + quote(body.name) +
+                 (*n == 1 ? " polygon of " : " polygons of ") + quote_text(body.name) +
                  ", an even number: the point is not inside");
       } else {
         const std::vector<Vec3E>& verts = ctx.data[s]->elems[side.element];
@@ -1268,7 +1249,7 @@ class Checker {
         if (sum != 1) reject(L + "." + key + ".weights sum to " + str(sum) + ", not 1");
         const Vec3E placed_x = place_point(pose, x);
         if (placed_x != point)
-          reject(L + "." + key + ": element " + std::to_string(side.element) + " of " + quote(body.name) +
+          reject(L + "." + key + ": element " + std::to_string(side.element) + " of " + quote_text(body.name) +
                  " with these weights is at " + str(placed_x) + " at t = " + str(t) + ", not at the point " +
                  str(point));
       }
@@ -1300,13 +1281,13 @@ class Checker {
       seen[s] = true;
       const Body& solid = *ctx.body[s];
       BodyData& other = *ctx.data[1 - s];
-      const std::string L = ctx.label + ": start[" + std::to_string(k) + "] (solid " + quote(solid.name) + ")";
-      if (!solid.solid) reject(L + ": " + quote(solid.name) + " is not solid");
+      const std::string L = ctx.label + ": start[" + std::to_string(k) + "] (solid " + quote_text(solid.name) + ")";
+      if (!solid.solid) reject(L + ": " + quote_text(solid.name) + " is not solid");
       const std::vector<std::vector<Vec3E>> polygons = placed(*ctx.data[s], pose[s]);
       for (std::size_t i = 0; i < entry.points.size(); ++i) {
         const StartPoint& p = entry.points[i];
         const Vec3E x = place_point(pose[1 - s], other.elems[p.element][p.vertex]);
-        const std::string LP = L + ".points[" + std::to_string(i) + "] (" + quote(other.body->name) + " element " +
+        const std::string LP = L + ".points[" + std::to_string(i) + "] (" + quote_text(other.body->name) + " element " +
                                std::to_string(p.element) + " vertex " + std::to_string(p.vertex) + ")";
         const std::optional<int> n = ray_crossings(polygons, x, p.ray);
         if (!n)
@@ -1314,7 +1295,7 @@ class Checker {
                  " is degenerate (through a vertex or an edge, in a polygon's plane, or the vertex on the surface)");
         if (*n % 2 != 0)
           reject(LP + ": the ray crosses " + std::to_string(*n) + (*n == 1 ? " polygon" : " polygons") +
-                 ", an odd number: the vertex is inside " + quote(solid.name) + " at t0");
+                 ", an odd number: the vertex is inside " + quote_text(solid.name) + " at t0");
         ++checked;
       }
       // One listed point per component of the other body.
@@ -1323,7 +1304,7 @@ class Checker {
       for (const StartPoint& p : entry.points) has[comp[p.element]] = 1;
       for (std::size_t e = 0; e < comp.size(); ++e)
         if (comp[e] == e && !has[e])
-          reject(L + ": no point of the component of " + quote(other.body->name) + " element " + std::to_string(e) +
+          reject(L + ": no point of the component of " + quote_text(other.body->name) + " element " + std::to_string(e) +
                  " is listed");
     }
     // Required: one entry per solid body of the check with a nonsingular
@@ -1331,7 +1312,7 @@ class Checker {
     if (pieces_present)
       for (int s = 0; s < 2; ++s)
         if (ctx.body[s]->solid && !seen[s] && sgn(determinant(pose[s])) != 0)
-          reject(ctx.label + ": start: no claim for the solid " + quote(ctx.body[s]->name) + " (\"" +
+          reject(ctx.label + ": start: no claim for the solid " + quote_text(ctx.body[s]->name) + " (\"" +
                  (s == 0 ? "a" : "b") + "\"): the other body could start inside it");
     return checked;
   }

@@ -46,28 +46,6 @@ constexpr const char* kFormat = "tmcert-scene/1";
 
 // ---------------------------------------------------------------- messages
 
-// A user string made safe for a one-line message: quoted, control
-// characters escaped, long strings shortened.
-std::string quote_text(const std::string& s) {
-  constexpr std::size_t kShown = 60;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < s.size() && i < kShown; ++i) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20 || c == 0x7f) {
-      static const char* hex = "0123456789abcdef";
-      out += "\\u00";
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  if (s.size() > kShown) out += "...";
-  return out + "\"";
-}
 
 // Replaces line breaks and other control characters so a message stays on one line.
 std::string one_line(std::string s) {
@@ -990,6 +968,29 @@ Scene parse_with_base(const std::string& text, const std::string& source, const 
 }
 
 }  // namespace
+
+// A user string made safe for a one-line message: quoted, control
+// characters escaped, long strings shortened.
+std::string quote_text(const std::string& s) {
+  constexpr std::size_t kShown = 60;
+  std::string out = "\"";
+  for (std::size_t i = 0; i < s.size() && i < kShown; ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20 || c == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += "\\u00";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (s.size() > kShown) out += "...";
+  return out + "\"";
+}
 
 // Mesh files are relative to the directory of `source` when it names an
 // existing file, otherwise to the current directory.

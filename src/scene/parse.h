@@ -17,6 +17,10 @@ Scene parse_scene_file(const std::string& path);
 // it has segments or points); empty when it can.
 std::string solid_problem(const Body& b);
 
+// A user string made safe for a one-line message: quoted, control
+// characters escaped, strings longer than 60 characters shortened.
+std::string quote_text(const std::string& s);
+
 // The same for a document held in memory; `source` names it in messages.
 Scene parse_scene_text(const std::string& text, const std::string& source);
 

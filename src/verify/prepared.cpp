@@ -110,18 +110,6 @@ FeatureGeometry<FT> make_face(const std::vector<Vec3<FT>>& v, const std::array<F
   return f;
 }
 
-bool collinear(const Vec3E& a, const Vec3E& b, const Vec3E& c) {
-  {  // an interval filter proves most triangles non-degenerate
-    RoundingGuard guard;
-    const Interval ax = to_interval(a[0]), ay = to_interval(a[1]), az = to_interval(a[2]);
-    const Interval ux = to_interval(b[0]) - ax, uy = to_interval(b[1]) - ay, uz = to_interval(b[2]) - az;
-    const Interval wx = to_interval(c[0]) - ax, wy = to_interval(c[1]) - ay, wz = to_interval(c[2]) - az;
-    for (const Interval& n : {uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx})
-      if (n.inf() > 0 || n.sup() < 0) return false;
-  }
-  const Vec3E u = sub(b, a), w = sub(c, a);
-  return u[1] * w[2] - u[2] * w[1] == 0 && u[2] * w[0] - u[0] * w[2] == 0 && u[0] * w[1] - u[1] * w[0] == 0;
-}
 
 Vec3<Interval> enclose3(const Vec3E& x) { return {to_interval(x[0]), to_interval(x[1]), to_interval(x[2])}; }
 

@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
   for (int iter = 0; iter < 150; ++iter) {
     std::array<Vec3E, 3> tm{rand_point(r), rand_point(r), rand_point(r)};
     std::array<Vec3E, 3> tf{rand_point(r), rand_point(r), rand_point(r)};
-    if (collinear(tm[0], tm[1], tm[2]) || collinear(tf[0], tf[1], tf[2])) continue;
+    if (testing::collinear(tm[0], tm[1], tm[2]) || testing::collinear(tf[0], tf[1], tf[2])) continue;
     Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
     bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
     const PreparedBody pm(bm), pf(bf);
