@@ -1,6 +1,7 @@
 #include "src/certificate/writer.h"
 
 #include "src/certificate/check.h"
+#include "kernels/separation.h"
 #include "src/motion/bezier.h"
 
 #include <nlohmann/json.hpp>
@@ -234,8 +235,8 @@ struct Prover {
   }
 
   // A direction separating the swept control points of groups g and h, by
-  // Gilbert's iteration toward the point of least norm in the hull of the
-  // differences (any direction would do: the certification decides).
+  // GJK toward the point of least norm in the hull of the differences (any
+  // direction would do: the certification decides).
   std::optional<std::array<double, 3>> separate(const PieceImages& im, int g, int h) const {
     const auto& va = groups[0]->vertices[g];
     const auto& vb = groups[1]->vertices[h];
@@ -247,6 +248,7 @@ struct Prover {
         for (int i = 0; i < 3; ++i) z[i] -= im.point[1][l * im.size[1] + v][i] / (vb.size() * im.count);
     }
     const int iterations = va.size() + vb.size() > kLargeGroup ? kDirectionIterationsLarge : kDirectionIterations;
+    hull_detail::Simplex3 simplex;
     for (int iter = 0; iter < iterations; ++iter) {
       if (!(dot(z, z) > 0) || !std::isfinite(dot(z, z))) return std::nullopt;
       double best = HUGE_VAL;
@@ -272,12 +274,12 @@ struct Prover {
         if (certify(im, z, g, h)) return z;
         // Positive in double but not certified: push a little further.
       }
-      const std::array<double, 3> d{s[0] - z[0], s[1] - z[1], s[2] - z[2]};
-      const double dd = dot(d, d);
-      if (!(dd > 0)) return std::nullopt;
-      const double lambda = std::clamp(-dot(z, d) / dd, 0.0, 1.0);
-      if (!(lambda > 0)) return std::nullopt;  // z is already the least point: no separation
-      for (int i = 0; i < 3; ++i) z[i] += lambda * d[i];
+      // GJK's step (Johnson's sub-algorithm, kernels/separation.h): z becomes
+      // the point of least norm of the simplex grown by s.
+      const double z2 = dot(z, z);
+      if (z2 - dot(z, s) <= 1e-12 * z2) return std::nullopt;  // converged without separating
+      simplex.p[simplex.n++] = s;
+      if (!hull_detail::closest(simplex, z)) return std::nullopt;  // the origin is in the hull
     }
     return std::nullopt;
   }
