@@ -1,7 +1,8 @@
 // Continuous-collision queries (vertex-face, edge-edge, linear motion, both
 // primitives moving), generated with known ground truth: false safe, false
 // collision, undecided rates and time per query for epsilon from 1e-2 to
-// 1e-8 of each query's size.  Usage: tmcert_ccd_bench [queries] [seed]
+// 1e-8 of each query's size.  Usage: tmcert_ccd_bench [queries] [seed] [fraction]
+// (a fraction restricts the run to that one epsilon row, for profiling)
 #include "bench/ccd_queries.h"
 #include "src/verify/verify.h"
 
@@ -111,7 +112,9 @@ int main(int argc, char** argv) {
   std::map<std::string, Row> kinds;
   int total_fs = 0, total_fc = 0, violations = 0;
   double kinds_setup = 0;
-  for (double fraction : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+  std::vector<double> fractions{1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
+  if (argc > 3) fractions = {std::atof(argv[3])};
+  for (double fraction : fractions) {
     double setup_us = 0;
     const Row r = run(set, fraction, fraction == 1e-6 ? &kinds : nullptr, &setup_us);
     if (fraction == 1e-6) kinds_setup = setup_us;
