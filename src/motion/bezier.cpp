@@ -4,14 +4,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace tmcert {
 
 HomogeneousCurve<Exact, 1> homogeneous_curve(const Motion& motion) {
-  HomogeneousCurve<Exact, 1> c(motion.control_points.size());
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    for (int e = 0; e < 12; ++e) c[k][e] = motion.weights[k] * motion.control_points[k][e];
-    c[k][12] = motion.weights[k];
+  // Copy-constructed entries (a default Gmpq allocates a value of its own),
+  // and no product for the usual weight 1.
+  HomogeneousCurve<Exact, 1> c;
+  c.reserve(motion.control_points.size());
+  for (std::size_t k = 0; k < motion.control_points.size(); ++k) {
+    const Exact& w = motion.weights[k];
+    const Mat34E& p = motion.control_points[k];
+    const bool one = w == 1;
+    c.push_back([&]<std::size_t... I>(std::index_sequence<I...>) {
+      return HomogeneousPoint<Exact, 1>{(I < 12 ? (one ? p[I % 12] : Exact(w * p[I % 12])) : w)...};
+    }(std::make_index_sequence<13>{}));
   }
   return c;
 }
@@ -61,6 +69,20 @@ HomogeneousCurve<Exact, 2> joint_curve(const Motion& first, const Motion& second
   const Motion* motions[2] = {&first, &second};
   const bool polynomial = constant_weights(first) && constant_weights(second);
   const int n1 = first.degree(), n2 = second.degree();
+  if (polynomial && n1 == n2) {
+    // Same degree, constant weights: the affine control points as they are
+    // (the common case of two linear per-vertex motions).
+    // Copy-constructed entries: a default Gmpq allocates a value of its own.
+    const Exact one(1);
+    HomogeneousCurve<Exact, 2> c;
+    c.reserve(n1 + 1);
+    for (int k = 0; k <= n1; ++k)
+      c.push_back([&]<std::size_t... I>(std::index_sequence<I...>) {
+        return HomogeneousPoint<Exact, 2>{
+            (I < 24 ? motions[I / 12]->control_points[k][I % 12] : one)...};
+      }(std::make_index_sequence<25>{}));
+    return c;
+  }
   const auto binom = binomials(n1 + n2);
   // Per block: the polynomial each coordinate's numerator is multiplied by,
   // and the common weight.
@@ -101,6 +123,12 @@ Mat34E evaluate(const HomogeneousCurve<Exact, B>& curve, const Exact& u, int blo
   // running denominator (ExactSum): no gcd per term, unlike de Casteljau.
   const std::size_t w = kHomogeneousSize<B> - 1;
   const std::size_t n = curve.size() - 1;
+  if (CGAL::is_zero(u) || u == 1) {  // an end: its control point, as it is
+    const auto& h = curve[CGAL::is_zero(u) ? 0 : n];
+    Mat34E m;
+    for (int e = 0; e < 12; ++e) m[e] = h[w] == 1 ? h[12 * block + e] : h[12 * block + e] / h[w];
+    return m;
+  }
   mpz_srcptr p = mpq_numref(u.mpq()), q = mpq_denref(u.mpq());
   CGAL::Gmpz r;
   mpz_sub(r.mpz(), q, p);
