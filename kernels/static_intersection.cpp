@@ -16,7 +16,6 @@ namespace {
 using K = CGAL::Simple_cartesian<Exact>;
 using Point = K::Point_3;
 using Segment = K::Segment_3;
-using Triangle = K::Triangle_3;
 
 Point to_point(const Vec3E& v) { return Point(v[0], v[1], v[2]); }
 
@@ -26,13 +25,23 @@ Exact dist2(const Vec3E& a, const Vec3E& b) {
 }
 
 std::optional<Vec3E> point_in(const Vec3E& p, const Simplex& s) {
+  for (int k = 0; k < s.count; ++k)  // a vertex of s (the common case of a witness)
+    if (p == s.p[k]) return p;
   const Point q = to_point(p);
   switch (s.count) {
     case 1: return p == s.p[0] ? std::optional<Vec3E>(p) : std::nullopt;
     case 2: return Segment(to_point(s.p[0]), to_point(s.p[1])).has_on(q) ? std::optional<Vec3E>(p) : std::nullopt;
-    default:
-      return Triangle(to_point(s.p[0]), to_point(s.p[1]), to_point(s.p[2])).has_on(q)
-                 ? std::optional<Vec3E>(p) : std::nullopt;
+    default: {
+      // CGAL's own predicates (not ours): in the triangle's plane, and on
+      // the inner side of (or on) each edge.  The triangle is not
+      // degenerate (canonical), as coplanar_orientation requires.  Cheaper
+      // than Triangle_3::has_on, which constructs the plane and solves.
+      const Point t[3] = {to_point(s.p[0]), to_point(s.p[1]), to_point(s.p[2])};
+      if (!CGAL::coplanar(t[0], t[1], t[2], q)) return std::nullopt;
+      for (int e = 0; e < 3; ++e)
+        if (CGAL::coplanar_orientation(t[e], t[(e + 1) % 3], t[(e + 2) % 3], q) == CGAL::NEGATIVE) return std::nullopt;
+      return p;
+    }
   }
 }
 
