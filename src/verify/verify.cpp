@@ -172,7 +172,15 @@ Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
       prepared_(scene.bodies.size()), surface_once_(new std::once_flag[scene.bodies.size()]),
       surfaces_(scene.bodies.size()) {
   boxes_.reserve(scene.bodies.size());
-  for (const Body& b : scene.bodies) boxes_.push_back(swept_box(b));
+  interval_.reserve(scene.bodies.size());
+  std::map<std::pair<Exact, Exact>, int> intervals;
+  for (const Body& b : scene.bodies) {
+    boxes_.push_back(swept_box(b));
+    if (b.motion && b.motion->degree() >= 1)
+      interval_.push_back(intervals.emplace(std::pair{b.motion->t0, b.motion->t1}, static_cast<int>(intervals.size())).first->second);
+    else
+      interval_.push_back(-1);
+  }
 }
 
 Verifier::~Verifier() = default;
@@ -183,13 +191,10 @@ const PreparedBody& Verifier::prepared(int body) const {
 }
 
 CheckResult Verifier::check(int a, int b) const {
-  const Body& x = scene_.bodies[a];
-  const Body& y = scene_.bodies[b];
-  const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
   // The joint curve pairs the motions by curve parameter: that is the same
   // instant only when the scene intervals agree.
-  if (mx && my && (x.motion->t0 != y.motion->t0 || x.motion->t1 != y.motion->t1))
-    throw InputError(scene_.source + ": checks: [\"" + x.name + "\", \"" + y.name +
+  if (interval_[a] >= 0 && interval_[b] >= 0 && interval_[a] != interval_[b])
+    throw InputError(scene_.source + ": checks: [\"" + scene_.bodies[a].name + "\", \"" + scene_.bodies[b].name +
                      "\"]: two moving bodies must share their motion interval");
   if (disjoint(boxes_[a], boxes_[b])) {
     // Certified prefilter: the boxes hold everything the bodies sweep.
@@ -199,6 +204,9 @@ CheckResult Verifier::check(int a, int b) const {
     result.stats.prefiltered = true;
     return result;
   }
+  const Body& x = scene_.bodies[a];
+  const Body& y = scene_.bodies[b];
+  const bool mx = interval_[a] >= 0, my = interval_[b] >= 0;
   // A solid's inside counts as contact: at the start parameter, a vertex of
   // each connected component of one body inside the other (solid) body is a
   // collision there.  Later contacts go through the surfaces

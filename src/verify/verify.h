@@ -142,6 +142,11 @@ class Verifier {
   const Scene& scene_;
   VerifyOptions options_;
   std::vector<SweptBox> boxes_;
+  // Per body: -1 when it does not move, else an index of its motion
+  // interval among the scene's distinct ones (two moving bodies in a check
+  // must share it).  Kept here so that a check the boxes clear touches no
+  // exact number.
+  std::vector<int> interval_;
   std::unique_ptr<std::once_flag[]> once_;
   mutable std::vector<std::unique_ptr<PreparedBody>> prepared_;
   std::unique_ptr<std::once_flag[]> surface_once_;
