@@ -148,6 +148,18 @@ BOOST_AUTO_TEST_CASE(joint_curve_carries_both_motions) {
       BOOST_CHECK(evaluate<2>(joint, u, 1) == by_definition(m2, u));
     }
   }
+  // Equal degrees with weights all 1 (two linear per-vertex motions, say):
+  // the joint curve copies the control points as they are.
+  for (int iter = 0; iter < 12; ++iter) {
+    const int degree = iter % 4;
+    const Motion m1 = random_motion(r, degree, false), m2 = random_motion(r, degree, false);
+    const auto joint = joint_curve(m1, m2);
+    BOOST_CHECK_EQUAL(joint.size(), static_cast<std::size_t>(degree + 1));
+    for (const Exact u : {Exact(0), Exact(1, 4), Exact(2, 3), Exact(1)}) {
+      BOOST_CHECK(evaluate<2>(joint, u, 0) == by_definition(m1, u));
+      BOOST_CHECK(evaluate<2>(joint, u, 1) == by_definition(m2, u));
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
