@@ -306,21 +306,27 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
   // coordinates under the rounding guard).
   const FeatureList list = feature_list(b, place);
   const std::array<Interval, 16>* g = gi ? &*gi : nullptr;
-  RoundingGuard guard;
+  // Enclosures of the features' exact points, each computed once.
+  std::vector<std::vector<Vec3<Interval>>> face_points, edge_points, vertex_points;
   for (const auto& [v, part] : list.faces) {
-    std::vector<Vec3<Interval>> vi;
-    for (const Vec3E& x : v) vi.push_back(enclose3(x));
-    faces.interval.push_back(make_face<Interval>(vi, g));
-    faces.part.push_back(part);
+    face_points.emplace_back();
+    for (const Vec3E& x : v) face_points.back().push_back(enclose3(x));
   }
-  for (const auto& [e, part] : list.edges) {
-    edges.interval.push_back(make_edge<Interval>(enclose3(e[0]), enclose3(e[1]), g));
-    edges.part.push_back(part);
+  for (const auto& [e, part] : list.edges) edge_points.push_back({enclose3(e[0]), enclose3(e[1])});
+  for (const auto& [v, part] : list.vertices) vertex_points.push_back({enclose3(v)});
+  RoundingGuard guard;
+  for (std::size_t i = 0; i < list.faces.size(); ++i) {
+    faces.interval.push_back(make_face<Interval>(face_points[i], g));
+    faces.part.push_back(list.faces[i].second);
+  }
+  for (std::size_t i = 0; i < list.edges.size(); ++i) {
+    edges.interval.push_back(make_edge<Interval>(edge_points[i][0], edge_points[i][1], g));
+    edges.part.push_back(list.edges[i].second);
   }
   double best = 0;
-  for (const auto& [v, part] : list.vertices) {
-    vertices.interval.push_back(make_vertex<Interval>(enclose3(v), g));
-    vertices.part.push_back(part);
+  for (std::size_t i = 0; i < list.vertices.size(); ++i) {
+    vertices.interval.push_back(make_vertex<Interval>(vertex_points[i][0], g));
+    vertices.part.push_back(list.vertices[i].second);
     best = std::max(best, vertices.interval.back().q(2, 2).sup());
   }
   max_rho2 = best;
@@ -330,13 +336,6 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
   // A sphere per feature and the hierarchy over the cells (spheres around
   // the vertex enclosures; a cell's sphere around those of all its
   // features).
-  std::vector<std::vector<Vec3<Interval>>> face_points, edge_points, vertex_points;
-  for (const auto& [v, part] : list.faces) {
-    face_points.emplace_back();
-    for (const Vec3E& x : v) face_points.back().push_back(enclose3(x));
-  }
-  for (const auto& [e, part] : list.edges) edge_points.push_back({enclose3(e[0]), enclose3(e[1])});
-  for (const auto& [v, part] : list.vertices) vertex_points.push_back({enclose3(v)});
   faces.spheres = item_spheres(face_points, g);
   edges.spheres = item_spheres(edge_points, g);
   vertices.spheres = item_spheres(vertex_points, g);
