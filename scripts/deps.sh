@@ -16,6 +16,11 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# The CCD query scripts (scripts/ccd_*.py) and their test need a Python 3,
+# Debian's or any other on the PATH.
+if ! command -v python3 >/dev/null 2>&1; then
+  missing+=(python3)
+fi
 
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0
