@@ -175,6 +175,9 @@ def main():
             size = max(size, math.sqrt(sum(float(max(x[c] for x in v) - min(x[c] for x in v)) ** 2 for c in range(3))))
     if not checks:
         fail("no queries read")
+    if len(checks) > 100000:
+        print(f"ccd_csv_to_scene: warning: {len(checks)} queries; tmcert reads at most 10^7 JSON values "
+              "per scene (about 100 000 queries): split the input (--limit, or fewer files)", file=sys.stderr)
 
     scene = {"format": "tmcert-scene/1"}
     if args.epsilon:
