@@ -29,7 +29,7 @@ no --truth file gives it). scripts/ccd_compare.py scores a tmcert result
 against it.
 
 Usage:
-  ccd_csv_to_scene.py [--kind vf|ee] [--truth mma_bool.json] [--limit N]
+  ccd_csv_to_scene.py [--kind vf|ee] [--truth mma_bool.json] [--skip K] [--limit N]
                       [--epsilon E | --epsilon-fraction F]
                       -o scene.json [--truth-out truth.json] FILE.csv...
 """
@@ -141,6 +141,7 @@ def main():
     ap.add_argument("--truth-out")
     ap.add_argument("--truth", help="a JSON list of booleans, one per query of the (single) input file")
     ap.add_argument("--kind", choices=["vf", "ee"])
+    ap.add_argument("--skip", type=int, default=0, help="leave out the first SKIP queries (with --limit, to split a set)")
     ap.add_argument("--limit", type=int, help="at most this many queries in all")
     group = ap.add_mutually_exclusive_group()
     group.add_argument("--epsilon", help="epsilon in scene units, exactly as tmcert reads it")
@@ -151,6 +152,7 @@ def main():
 
     bodies, checks, truths = [], [], []
     size = 0.0  # the largest diagonal of a query's box
+    seen = 0    # queries read, skipped ones included
     for path in args.files:
         kind = kind_of(path, args.kind)
         queries = read_queries(path)
@@ -161,6 +163,9 @@ def main():
                 fail(f"{args.truth}: expected a list of {len(queries)} booleans")
             queries = [(v, g) for (v, _), g in zip(queries, given)]
         for k, (v, truth) in enumerate(queries):
+            seen += 1
+            if seen <= args.skip:
+                continue
             if args.limit is not None and len(checks) >= args.limit:
                 break
             i = len(checks)
@@ -177,7 +182,7 @@ def main():
         fail("no queries read")
     if len(checks) > 100000:
         print(f"ccd_csv_to_scene: warning: {len(checks)} queries; tmcert reads at most 10^7 JSON values "
-              "per scene (about 100 000 queries): split the input (--limit, or fewer files)", file=sys.stderr)
+              "per scene (about 100 000 queries): split the input (--skip and --limit, or fewer files)", file=sys.stderr)
 
     scene = {"format": "tmcert-scene/1"}
     if args.epsilon:
