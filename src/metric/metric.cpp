@@ -1,6 +1,9 @@
 #include "src/metric/metric.h"
 
+#include "kernels/number_types.h"
+
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace tmcert {
@@ -71,6 +74,43 @@ Metric Metric::from_mass(const MassDistribution& mass) {
     throw InputError("moment matrix of the mass distribution is not positive definite "
                      "(mass points must not lie in one plane)");
   return metric;
+}
+
+void Metric::require_positive_definite(const MassDistribution& mass) {
+  {
+    RoundingGuard guard;
+    std::array<Interval, 16> g;
+    g.fill(Interval(0));
+    bool finite = true;
+    for (std::size_t i = 0; i < mass.points.size() && finite; ++i) {
+      const Interval h[4] = {to_interval(mass.points[i][0]), to_interval(mass.points[i][1]),
+                             to_interval(mass.points[i][2]), Interval(1)};
+      const Interval w = to_interval(mass.weights[i]);
+      for (int r = 0; r < 4; ++r)
+        for (int c = r; c < 4; ++c) g[4 * r + c] += w * h[r] * h[c];
+    }
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < r; ++c) g[4 * r + c] = g[4 * c + r];
+    for (const Interval& x : g) finite = finite && std::isfinite(x.inf()) && std::isfinite(x.sup());
+    // Sylvester: G is positive definite iff its leading principal minors are
+    // positive; enclosures of the exact minors that are all certainly
+    // positive prove it.
+    auto at = [&](int r, int c) -> const Interval& { return g[4 * r + c]; };
+    auto det3 = [&](int a, int b, int c, int x, int y, int z) {  // rows a b c, columns x y z
+      return at(a, x) * (at(b, y) * at(c, z) - at(b, z) * at(c, y)) -
+             at(a, y) * (at(b, x) * at(c, z) - at(b, z) * at(c, x)) +
+             at(a, z) * (at(b, x) * at(c, y) - at(b, y) * at(c, x));
+    };
+    if (finite) {
+      const Interval m1 = at(0, 0);
+      const Interval m2 = at(0, 0) * at(1, 1) - at(0, 1) * at(1, 0);
+      const Interval m3 = det3(0, 1, 2, 0, 1, 2);
+      const Interval m4 = at(0, 0) * det3(1, 2, 3, 1, 2, 3) - at(0, 1) * det3(1, 2, 3, 0, 2, 3) +
+                          at(0, 2) * det3(1, 2, 3, 0, 1, 3) - at(0, 3) * det3(1, 2, 3, 0, 1, 2);
+      if (m1.inf() > 0 && m2.inf() > 0 && m3.inf() > 0 && m4.inf() > 0) return;
+    }
+  }
+  from_mass(mass);  // the exact decision (throws when G is not positive definite)
 }
 
 Exact Metric::rho2(const Vec3E& x) const {

@@ -21,6 +21,11 @@ class Metric {
   // positive definite, i.e. when the mass points lie in a plane.
   static Metric from_mass(const MassDistribution& mass);
 
+  // Throws as from_mass does when G is not positive definite; cheaper: an
+  // interval Sylvester test settles most distributions without building the
+  // exact inverse (from_mass decides the rest).
+  static void require_positive_definite(const MassDistribution& mass);
+
   const Mat44E& moment() const { return g_; }
   const Mat44E& inverse() const { return g_inv_; }
 

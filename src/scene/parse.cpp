@@ -598,7 +598,9 @@ class SceneReader {
   SceneReader(std::string source, std::filesystem::path base)
       : source_(std::move(source)), base_(std::move(base)) {}
 
-  Scene read(const Node& root) {
+  // Consumes the tree: each body's subtree is freed once it is read (on a
+  // scene of many bodies the tree is most of the parser's memory).
+  Scene read(Node& root) {
     Scene scene;
     scene.source = source_;
     const Node& doc = object(root, "");
@@ -617,12 +619,15 @@ class SceneReader {
 
     const Node* bodies = find(doc, "bodies");
     if (!bodies) fail("bodies", "missing required field");
-    const Node& list = array(*bodies, "bodies");
+    // The tree is ours (see above): the list may be emptied as it is read.
+    Node& list = const_cast<Node&>(array(*bodies, "bodies"));
     if (list.items.empty()) fail("bodies", "at least one body is required");
     std::map<std::string, std::size_t> names;
+    scene.bodies.reserve(list.items.size());
     for (std::size_t i = 0; i < list.items.size(); ++i) {
       const std::string path = index_path("bodies", i);
       scene.bodies.push_back(body(list.items[i], path));
+      list.items[i] = Node{};
       const std::string& name = scene.bodies.back().name;
       if (auto [it, fresh] = names.emplace(name, i); !fresh)
         fail(member_path(path, "name"),
@@ -840,7 +845,7 @@ class SceneReader {
     if (mass.points.empty()) fail(member_path(path, "points"), "at least one mass point is required");
     mass.weights = positive_weights(*weights, member_path(path, "weights"), mass.points.size(), "mass point");
     try {
-      Metric::from_mass(mass);
+      Metric::require_positive_definite(mass);
     } catch (const InputError& e) {
       fail(path, e.what());
     }
@@ -913,7 +918,7 @@ class SceneReader {
       if (!b.mass_is_default) continue;
       b.mass = default_mass(vertices_of(b), size);
       try {
-        Metric::from_mass(b.mass);
+        Metric::require_positive_definite(b.mass);
       } catch (const InputError& e) {  // default_mass promises this cannot happen
         fail(index_path("bodies", i), std::string("default mass: ") + e.what());
       }
@@ -963,7 +968,7 @@ class SceneReader {
 };
 
 Scene parse_with_base(const std::string& text, const std::string& source, const std::filesystem::path& base) {
-  const Node root = parse_json(text, source);
+  Node root = parse_json(text, source);
   return SceneReader(source, base).read(root);
 }
 
@@ -1054,10 +1059,27 @@ Scene parse_scene_file(const std::string& path) {
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size > kMaxFileBytes)
     throw InputError(path + ": file too large (more than " + std::to_string(kMaxFileBytes) + " bytes)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
+  // Read at once into one string (a stream buffer and its copy would hold
+  // the file twice).
+  std::string text;
+  if (!ec) {
+    text.resize(static_cast<std::size_t>(size));
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (in.bad()) throw InputError(path + ": cannot read file");
+    // A file that grew meanwhile: read the rest as well.
+    std::ostringstream rest;
+    if (in.peek() != std::char_traits<char>::eof()) {
+      rest << in.rdbuf();
+      text += rest.str();
+    }
+  } else {
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+  }
   if (in.bad()) throw InputError(path + ": cannot read file");
-  return parse_with_base(buffer.str(), path, std::filesystem::path(path).parent_path());
+  return parse_with_base(text, path, std::filesystem::path(path).parent_path());
 }
 
 }  // namespace tmcert
