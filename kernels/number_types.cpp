@@ -41,11 +41,27 @@ bool is_digits(const std::string& s, std::size_t from, std::size_t to) {
   return true;
 }
 
-// [+-]digits
-bool parse_integer(const std::string& s, CGAL::Gmpz& out) {
-  std::size_t start = (!s.empty() && (s[0] == '-' || s[0] == '+')) ? 1 : 0;
-  if (!is_digits(s, start, s.size())) return false;
-  out = CGAL::Gmpz(s.substr(start == 1 && s[0] == '+' ? 1 : 0));
+
+// z = the integer written in s[from, to) as [+-]digits (no sign when
+// `sign` is false); false, z unspecified, when it is not written so.
+bool set_integer(const std::string& s, std::size_t from, std::size_t to, mpz_ptr z, bool sign) {
+  const bool negative = sign && from < to && s[from] == '-';
+  if (sign && from < to && (s[from] == '-' || s[from] == '+')) ++from;
+  if (!is_digits(s, from, to)) return false;
+  // mpz_set_str needs a terminated string: a copy on the stack when short.
+  char small[128];
+  std::string large;
+  const std::size_t n = to - from;
+  char* digits = small;
+  if (n >= sizeof small) {
+    large.assign(s, from, n);
+    digits = large.data();
+  } else {
+    s.copy(small, n, from);
+    small[n] = '\0';
+  }
+  if (mpz_set_str(z, digits, 10) != 0) return false;
+  if (negative) mpz_neg(z, z);
   return true;
 }
 
@@ -55,12 +71,21 @@ bool parse_exact(const std::string& text, Exact& out) {
   if (text.empty() || text.size() > 100000) return false;
   const std::size_t slash = text.find('/');
   if (slash != std::string::npos) {
-    CGAL::Gmpz num, den;
-    if (!parse_integer(text.substr(0, slash), num)) return false;
-    const std::string den_text = text.substr(slash + 1);
-    if (den_text.empty() || den_text[0] == '-' || den_text[0] == '+') return false;
-    if (!parse_integer(den_text, den) || den == 0) return false;
-    out = Exact(num, den);
+    // Numerator and denominator read in place into a value of its own (a
+    // fresh Gmpq shares its representation with nothing), then reduced.
+    Exact q;
+    if (!set_integer(text, 0, slash, mpq_numref(q.mpq()), true)) return false;
+    if (!set_integer(text, slash + 1, text.size(), mpq_denref(q.mpq()), false)) return false;
+    if (mpz_sgn(mpq_denref(q.mpq())) == 0) return false;
+    mpq_canonicalize(q.mpq());
+    out = q;
+    return true;
+  }
+  if (text.size() <= 18 && text.find_first_of(".eE") == std::string::npos) {
+    // A short integer: no power of ten to apply.
+    Exact q;
+    if (!set_integer(text, 0, text.size(), mpq_numref(q.mpq()), true)) return false;
+    out = q;
     return true;
   }
   // Decimal: [+-] digits [. digits] [(e|E) [+-] digits], at least one digit
