@@ -14,8 +14,14 @@
 
 #include "kernels/quadratic_min.h"
 
+#include <CGAL/Interval_nt.h>
+
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace tmcert {
@@ -72,6 +78,38 @@ FT dot(const Vec3<FT>& a, const Vec3<FT>& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// max of rho^2 over a feature, as an upper bound: rho^2 = [s; 1]^T Q [s; 1]
+// is a convex quadratic of the parameters (Q positive semidefinite), so its
+// maximum over the segment or polygon is at a vertex. Over intervals the
+// result is the interval [0, the largest upper end]: a bound, not an
+// enclosure of the maximum.
+template <class FT>
+FT max_rho2(const FeatureGeometry<FT>& F) {
+  auto at = [&](const FT& s1, const FT& s2) {
+    return F.q(0, 0) * s1 * s1 + FT(2) * F.q(0, 1) * s1 * s2 + F.q(1, 1) * s2 * s2 + FT(2) * F.q(0, 2) * s1 +
+           FT(2) * F.q(1, 2) * s2 + F.q(2, 2);
+  };
+  auto upper = [](const FT& x) {
+    if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) return x.sup(); else return CGAL::to_double(x);
+  };
+  double best = 0;  // rho^2 >= 0
+  bool finite = true;
+  auto take = [&](double v) {
+    if (std::isfinite(v)) best = std::max(best, v);
+    else finite = false;  // NaN or infinite: no bound
+  };
+  if (F.dim == 0) {
+    take(upper(F.q(2, 2)));
+  } else if (F.dim == 1) {
+    take(upper(at(FT(0), FT(0))));
+    take(upper(at(FT(1), FT(0))));
+  } else {
+    for (const Pt2<FT>& t : F.domain) take(upper(at(t[0], t[1])));
+  }
+  if (!finite) best = std::numeric_limits<double>::infinity();
+  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) return FT(0, best); else return FT(best);
+}
+
 }  // namespace detail
 
 // The quadratic Phi(s) for features X (body 1) and Y (body 2), with X's
@@ -112,6 +150,107 @@ Quadratic2<FT> contact_quadratic(const FeatureGeometry<FT>& X, const FeatureGeom
   subtract_rho(X, 0);
   if (p.body2_moving) subtract_rho(Y, kx);
   return Quadratic2<FT>{h[0][0], h[0][1], h[1][1], b[0], b[1], c};
+}
+
+// A cheap test that clears a pair without the quadratic's minimum
+// (proofs/contact-tests.md, "Axis test"). For a direction n, every image
+// g1(x) of a point of X projects onto n between the smallest and largest
+// projection of the images of X's vertices (an affine map keeps convex
+// combinations), and so for Y; rho^2 is a convex quadratic of the feature's
+// parameters, so it is largest at a vertex. If the two projection ranges
+// are apart by a gap with
+//     gap^2 > R^2 |n|^2 (max_X rho1^2 + max_Y rho2^2)
+// (the rho2 term only when body 2 moves), then |g1(x) - g2(y)| >= gap / |n|
+// gives Phi(x, y) > 0 for every x in X and y in Y.  n is any direction,
+// chosen in double from the approximate images (a face's normal, the cross
+// product of two edges); only the bounds and the comparison must be
+// rigorous: over intervals (call under RoundingGuard) every projection
+// contributes its interval's lower or upper end.  In double (the fast
+// kernel) the same test, uncertified.  Exact placements: no axis test (the
+// reference keeps the plain contact test).
+template <class FT>
+bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const FeatureGeometry<FT>& Y,
+                      const Placement<FT>& p) {
+  constexpr bool interval = std::is_same_v<FT, CGAL::Interval_nt<false>>;
+  if constexpr (!interval && !std::is_same_v<FT, double>) {
+    return false;
+  } else {
+    auto lo = [](const FT& x) { if constexpr (interval) return x.inf(); else return x; };
+    auto hi = [](const FT& x) { if constexpr (interval) return x.sup(); else return x; };
+    auto mid = [](const FT& x) { return CGAL::to_double(x); };
+    constexpr std::size_t kMax = 16;  // larger polygons: no axis test
+    if ((X.dim == 2 && X.domain.size() > kMax) || (Y.dim == 2 && Y.domain.size() > kMax)) return false;
+    std::array<Vec3<FT>, kMax> xs, ys;
+    std::size_t nx = 0, ny = 0;
+    auto images = [](const FeatureGeometry<FT>& F, const std::array<FT, 12>* g, std::array<Vec3<FT>, kMax>& out,
+                     std::size_t& count) {
+      auto emit = [&](const Vec3<FT>& x) { out[count++] = g ? detail::apply_point(*g, x) : x; };
+      if (F.dim == 0) {
+        emit(F.origin);
+      } else if (F.dim == 1) {
+        emit(F.origin);
+        emit(Vec3<FT>{F.origin[0] + F.axis[0][0], F.origin[1] + F.axis[0][1], F.origin[2] + F.axis[0][2]});
+      } else {
+        for (const Pt2<FT>& t : F.domain) {
+          Vec3<FT> x;
+          for (int i = 0; i < 3; ++i) x[i] = F.origin[i] + t[0] * F.axis[0][i] + t[1] * F.axis[1][i];
+          emit(x);
+        }
+      }
+    };
+    images(X, &p.g1, xs, nx);
+    images(Y, p.body2_moving ? &p.g2 : nullptr, ys, ny);
+    // The direction, in double.
+    auto d = [&](const Vec3<FT>& a, const Vec3<FT>& b) {
+      return std::array<double, 3>{mid(a[0]) - mid(b[0]), mid(a[1]) - mid(b[1]), mid(a[2]) - mid(b[2])};
+    };
+    auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+      return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    // Two directions: the normal of the face, or of both edges (where the
+    // features face each other across a plane), then the line between the
+    // centroids (features side by side in one plane, where the first
+    // projects both onto one value).
+    std::array<std::array<double, 3>, 2> axes;
+    if (kind == ContactKind::EdgeEdge) {
+      axes[0] = cross(d(xs[1], xs[0]), d(ys[1], ys[0]));
+    } else {
+      const auto& face = kind == ContactKind::VertexFace ? ys : xs;
+      axes[0] = cross(d(face[1], face[0]), d(face[2], face[0]));
+    }
+    axes[1] = {0, 0, 0};
+    for (std::size_t k = 0; k < ny; ++k)
+      for (int i = 0; i < 3; ++i) axes[1][i] += mid(ys[k][i]) / static_cast<double>(ny);
+    for (std::size_t k = 0; k < nx; ++k)
+      for (int i = 0; i < 3; ++i) axes[1][i] -= mid(xs[k][i]) / static_cast<double>(nx);
+    FT rho = detail::max_rho2(X);
+    if (p.body2_moving) rho = rho + detail::max_rho2(Y);
+    for (const std::array<double, 3>& n : axes) {
+      if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
+      if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+      // Projection ranges, from the lower and upper ends of the projections.
+      auto range = [&](const std::array<Vec3<FT>, kMax>& pts, std::size_t count, double& low, double& high) {
+        low = std::numeric_limits<double>::infinity();
+        high = -low;
+        for (std::size_t k = 0; k < count; ++k) {
+          const FT v = FT(n[0]) * pts[k][0] + FT(n[1]) * pts[k][1] + FT(n[2]) * pts[k][2];
+          if (!(lo(v) <= hi(v))) return false;  // NaN
+          low = std::min(low, lo(v));
+          high = std::max(high, hi(v));
+        }
+        return true;
+      };
+      double xlo, xhi, ylo, yhi;
+      if (!range(xs, nx, xlo, xhi) || !range(ys, ny, ylo, yhi)) continue;
+      const double gap = std::max(ylo - xhi, xlo - yhi);  // rounded: only a candidate, checked below
+      if (!(gap > 0)) continue;
+      // gap^2 > R^2 |n|^2 (rho terms), with the gap's own rounding enclosed.
+      const FT g = ylo - xhi >= xlo - yhi ? FT(ylo) - FT(xhi) : FT(xlo) - FT(yhi);
+      const FT bound = p.r2 * (FT(n[0]) * FT(n[0]) + FT(n[1]) * FT(n[1]) + FT(n[2]) * FT(n[2])) * rho;
+      if (lo(g) > 0 && lo(g * g) > hi(bound)) return true;
+    }
+    return false;
+  }
 }
 
 // Sign of min Phi over X x Y: POSITIVE means the pair is cleared on the

@@ -41,6 +41,7 @@ nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
                 {"sphere_tests", s.sphere_tests},
                 {"slab_clears", s.slab_clears},
                 {"hull_clears", s.hull_clears},
+                {"axis_clears", s.axis_clears},
                 {"prefiltered", s.prefiltered},
                 {"seconds", s.seconds}};
   return j;

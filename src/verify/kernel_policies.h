@@ -71,6 +71,13 @@ struct FilteredPolicy {
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
     const FeatureTable& X = moving_table(m, p.kind);
     const FeatureTable& Y = other_table(f, p.kind);
+    {  // the axis test first: it settles most pairs for a quarter of the cost
+      RoundingGuard guard;
+      if (apart_along_axis<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval)) {
+        ++stats.axis_clears;
+        return CGAL::POSITIVE;
+      }
+    }
     return filtered(
         [&] { return contact_sign<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval); },
         [&] {
@@ -167,6 +174,8 @@ struct FastPolicy {
   using SphereFT = double;
   SphereFrame<double> frame(const Ball& b) const { return sphere_frame(b.placement); }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats) const {
+    // No axis test here: in double the contact test itself is about as
+    // cheap (gripper: 0.19 -> 0.21 s with it).
     ++stats.by_kind[static_cast<int>(p.kind)].calls;
     return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
                                 b.placement);

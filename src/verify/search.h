@@ -633,6 +633,7 @@ struct Check {
     s.sphere_tests += p.sphere_tests;
     s.slab_clears += p.slab_clears;
     s.hull_clears += p.hull_clears;
+    s.axis_clears += p.axis_clears;
     result.cleared.insert(result.cleared.end(), part.cleared.begin(), part.cleared.end());
     for (const UndecidedInterval& u : part.undecided) {
       if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)

@@ -73,6 +73,7 @@ struct CheckStats {
   std::uint64_t sphere_tests = 0;  // hierarchy node pairs tested
   std::uint64_t slab_clears = 0;   // node pairs cleared by their slabs
   std::uint64_t hull_clears = 0;   // feature pairs cleared by the hull test (contact test failed)
+  std::uint64_t axis_clears = 0;   // contact tests settled by the axis test alone (not counted in `contact`)
   bool prefiltered = false;      // cleared by the swept-box prefilter alone
   double seconds = 0;
 };

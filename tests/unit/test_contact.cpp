@@ -156,4 +156,61 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
   BOOST_TEST(not_cleared > 30);
 }
 
+// The axis test (a shortcut in front of the interval contact test) only
+// ever clears pairs the exact contact test clears: one body moving (no rho
+// term for body 2) and both moving (joint placement, both rho terms), on
+// random features and balls, with radii spread around the clearances so
+// that both answers occur.
+BOOST_AUTO_TEST_CASE(axis_test_clears_only_what_the_exact_test_clears) {
+  Rng r(77);
+  int axis = 0, exact_cleared = 0, total = 0;
+  for (int iter = 0; iter < 400; ++iter) {
+    std::array<Vec3E, 3> tm{rand_point(r), rand_point(r), rand_point(r)};
+    std::array<Vec3E, 3> tf{rand_point(r), rand_point(r), rand_point(r)};
+    if (testing::collinear(tm[0], tm[1], tm[2]) || testing::collinear(tf[0], tf[1], tf[2])) continue;
+    const bool both = iter % 2 == 1;
+    Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
+    const Motion shift{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
+    bm.motion = shift;
+    if (both) bf.motion = shift;
+    const PreparedBody pm(bm), pf(bf);
+    Placement<Exact> pe;
+    auto random_map = [&](std::array<Exact, 12>& g) {
+      for (auto& e : g) e = r.q(-4, 4, 8);
+      g[0] += 1; g[5] += 1; g[10] += 1;
+    };
+    random_map(pe.g1);
+    pe.body2_moving = both;
+    if (both) random_map(pe.g2);
+    pe.r2 = r.q(0, 64, 64);
+    Placement<Interval> pi;
+    for (int e = 0; e < 12; ++e) pi.g1[e] = to_interval(pe.g1[e]);
+    pi.body2_moving = both;
+    if (both)
+      for (int e = 0; e < 12; ++e) pi.g2[e] = to_interval(pe.g2[e]);
+    pi.r2 = to_interval(pe.r2);
+    auto check = [&](ContactKind kind, const FeatureGeometry<Exact>& X, const FeatureGeometry<Exact>& Y,
+                     const FeatureGeometry<Interval>& Xi, const FeatureGeometry<Interval>& Yi) {
+      ++total;
+      const bool cleared = contact_sign<Exact>(kind, X, Y, pe) == CGAL::POSITIVE;
+      exact_cleared += cleared;
+      RoundingGuard guard;
+      if (apart_along_axis<Interval>(kind, Xi, Yi, pi)) {
+        ++axis;
+        BOOST_CHECK_MESSAGE(cleared, "axis test cleared a pair the exact test does not, iteration " << iter
+                                                                                              << " kind " << int(kind));
+      }
+    };
+    check(ContactKind::VertexFace, pm.exact().vertices[1], pf.exact().faces[0], pm.vertices.interval[1], pf.faces.interval[0]);
+    check(ContactKind::FaceVertex, pm.exact().faces[0], pf.exact().vertices[2], pm.faces.interval[0], pf.vertices.interval[2]);
+    for (int i = 0; i < 3; ++i)
+      check(ContactKind::EdgeEdge, pm.exact().edges[i], pf.exact().edges[(i + iter) % 3], pm.edges.interval[i],
+            pf.edges.interval[(i + iter) % 3]);
+  }
+  BOOST_TEST_MESSAGE("axis test: " << axis << " of " << exact_cleared << " exact clears, " << total << " pairs");
+  BOOST_TEST(axis > total / 10);                  // it does clear
+  BOOST_TEST(exact_cleared - axis > total / 20);  // and leaves some clears to the full test
+  BOOST_TEST(total - exact_cleared > total / 10); // not everything is apart
+}
+
 BOOST_AUTO_TEST_SUITE_END()
