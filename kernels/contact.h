@@ -42,6 +42,9 @@ struct FeatureGeometry {
   // dim 2: the polygon's vertices in parameter coordinates, in order.
   std::vector<Pt2<FT>> domain;
   int orientation = 1;
+  // An upper bound of rho^2 over the whole feature (detail::max_rho2), kept
+  // when the feature is prepared; negative when not computed.
+  double rho2_max = -1;
 
   const FT& q(int i, int j) const { return rho2[3 * i + j]; }
 };
@@ -85,6 +88,9 @@ FT dot(const Vec3<FT>& a, const Vec3<FT>& b) {
 // enclosure of the maximum.
 template <class FT>
 FT max_rho2(const FeatureGeometry<FT>& F) {
+  if (F.rho2_max >= 0) {
+    if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) return FT(0, F.rho2_max); else return FT(F.rho2_max);
+  }
   auto at = [&](const FT& s1, const FT& s2) {
     return F.q(0, 0) * s1 * s1 + FT(2) * F.q(0, 1) * s1 * s2 + F.q(1, 1) * s2 * s2 + FT(2) * F.q(0, 2) * s1 +
            FT(2) * F.q(1, 2) * s2 + F.q(2, 2);
@@ -168,39 +174,55 @@ Quadratic2<FT> contact_quadratic(const FeatureGeometry<FT>& X, const FeatureGeom
 // contributes its interval's lower or upper end.  In double (the fast
 // kernel) the same test, uncertified.  Exact placements: no axis test (the
 // reference keeps the plain contact test).
+namespace detail {
+
+// The axis test handles features of at most this many vertices.
+constexpr std::size_t kAxisMaxVertices = 16;
+
+// Writes the images under g (null: the identity) of F's vertices (its
+// origin, a segment's other end, a polygon's vertices from its parameter
+// domain) to out; returns their count, or 0 when F has more than
+// kAxisMaxVertices.
 template <class FT>
-bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const FeatureGeometry<FT>& Y,
-                      const Placement<FT>& p) {
+std::size_t vertex_images(const FeatureGeometry<FT>& F, const std::array<FT, 12>* g, Vec3<FT>* out) {
+  std::size_t count = 0;
+  auto emit = [&](const Vec3<FT>& x) { out[count++] = g ? apply_point(*g, x) : x; };
+  if (F.dim == 0) {
+    emit(F.origin);
+  } else if (F.dim == 1) {
+    emit(F.origin);
+    emit(Vec3<FT>{F.origin[0] + F.axis[0][0], F.origin[1] + F.axis[0][1], F.origin[2] + F.axis[0][2]});
+  } else {
+    if (F.domain.size() > kAxisMaxVertices) return 0;
+    for (const Pt2<FT>& t : F.domain) {
+      Vec3<FT> x;
+      for (int i = 0; i < 3; ++i) x[i] = F.origin[i] + t[0] * F.axis[0][i] + t[1] * F.axis[1][i];
+      emit(x);
+    }
+  }
+  return count;
+}
+
+}  // namespace detail
+
+// The test on vertex images already placed: xs (nx of them) of X under g1,
+// ys of Y under g2 (or as they are), with rho an upper bound of
+// max_X rho1^2 (+ max_Y rho2^2 when body 2 moves) and r2 the ball's R^2.
+template <class FT>
+bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, const Vec3<FT>* ys, std::size_t ny,
+                      const FT& rho, const FT& r2) {
   constexpr bool interval = std::is_same_v<FT, CGAL::Interval_nt<false>>;
   if constexpr (!interval && !std::is_same_v<FT, double>) {
     return false;
   } else {
+    if (nx == 0 || ny == 0) return false;
+    if ((kind == ContactKind::EdgeEdge && (nx < 2 || ny < 2)) ||
+        (kind == ContactKind::VertexFace && ny < 3) || (kind == ContactKind::FaceVertex && nx < 3))
+      return false;
     auto lo = [](const FT& x) { if constexpr (interval) return x.inf(); else return x; };
     auto hi = [](const FT& x) { if constexpr (interval) return x.sup(); else return x; };
     auto mid = [](const FT& x) { return CGAL::to_double(x); };
-    constexpr std::size_t kMax = 16;  // larger polygons: no axis test
-    if ((X.dim == 2 && X.domain.size() > kMax) || (Y.dim == 2 && Y.domain.size() > kMax)) return false;
-    std::array<Vec3<FT>, kMax> xs, ys;
-    std::size_t nx = 0, ny = 0;
-    auto images = [](const FeatureGeometry<FT>& F, const std::array<FT, 12>* g, std::array<Vec3<FT>, kMax>& out,
-                     std::size_t& count) {
-      auto emit = [&](const Vec3<FT>& x) { out[count++] = g ? detail::apply_point(*g, x) : x; };
-      if (F.dim == 0) {
-        emit(F.origin);
-      } else if (F.dim == 1) {
-        emit(F.origin);
-        emit(Vec3<FT>{F.origin[0] + F.axis[0][0], F.origin[1] + F.axis[0][1], F.origin[2] + F.axis[0][2]});
-      } else {
-        for (const Pt2<FT>& t : F.domain) {
-          Vec3<FT> x;
-          for (int i = 0; i < 3; ++i) x[i] = F.origin[i] + t[0] * F.axis[0][i] + t[1] * F.axis[1][i];
-          emit(x);
-        }
-      }
-    };
-    images(X, &p.g1, xs, nx);
-    images(Y, p.body2_moving ? &p.g2 : nullptr, ys, ny);
-    // The direction, in double.
+    // The directions, in double.
     auto d = [&](const Vec3<FT>& a, const Vec3<FT>& b) {
       return std::array<double, 3>{mid(a[0]) - mid(b[0]), mid(a[1]) - mid(b[1]), mid(a[2]) - mid(b[2])};
     };
@@ -215,7 +237,7 @@ bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const Feat
     if (kind == ContactKind::EdgeEdge) {
       axes[0] = cross(d(xs[1], xs[0]), d(ys[1], ys[0]));
     } else {
-      const auto& face = kind == ContactKind::VertexFace ? ys : xs;
+      const Vec3<FT>* face = kind == ContactKind::VertexFace ? ys : xs;
       axes[0] = cross(d(face[1], face[0]), d(face[2], face[0]));
     }
     axes[1] = {0, 0, 0};
@@ -223,13 +245,11 @@ bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const Feat
       for (int i = 0; i < 3; ++i) axes[1][i] += mid(ys[k][i]) / static_cast<double>(ny);
     for (std::size_t k = 0; k < nx; ++k)
       for (int i = 0; i < 3; ++i) axes[1][i] -= mid(xs[k][i]) / static_cast<double>(nx);
-    FT rho = detail::max_rho2(X);
-    if (p.body2_moving) rho = rho + detail::max_rho2(Y);
     for (const std::array<double, 3>& n : axes) {
       if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
       // Projection ranges, from the lower and upper ends of the projections.
-      auto range = [&](const std::array<Vec3<FT>, kMax>& pts, std::size_t count, double& low, double& high) {
+      auto range = [&](const Vec3<FT>* pts, std::size_t count, double& low, double& high) {
         low = std::numeric_limits<double>::infinity();
         high = -low;
         for (std::size_t k = 0; k < count; ++k) {
@@ -246,11 +266,23 @@ bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const Feat
       if (!(gap > 0)) continue;
       // gap^2 > R^2 |n|^2 (rho terms), with the gap's own rounding enclosed.
       const FT g = ylo - xhi >= xlo - yhi ? FT(ylo) - FT(xhi) : FT(xlo) - FT(yhi);
-      const FT bound = p.r2 * (FT(n[0]) * FT(n[0]) + FT(n[1]) * FT(n[1]) + FT(n[2]) * FT(n[2])) * rho;
+      const FT bound = r2 * (FT(n[0]) * FT(n[0]) + FT(n[1]) * FT(n[1]) + FT(n[2]) * FT(n[2])) * rho;
       if (lo(g) > 0 && lo(g * g) > hi(bound)) return true;
     }
     return false;
   }
+}
+
+// The same from the features and the ball: places their vertices first.
+template <class FT>
+bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const FeatureGeometry<FT>& Y,
+                      const Placement<FT>& p) {
+  std::array<Vec3<FT>, detail::kAxisMaxVertices> xs, ys;
+  const std::size_t nx = detail::vertex_images(X, &p.g1, xs.data());
+  const std::size_t ny = detail::vertex_images(Y, p.body2_moving ? &p.g2 : nullptr, ys.data());
+  FT rho = detail::max_rho2(X);
+  if (p.body2_moving) rho = rho + detail::max_rho2(Y);
+  return apart_along_axis<FT>(kind, xs.data(), nx, ys.data(), ny, rho, p.r2);
 }
 
 // Sign of min Phi over X x Y: POSITIVE means the pair is cleared on the

@@ -37,6 +37,37 @@ Metrics<B> metrics_of(const PreparedBody& m, const PreparedBody& f) {
   else return {&m.metric_data, &f.metric_data};
 }
 
+// The axis test's vertex images of one body's features under one ball's
+// centre (or as they are, for a fixed body), per feature table, computed on
+// first use: a piece tests each feature against many others.
+class VertexImages {
+ public:
+  // The images of feature i of table t (of `size` features); the pointer
+  // stays valid until the next call.
+  std::pair<const Vec3<Interval>*, std::size_t> get(int t, std::size_t i, std::size_t size,
+                                                    const FeatureGeometry<Interval>& F,
+                                                    const std::array<Interval, 12>* g) {
+    std::vector<std::int32_t>& first = first_[t];
+    if (first.empty()) {
+      first.assign(size, -1);
+      count_[t].assign(size, 0);
+    }
+    if (first[i] < 0) {
+      std::array<Vec3<Interval>, detail::kAxisMaxVertices> tmp;
+      const std::size_t n = detail::vertex_images(F, g, tmp.data());
+      first[i] = static_cast<std::int32_t>(points_.size());
+      count_[t][i] = static_cast<std::uint8_t>(n);
+      points_.insert(points_.end(), tmp.begin(), tmp.begin() + n);
+    }
+    return {points_.data() + first[i], count_[t][i]};
+  }
+
+ private:
+  std::array<std::vector<std::int32_t>, 3> first_;  // per table: where a feature's images start, or -1
+  std::array<std::vector<std::uint8_t>, 3> count_;  // per table: how many
+  std::vector<Vec3<Interval>> points_;
+};
+
 template <int B>
 struct FilteredPolicy {
   using Piece = HomogeneousCurve<Interval, B>;
@@ -44,6 +75,7 @@ struct FilteredPolicy {
     BallD<B> ball;
     Placement<Interval> interval;
     std::optional<Placement<Exact>> exact;  // built on the first exact fallback
+    VertexImages moving_images, other_images;  // for the axis test
     bool valid() const { return ball.valid; }
     double r2() const { return ball.r2; }
   };
@@ -73,7 +105,15 @@ struct FilteredPolicy {
     const FeatureTable& Y = other_table(f, p.kind);
     {  // the axis test first: it settles most pairs for a quarter of the cost
       RoundingGuard guard;
-      if (apart_along_axis<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval)) {
+      const FeatureGeometry<Interval>& x = X.interval[p.i];
+      const FeatureGeometry<Interval>& y = Y.interval[p.j];
+      const int tx = static_cast<int>(p.kind), ty = 2 - static_cast<int>(p.kind);  // tables: vertices, edges, faces
+      const auto [xs, nx] = b.moving_images.get(tx, p.i, X.interval.size(), x, &b.interval.g1);
+      const auto [ys, ny] =
+          b.other_images.get(ty, p.j, Y.interval.size(), y, b.interval.body2_moving ? &b.interval.g2 : nullptr);
+      Interval rho = detail::max_rho2(x);
+      if (b.interval.body2_moving) rho += detail::max_rho2(y);
+      if (apart_along_axis<Interval>(p.kind, xs, nx, ys, ny, rho, b.interval.r2)) {
         ++stats.axis_clears;
         return CGAL::POSITIVE;
       }

@@ -331,7 +331,10 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
   }
   max_rho2 = best;
   for (FeatureTable* t : {&vertices, &edges, &faces})
-    for (const auto& f : t->interval) t->approx.push_back(midpoint(f));
+    for (auto& f : t->interval) {
+      f.rho2_max = detail::max_rho2(f).sup();  // once here, not per contact test
+      t->approx.push_back(midpoint(f));
+    }
 
   // A sphere per feature and the hierarchy over the cells (spheres around
   // the vertex enclosures; a cell's sphere around those of all its
