@@ -233,18 +233,23 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
     nb2 += CGAL::square(Interval(b.slab_n[i]));
     shift += Interval(b.slab_n[i]) * f.g1[4 * i + 3];
   }
-  const Interval size = CGAL::sqrt(Interval(0, perp2.sup())) * Interval(a.r);
-  const Interval fat = CGAL::sqrt(Interval(0, nb2.sup())) * f.R * Interval(a.p);
-  const double spread = (size + fat).sup();
+  // Upper bounds only: under the guard the rounding is upward, so sqrt,
+  // products and sums of non-negative upper bounds round up (cheaper than
+  // interval square roots, which switch the rounding mode).
+  CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
+  const double size_up = std::sqrt(perp2.sup()) * a.r;
+  const double fat_up = std::sqrt(nb2.sup()) * f.R.sup() * a.p;
+  const double spread = size_up + fat_up;
   if (!(spread >= 0) || !std::isfinite(spread)) return out;  // NaN or unbounded: no claim
+  const Interval size(0, size_up);
   const Interval w = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-spread, spread);
   out.applicable = true;
   out.apart = w.sup() < b.slab_lo || w.inf() > b.slab_hi;
   const double reach = size.sup();
   const Interval w0 = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-reach, reach);
   out.apart_unfattened = w0.sup() < b.slab_lo || w0.inf() > b.slab_hi;
-  out.size = size.sup();
-  out.fat = fat.sup();
+  out.size = size_up;
+  out.fat = fat_up;
   return out;
 }
 inline SlabTest slab_test(const SphereFrame<double>&, const BvNode&, const BvNode&) { return {}; }
