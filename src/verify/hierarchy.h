@@ -213,32 +213,53 @@ struct SlabTest {
   double size = 0, fat = 0;
 };
 
-// Call under RoundingGuard.
-inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const BvNode& b) {
+// The part of the slab test that depends on the fixed node b and the piece
+// only: m = A^T n_b, n_b.t and an upper bound of |n_b|.  Call under
+// RoundingGuard.
+struct SlabSide {
+  Interval m[3];
+  Interval shift;
+  double nb_up = 0;
+};
+inline SlabSide slab_side(const SphereFrame<Interval>& f, const BvNode& b) {
+  SlabSide s;
+  for (int j = 0; j < 3; ++j)
+    s.m[j] = f.g1[j] * Interval(b.slab_n[0]) + f.g1[4 + j] * Interval(b.slab_n[1]) + f.g1[8 + j] * Interval(b.slab_n[2]);
+  Interval nb2(0), shift(0);
+  for (int i = 0; i < 3; ++i) {
+    nb2 += CGAL::square(Interval(b.slab_n[i]));
+    shift += Interval(b.slab_n[i]) * f.g1[4 * i + 3];
+  }
+  s.shift = shift;
+  s.nb_up = std::sqrt(nb2.sup());  // upward rounding: an upper bound of |n_b|
+  return s;
+}
+
+// Call under RoundingGuard.  `side`: slab_side(f, b), when the caller keeps
+// it per piece (it is computed here otherwise).
+inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const BvNode& b,
+                          const SlabSide* side = nullptr) {
   SlabTest out;
   if (!a.slab || !b.slab || f.body2_moving) return out;
-  Interval m[3];
-  for (int j = 0; j < 3; ++j)
-    m[j] = f.g1[j] * Interval(b.slab_n[0]) + f.g1[4 + j] * Interval(b.slab_n[1]) + f.g1[8 + j] * Interval(b.slab_n[2]);
+  CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
+  const SlabSide own = side ? SlabSide{} : slab_side(f, b);
+  const SlabSide& sb = side ? *side : own;
+  const Interval* m = sb.m;
   double alpha = 0;
   for (int j = 0; j < 3; ++j) alpha += CGAL::to_double(m[j]) * a.slab_n[j];
   if (!std::isfinite(alpha)) return out;
-  Interval perp_c(0), perp2(0), nb2(0), shift(0);
+  Interval perp_c(0), perp2(0);
   for (int j = 0; j < 3; ++j) {
     const Interval perp = m[j] - Interval(alpha) * Interval(a.slab_n[j]);
     perp_c += perp * Interval(a.c[j]);
     perp2 += CGAL::square(perp);
   }
-  for (int i = 0; i < 3; ++i) {
-    nb2 += CGAL::square(Interval(b.slab_n[i]));
-    shift += Interval(b.slab_n[i]) * f.g1[4 * i + 3];
-  }
+  const Interval& shift = sb.shift;
   // Upper bounds only: under the guard the rounding is upward, so sqrt,
   // products and sums of non-negative upper bounds round up (cheaper than
   // interval square roots, which switch the rounding mode).
-  CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
   const double size_up = std::sqrt(perp2.sup()) * a.r;
-  const double fat_up = std::sqrt(nb2.sup()) * f.R.sup() * a.p;
+  const double fat_up = sb.nb_up * f.R.sup() * a.p;
   const double spread = size_up + fat_up;
   if (!(spread >= 0) || !std::isfinite(spread)) return out;  // NaN or unbounded: no claim
   const Interval size(0, size_up);
@@ -252,7 +273,26 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   out.fat = fat_up;
   return out;
 }
-inline SlabTest slab_test(const SphereFrame<double>&, const BvNode&, const BvNode&) { return {}; }
+inline SlabTest slab_test(const SphereFrame<double>&, const BvNode&, const BvNode&, const void* = nullptr) { return {}; }
+
+// slab_side per node of the fixed body's tree, computed once per piece
+// (a fixed node meets many moving ones on a piece).
+struct SlabSideCache {
+  std::vector<std::uint64_t> stamp;
+  std::vector<SlabSide> side;
+  void reset(std::size_t nodes) {
+    stamp.assign(nodes, 0);
+    side.resize(nodes);
+  }
+  const SlabSide& get(std::uint64_t piece, const SphereFrame<Interval>& f, const std::vector<BvNode>& nodes,
+                      std::uint32_t i) {
+    if (stamp[i] != piece) {
+      stamp[i] = piece;
+      side[i] = slab_side(f, nodes[i]);
+    }
+    return side[i];
+  }
+};
 
 // The placed spheres of the nodes of one tree (or of one feature table),
 // computed once per piece (`stamp` says for which piece an entry is current;

@@ -311,12 +311,14 @@ struct Check {
   struct Spheres {
     using FT = typename Policy::SphereFT;
     SphereCache<FT> moving_cells, other_cells;
+    SlabSideCache other_slabs;  // the fixed body's side of the slab test (Interval only)
     std::array<SphereCache<FT>, 3> moving, other;  // by table: vertices, edges, faces
     std::uint64_t piece = 0;
     std::vector<PairRef> scratch;  // prune's work stack
     Spheres(const PreparedBody& m, const PreparedBody& f) {
       moving_cells.reset(m.cells.tree.nodes.size());
       other_cells.reset(f.cells.tree.nodes.size());
+      other_slabs.reset(f.cells.tree.nodes.size());
       int t = 0;
       for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) moving[t++].reset(x->size());
       t = 0;
@@ -423,7 +425,13 @@ struct Check {
                               spheres.other_cells.get(piece, frame, false, Y.tree.nodes, p.j)))
         continue;
       // Flat against fixed flat: their slabs (proofs/hierarchy.md §1b).
-      const SlabTest slab = slab_test(frame, X.tree.nodes[p.i], Y.tree.nodes[p.j]);
+      SlabTest slab;
+      if constexpr (std::is_same_v<FT, Interval>) {
+        const BvNode& a = X.tree.nodes[p.i];
+        const BvNode& b = Y.tree.nodes[p.j];
+        if (a.slab && b.slab && !frame.body2_moving)
+          slab = slab_test(frame, a, b, &spheres.other_slabs.get(piece, frame, Y.tree.nodes, p.j));
+      }
       if (slab.apart) {
         ++stats.slab_clears;
         continue;
