@@ -194,7 +194,7 @@ def read_speed(path):
             r[k] = float(r[k]) if r[k] else 0.0
         for k in ("checks", "safe", "collision", "undecided", "nodes", "vf_calls", "vf_exact", "ee_calls", "ee_exact",
                   "fv_calls", "fv_exact", "static_conf", "static_pairs", "static_exact", "static_tests", "und_limit",
-                  "vf_screened", "ee_screened", "fv_screened", "hull_clears"):
+                  "vf_screened", "ee_screened", "fv_screened", "hull_clears", "axis_clears"):
             r[k] = int(r[k]) if r.get(k) else 0
     return rows
 
@@ -462,8 +462,9 @@ def md_speed(rows):
                 cells.append(f"{b['seconds'] / max(a['seconds'], 1e-9):.3g}" if a and b and a["seconds"] > 0 else "–")
             print(f"| {s} | " + " | ".join(cells) + " |")
     print("\nContact tests of the filtered kernel per predicate: tests / interval calls / exact (exact = the "
-          "interval answer was uncertain and exact arithmetic ran); hull = feature pairs cleared by the hull "
-          "test:\n")
+          "interval answer was uncertain and exact arithmetic ran); axis = contact tests settled by the axis "
+          "test before any interval call (proofs/contact-tests.md section 3, not in the tests column); hull = "
+          "feature pairs cleared by the hull test:\n")
     print(head.replace("| scene |", "| scene | predicate |"))
     print(sep.replace("|---|", "|---|---|", 1))
     for s in scenes:
@@ -475,6 +476,9 @@ def md_speed(rows):
                 tests = r[key + "_calls"] + r[key + "_screened"]
                 return f"{tests} / {r[key + '_calls']} / {r[key + '_exact']}" if tests else "0"
             print(f"| {s} | {label} | " + " | ".join(cell(s, "filtered", f, fmt) for f in fs) + " |")
+        if any(r["axis_clears"] for r in rows_s):
+            print(f"| {s} | axis clears | " + " | ".join(cell(s, "filtered", f, lambda r: str(r["axis_clears"]))
+                                                        for f in fs) + " |")
         if any(r["hull_clears"] for r in rows_s):
             print(f"| {s} | hull clears | " + " | ".join(cell(s, "filtered", f, lambda r: str(r["hull_clears"]))
                                                         for f in fs) + " |")

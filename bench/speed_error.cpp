@@ -152,6 +152,11 @@ std::uint64_t hull_clears_of(const S& s) {
   if constexpr (requires { s.hull_clears; }) return s.hull_clears;
   else return 0;
 }
+template <class S>
+std::uint64_t axis_clears_of(const S& s) {
+  if constexpr (requires { s.axis_clears; }) return s.axis_clears;
+  else return 0;
+}
 
 // ------------------------------------------------------------------ part 1: speed against epsilon
 
@@ -182,6 +187,7 @@ struct SpeedRow {
   std::array<FilterCounters, 3> by_kind{};
   std::array<std::uint64_t, 3> screened{};  // kept by the double pre-test (not in by_kind calls)
   std::uint64_t hull_clears = 0;
+  std::uint64_t axis_clears = 0;  // contact tests settled by the axis test (not in by_kind calls)
   std::uint64_t tests() const {
     std::uint64_t n = 0;
     for (int k = 0; k < 3; ++k) n += by_kind[k].calls + screened[k];
@@ -210,6 +216,7 @@ void summarize(const Scene& scene, const SceneResult& r, SpeedRow& row) {
   row.by_kind = {};
   row.screened = {};
   row.hull_clears = 0;
+  row.axis_clears = 0;
   row.static_conf = row.static_pairs = row.static_exact = row.static_tests = row.sphere_tests = 0;
   double total = 0, und = 0;
   for (const CheckResult& c : r.checks) {
@@ -235,6 +242,7 @@ void summarize(const Scene& scene, const SceneResult& r, SpeedRow& row) {
       row.screened[k] += screened_of(s.by_kind[k]);
     }
     row.hull_clears += hull_clears_of(s);
+    row.axis_clears += axis_clears_of(s);
     row.static_conf += s.static_configurations;
     row.static_pairs += s.static_filter_pairs;
     row.static_exact += s.static_filter_exact;
@@ -297,12 +305,12 @@ void write_speed_csv(const std::string& path, const std::vector<SpeedRow>& rows)
   out << "scene,group,size,f,epsilon,kernel,ran,note,verdict,checks,safe,collision,undecided,prefiltered,nodes,"
          "max_depth,seconds,reps,und_frac,und_eps,und_depth,und_limit,vf_calls,vf_exact,ee_calls,ee_exact,"
          "fv_calls,fv_exact,static_conf,static_pairs,static_exact,static_tests,sphere_tests,vf_screened,ee_screened,"
-         "fv_screened,hull_clears\n";
+         "fv_screened,hull_clears,axis_clears\n";
   char line[1024];
   for (const SpeedRow& r : rows) {
     std::snprintf(line, sizeof line,
                   "%s,%s,%.9g,%.0e,%.9g,%s,%d,%s,%s,%d,%d,%d,%d,%d,%llu,%d,%.9g,%d,%.9g,%d,%d,%d,%llu,%llu,%llu,%llu,"
-                  "%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu\n",
+                  "%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu,%llu\n",
                   r.scene.c_str(), r.group.c_str(), r.size, r.f, r.epsilon, to_string(r.kernel), r.ran ? 1 : 0,
                   r.note.c_str(), r.verdict.c_str(), r.checks, r.safe, r.collision, r.undecided, r.prefiltered,
                   static_cast<unsigned long long>(r.nodes), r.max_depth, r.seconds, r.reps, r.und_frac, r.und_eps,
@@ -316,7 +324,7 @@ void write_speed_csv(const std::string& path, const std::vector<SpeedRow>& rows)
                   static_cast<unsigned long long>(r.static_exact), static_cast<unsigned long long>(r.static_tests),
                   static_cast<unsigned long long>(r.sphere_tests), static_cast<unsigned long long>(r.screened[0]),
                   static_cast<unsigned long long>(r.screened[1]), static_cast<unsigned long long>(r.screened[2]),
-                  static_cast<unsigned long long>(r.hull_clears));
+                  static_cast<unsigned long long>(r.hull_clears), static_cast<unsigned long long>(r.axis_clears));
     out << line;
   }
 }
