@@ -2,9 +2,21 @@
 // primitives moving), generated with known ground truth: false safe, false
 // collision, undecided rates and time per query for epsilon from 1e-2 to
 // 1e-8 of each query's size.  Usage: tmcert_ccd_bench [queries] [seed] [fraction]
-// (a fraction restricts the run to that one epsilon row, for profiling)
+// (a fraction restricts the run to that one epsilon row, for profiling).
+//
+// tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json]: times every
+// check of a given scene the same way (one by one, in process, one
+// verifier for the scene), e.g. a set converted by
+// scripts/ccd_csv_to_scene.py, with its --truth-out list for false safe /
+// false collision.
 #include "bench/ccd_queries.h"
+#include "src/scene/parse.h"
 #include "src/verify/verify.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
 
 #include <algorithm>
 #include <chrono>
@@ -96,7 +108,70 @@ void header(const char* first) {
 
 }  // namespace
 
+// --scene: every check of a scene file, timed one by one.
+static int run_scene(const std::string& scene_file, const std::string& truth_file) {
+  const Scene scene = parse_scene_file(scene_file);
+  VerifyOptions options;
+  options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
+  options.max_depth = scene.max_depth;
+  std::vector<int> truth(scene.checks.size(), -1);  // 1 colliding, 0 free, -1 unknown
+  if (!truth_file.empty()) {
+    std::ifstream in(truth_file);
+    const nlohmann::json t = nlohmann::json::parse(in);
+    if (!t.is_array() || t.size() != scene.checks.size()) {
+      std::fprintf(stderr, "%s: expected a list of %zu entries\n", truth_file.c_str(), scene.checks.size());
+      return 3;
+    }
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (t[i].contains("truth") && t[i]["truth"].is_boolean()) truth[i] = t[i]["truth"].get<bool>() ? 1 : 0;
+  }
+  const auto setup_start = std::chrono::steady_clock::now();
+  const Verifier verifier(scene, options);
+  const double setup_us =
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - setup_start).count();
+  std::map<std::string, Row> groups;
+  for (std::size_t i = 0; i < scene.checks.size(); ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    const CheckResult r = verifier.check(scene.checks[i].first, scene.checks[i].second);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    const std::string group = truth[i] == 1 ? "~colliding" : truth[i] == 0 ? "~free" : "~no truth";
+    for (Row* t : {&groups["all"], &groups[group]}) {
+      ++t->queries;
+      t->micros.push_back(us);
+      if (r.stats.prefiltered) ++t->prefiltered;
+      if (truth[i] == 1) {
+        ++t->colliding;
+        if (r.verdict == Verdict::Safe) ++t->false_safe;
+        if (r.verdict == Verdict::Undecided) ++t->undecided_colliding;
+      } else if (truth[i] == 0) {
+        ++t->free;
+        if (r.verdict == Verdict::Collision) ++t->false_collision;
+        if (r.verdict == Verdict::Undecided) ++t->undecided_free;
+      }
+    }
+  }
+  std::printf("tmcert CCD scene %s: %zu checks, filtered kernel, epsilon %s; times per check, one by one;\n"
+              "setup = the verifier's set-up divided by the number of checks\n\n",
+              scene_file.c_str(), scene.checks.size(), to_string(options.epsilon).c_str());
+  header("checks");
+  for (const auto& [name, r] : groups) print_row(name.c_str(), r, setup_us / scene.checks.size());
+  return groups["all"].false_safe == 0 && groups["all"].false_collision == 0 ? 0 : 1;
+}
+
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--scene") {
+    if (argc != 3 && !(argc == 5 && std::string(argv[3]) == "--truth")) {
+      std::fprintf(stderr, "usage: tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json]\n");
+      return 2;
+    }
+    try {
+      return run_scene(argv[2], argc == 5 ? argv[4] : "");
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tmcert_ccd_bench: %s\n", e.what());
+      return 3;
+    }
+  }
   const int count = argc > 1 ? std::atoi(argv[1]) : 4000;
   const unsigned seed = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 1;
   QueryGenerator generator(seed);
