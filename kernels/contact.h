@@ -159,7 +159,7 @@ Quadratic2<FT> contact_quadratic(const FeatureGeometry<FT>& X, const FeatureGeom
 }
 
 // A cheap test that clears a pair without the quadratic's minimum
-// (proofs/contact-tests.md, "Axis test"). For a direction n, every image
+// (proofs/contact-tests.md section 3). For a direction n, every image
 // g1(x) of a point of X projects onto n between the smallest and largest
 // projection of the images of X's vertices (an affine map keeps convex
 // combinations), and so for Y; rho^2 is a convex quadratic of the feature's
@@ -168,12 +168,14 @@ Quadratic2<FT> contact_quadratic(const FeatureGeometry<FT>& X, const FeatureGeom
 //     gap^2 > R^2 |n|^2 (max_X rho1^2 + max_Y rho2^2)
 // (the rho2 term only when body 2 moves), then |g1(x) - g2(y)| >= gap / |n|
 // gives Phi(x, y) > 0 for every x in X and y in Y.  n is any direction,
-// chosen in double from the approximate images (a face's normal, the cross
-// product of two edges); only the bounds and the comparison must be
-// rigorous: over intervals (call under RoundingGuard) every projection
-// contributes its interval's lower or upper end.  In double (the fast
-// kernel) the same test, uncertified.  Exact placements: no axis test (the
-// reference keeps the plain contact test).
+// chosen in double from the approximate images (a face's normal or the
+// cross product of two edges, then the line between the centroids); only
+// the bounds and the comparison must be rigorous: over intervals (call
+// under RoundingGuard) every projection contributes its interval's lower
+// or upper end.  The filtered kernel runs it before its contact test; the
+// fast kernel does not (in double the contact test is about as cheap), and
+// it answers false for exact placements (the reference keeps the plain
+// contact test).  In double it computes the same test, uncertified.
 namespace detail {
 
 // The axis test handles features of at most this many vertices.
