@@ -42,6 +42,7 @@ nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
                 {"slab_clears", s.slab_clears},
                 {"hull_clears", s.hull_clears},
                 {"axis_clears", s.axis_clears},
+                {"stops", s.stops},
                 {"prefiltered", s.prefiltered},
                 {"seconds", s.seconds}};
   return j;

@@ -582,6 +582,7 @@ struct Check {
         }
       }
       record(node, *stop);
+      ++stats.stops;
       return Outcome::Stopped;
     }
     left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}, nullptr};
@@ -599,15 +600,16 @@ struct Check {
   // every node is also counted there and the search gives up (returns
   // false, its result unusable) once that count passes `shared_limit`.
   template <class Policy>
-  bool dfs(const Policy& policy, Item<Policy> root, std::uint64_t budget, Spheres<Policy>& spheres,
-           std::atomic<std::uint64_t>* shared = nullptr, std::uint64_t shared_limit = 0) {
+  bool dfs(const Policy& policy, Item<Policy> root, std::uint64_t budget, std::uint64_t stop_budget,
+           Spheres<Policy>& spheres, std::atomic<std::uint64_t>* shared = nullptr, std::uint64_t shared_limit = 0) {
     std::vector<Item<Policy>> stack;
     stack.push_back(std::move(root));
     const std::uint64_t limit = result.stats.nodes + budget;
+    const std::uint64_t stop_limit = result.stats.stops + stop_budget;
     while (!stack.empty()) {
       Item<Policy> item = std::move(stack.back());
       stack.pop_back();
-      if (result.stats.nodes >= limit) {  // resource limit: not cleared
+      if (result.stats.nodes >= limit || result.stats.stops >= stop_limit) {  // resource limit: not cleared
         record(item.node, StopReason::Limit);
         continue;
       }
@@ -631,6 +633,7 @@ struct Check {
     CheckStats& s = result.stats;
     const CheckStats& p = part.stats;
     s.nodes += p.nodes;
+    s.stops += p.stops;
     s.max_depth = std::max(s.max_depth, p.max_depth);
     s.contact += p.contact;
     for (int k = 0; k < 3; ++k) s.by_kind[k] += p.by_kind[k];
@@ -683,7 +686,8 @@ struct Check {
       while (!stack.empty()) {
         Item<Policy> item = std::move(stack.back());
         stack.pop_back();
-        if (item.node.depth >= kTaskDepth || result.stats.nodes >= options.max_nodes) {
+        if (item.node.depth >= kTaskDepth || result.stats.nodes >= options.max_nodes ||
+            result.stats.stops >= options.max_stops) {
           entries.push_back({std::move(item), {}});
           continue;
         }
@@ -715,15 +719,17 @@ struct Check {
       }
     }
     // The tasks run optimistically, in parallel, each with all the node
-    // budget left; the merge then replays the sequential budget: a task that
-    // used more than what the tasks before it left (or gave up because all
-    // tasks together passed the budget) is searched again, alone, with
-    // exactly that.  So the result is the sequential one for every thread
-    // count.
+    // and stop budgets left; the merge then replays the sequential budgets:
+    // a task that used more than what the tasks before it left (or gave up
+    // because all tasks together passed the node budget) is searched again,
+    // alone, with exactly that.  So the result is the sequential one for
+    // every thread count.
     std::size_t task_count = 0;
     for (const Entry& e : entries) task_count += e.task ? 1 : 0;
     const std::uint64_t used = result.stats.nodes;
     const std::uint64_t remaining = options.max_nodes > used ? options.max_nodes - used : 0;
+    const std::uint64_t stops_remaining =
+        options.max_stops > result.stats.stops ? options.max_stops - result.stats.stops : 0;
     std::vector<std::optional<Item<Policy>>> originals(entries.size());
     std::vector<char> complete(entries.size(), 0);
     std::vector<std::exception_ptr> errors(entries.size());
@@ -740,7 +746,7 @@ struct Check {
         if (!own) own = &local.emplace(moving, other);
         try {
           Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, e.part};
-          complete[i] = sub.dfs(policy, std::move(*e.task), remaining, *own, &spent, remaining) ? 1 : 0;
+          complete[i] = sub.dfs(policy, std::move(*e.task), remaining, stops_remaining, *own, &spent, remaining) ? 1 : 0;
           if (complete[i] && e.part.witness) {
             std::size_t w = first_witness.load();
             while (i < w && !first_witness.compare_exchange_weak(w, i)) {}
@@ -765,10 +771,18 @@ struct Check {
       if (originals[i]) {
         if (errors[i]) std::rethrow_exception(errors[i]);
         const std::uint64_t left = remaining > cumulative ? remaining - cumulative : 0;
-        if (!complete[i] || e.part.stats.nodes > left) {
+        // The stops the pieces merged so far (tasks and shallower stops)
+        // leave.  The task ran with stops_remaining >= stops_left: its run
+        // is the one with stops_left unless it reached stops_left stops
+        // with budget to spare (a run with stops_left would have ended
+        // there).
+        const std::uint64_t stops_left =
+            options.max_stops > result.stats.stops ? options.max_stops - result.stats.stops : 0;
+        const bool stops_differ = stops_left < stops_remaining && e.part.stats.stops >= stops_left;
+        if (!complete[i] || e.part.stats.nodes > left || stops_differ) {
           e.part = CheckResult{};
           Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, e.part};
-          sub.dfs(policy, std::move(*originals[i]), left, spheres);
+          sub.dfs(policy, std::move(*originals[i]), left, stops_left, spheres);
         }
         cumulative += e.part.stats.nodes;
       }

@@ -32,6 +32,14 @@ struct VerifyOptions {
   Exact epsilon;                  // > 0, a length in scene units
   int max_depth = 40;
   std::uint64_t max_nodes = 2'000'000;  // per check; beyond it: undecided "limit"
+  // Per check: after this many undecided stops (pieces that came within
+  // epsilon, or reached the depth limit, without a witness), the rest of the
+  // interval is undecided "limit" without being searched.  A motion that
+  // stays within epsilon of contact along the whole interval (bodies
+  // resting on each other) would otherwise be subdivided to epsilon
+  // everywhere; the verdict is undecided from the first stop on anyway, and
+  // the first-contact bracket comes from the first stop.
+  std::uint64_t max_stops = 256;
   // Bounding-volume hierarchies over the features (false: every feature pair
   // is carried from the root, the reference the hierarchy is checked against).
   bool hierarchy = true;
@@ -58,6 +66,7 @@ struct UndecidedInterval {
 
 struct CheckStats {
   std::uint64_t nodes = 0;
+  std::uint64_t stops = 0;       // undecided stops (epsilon or depth), at most VerifyOptions::max_stops
   int max_depth = 0;
   FilterCounters contact;        // all contact tests
   std::array<FilterCounters, 3> by_kind;  // vertex-face, edge-edge, face-vertex

@@ -83,4 +83,38 @@ BOOST_AUTO_TEST_CASE(a_small_node_budget_ends_undecided_with_limit_pieces) {
   BOOST_TEST(r.checks[0].stats.nodes <= 12u);
 }
 
+// A motion that stays within epsilon of contact along most of the interval
+// (a point resting 1e-9..1e-7 above a slowly tilting triangle): every piece
+// there stops, so the stop budget ends the search.  The result is the same
+// for every thread count and stop budget replayed as the node budget is,
+// the stops never exceed the budget, the rest is undecided "limit", and the
+// first-contact bracket is the one the unbudgeted search finds.
+BOOST_AUTO_TEST_CASE(the_stop_budget_ends_a_resting_contact_the_same_way_on_every_thread_count) {
+  const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/resting-within-epsilon.json");
+  VerifyOptions options;
+  options.epsilon = *scene.epsilon;
+  options.max_depth = scene.max_depth;
+  options.max_stops = 1'000'000;  // effectively none: the node budget is far larger than this motion needs
+  const CheckResult full = verify_scene(scene, options, 1).checks[0];
+  BOOST_TEST(to_string(full.verdict) == "undecided");
+  BOOST_TEST_REQUIRE(full.stats.stops > 1000u);  // the case the budget is for
+  BOOST_TEST_REQUIRE(full.first_contact.has_value());
+  for (const std::uint64_t stops : {std::uint64_t(256), std::uint64_t(16), std::uint64_t(3)}) {
+    options.max_stops = stops;
+    const CheckResult one = verify_scene(scene, options, 1).checks[0];
+    BOOST_TEST(to_string(one.verdict) == "undecided");
+    BOOST_TEST(one.stats.stops <= stops);
+    BOOST_TEST(one.stats.nodes < full.stats.nodes / 10);
+    BOOST_TEST_REQUIRE(!one.undecided.empty());
+    BOOST_TEST(to_string(one.undecided.back().reason) == "limit");
+    BOOST_TEST(to_string(one.undecided.back().t1) == "1");
+    BOOST_TEST_REQUIRE(one.first_contact.has_value());
+    BOOST_TEST(to_string(one.first_contact->first) == to_string(full.first_contact->first));
+    BOOST_TEST(to_string(one.first_contact->second) == to_string(full.first_contact->second));
+    for (const int n : {2, 3, 8})
+      require_same(one, verify_scene(scene, options, n).checks[0],
+                   "resting, " + std::to_string(stops) + " stops, " + std::to_string(n) + " threads");
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
