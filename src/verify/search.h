@@ -383,7 +383,8 @@ struct Check {
     }
     if (!options.hierarchy) {
       std::erase_if(alive, [&](const PairRef& p) {
-        return policy.test(ball, p, stats) == CGAL::POSITIVE || (!hull_first && hull_clears(policy, controls, p, stats));
+        return policy.test(ball, p, stats, !hull_first) == CGAL::POSITIVE ||
+               (!hull_first && hull_clears(policy, controls, p, stats));
       });
       return;
     }
@@ -406,7 +407,7 @@ struct Check {
         return;
       // The contact test before the hull test here: on long lists (meshes)
       // it is the cheaper of the two and clears most pairs.
-      if (policy.test(ball, p, stats) == CGAL::POSITIVE) return;
+      if (policy.test(ball, p, stats, !hull_tested) == CGAL::POSITIVE) return;
       if (!hull_tested && hull_clears(policy, controls, p, stats)) return;
       alive.push_back(p);
     };
