@@ -1,8 +1,10 @@
 // Continuous-collision queries (vertex-face, edge-edge, linear motion, both
 // primitives moving), generated with known ground truth: false safe, false
 // collision, undecided rates and time per query for epsilon from 1e-2 to
-// 1e-8 of each query's size.  Usage: tmcert_ccd_bench [queries] [seed] [fraction]
-// (a fraction restricts the run to that one epsilon row, for profiling).
+// 1e-8 of each query's size.  Usage: tmcert_ccd_bench [queries] [seed] [fraction] [max_stops]
+// (a fraction restricts the run to that one epsilon row, for profiling;
+// max_stops replaces VerifyOptions::max_stops, to see what the stop budget
+// costs).
 //
 // tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json]: times every
 // check of a given scene the same way (one by one, in process, one
@@ -51,9 +53,12 @@ double mean(const std::vector<double>& v) {
 
 // Queries are generated in [-1, 1]^3 (scene size 2 per axis); epsilon is a
 // fraction of that.
+std::uint64_t g_max_stops = VerifyOptions{}.max_stops;
+
 Row run(const QuerySet& set, double fraction, std::map<std::string, Row>* by_kind, double* setup_us) {
   Row row;
   VerifyOptions options;
+  options.max_stops = g_max_stops;
   char text[64];
   std::snprintf(text, sizeof text, "%.3g", 2 * fraction);
   parse_exact(text, options.epsilon);
@@ -189,6 +194,7 @@ int main(int argc, char** argv) {
   double kinds_setup = 0;
   std::vector<double> fractions{1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   if (argc > 3) fractions = {std::atof(argv[3])};
+  if (argc > 4) g_max_stops = std::strtoull(argv[4], nullptr, 10);
   for (double fraction : fractions) {
     double setup_us = 0;
     const Row r = run(set, fraction, fraction == 1e-6 ? &kinds : nullptr, &setup_us);
