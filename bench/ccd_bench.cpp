@@ -6,7 +6,7 @@
 // max_stops replaces VerifyOptions::max_stops, to see what the stop budget
 // costs).
 //
-// tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json]: times every
+// tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N]: times every
 // check of a given scene the same way (one by one, in process, one
 // verifier for the scene), e.g. a set converted by
 // scripts/ccd_csv_to_scene.py, with its --truth-out list for false safe /
@@ -119,6 +119,7 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
   VerifyOptions options;
   options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   options.max_depth = scene.max_depth;
+  options.max_stops = g_max_stops;
   std::vector<int> truth(scene.checks.size(), -1);  // 1 colliding, 0 free, -1 unknown
   if (!truth_file.empty()) {
     std::ifstream in(truth_file);
@@ -166,12 +167,21 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--scene") {
-    if (argc != 3 && !(argc == 5 && std::string(argv[3]) == "--truth")) {
-      std::fprintf(stderr, "usage: tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json]\n");
+    std::string truth;
+    bool ok = argc >= 3;
+    for (int i = 3; ok && i < argc; i += 2) {
+      const std::string flag = argv[i];
+      if (i + 1 >= argc) ok = false;
+      else if (flag == "--truth") truth = argv[i + 1];
+      else if (flag == "--max-stops") g_max_stops = std::strtoull(argv[i + 1], nullptr, 10);
+      else ok = false;
+    }
+    if (!ok) {
+      std::fprintf(stderr, "usage: tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N]\n");
       return 2;
     }
     try {
-      return run_scene(argv[2], argc == 5 ? argv[4] : "");
+      return run_scene(argv[2], truth);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "tmcert_ccd_bench: %s\n", e.what());
       return 3;

@@ -429,7 +429,7 @@ def md_speed(rows):
         return f"{r['undecided']}u"
 
     print("Filtered kernel: seconds (best of the repetitions) and verdict (s/c/u; for several checks, the "
-          "number undecided); `L` = node budget used up:\n")
+          "number undecided); `L` = node or stop budget used up (undecided pieces with reason limit):\n")
     print(head)
     print(sep)
     for s in scenes:
