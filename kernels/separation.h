@@ -37,10 +37,12 @@ namespace tmcert {
 namespace hull_detail {
 
 // GJK stops once the margin is kAccept |n|^2, or after kIterations steps
-// (a tuning choice: on the continuous-collision queries of bench/, larger
-// values clear no more pairs).
+// (a tuning choice: on the continuous-collision queries of bench/, 12 steps
+// cleared one pair more than 6 in 4000 queries, while on nearly degenerate
+// pairs resting within 1e-9..1e-5, where GJK does not converge, 6 steps cut
+// the slowest check from 0.17 to 0.10 s).
 constexpr double kAccept = 0.1;
-constexpr int kIterations = 12;
+constexpr int kIterations = 6;
 
 using V3 = std::array<double, 3>;
 
