@@ -210,7 +210,9 @@ struct SlabTest {
   // Apart without the piece's fattening: what a smaller piece could reach
   // (for the descent decision only).
   bool apart_unfattened = false;
-  double size = 0, fat = 0;
+  // The slabs' gap without the fattening (> 0 when apart_unfattened), the
+  // node's spread and the fattening (descent decisions only).
+  double gap = 0, size = 0, fat = 0;
 };
 
 // The part of the slab test that depends on the fixed node b and the piece
@@ -269,6 +271,7 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   const double reach = size.sup();
   const Interval w0 = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-reach, reach);
   out.apart_unfattened = w0.sup() < b.slab_lo || w0.inf() > b.slab_hi;
+  out.gap = std::max(b.slab_lo - w0.sup(), w0.inf() - b.slab_hi);
   out.size = size_up;
   out.fat = fat_up;
   return out;

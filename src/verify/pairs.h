@@ -23,15 +23,19 @@ struct PairRef {
   // for pairs carried from the root); the pieces above that depth are
   // re-tested at a stop so that the surviving pairs are those of all pairs.
   std::uint8_t born = 0;
+  // A node pair carried to the sub-pieces by its slab test: how far its
+  // slabs' gap fell short of the fattening when it was carried (a search
+  // decision only, proofs/hierarchy.md §1b); 0 when not carried.
+  std::uint8_t carried = 0;
   std::uint32_t i;
   std::uint32_t j;
 };
 
 static_assert(sizeof(PairRef) == 12, "alive lists hold many pairs: keep them small");
 
-inline PairRef node_pair(std::uint32_t i, std::uint32_t j) { return {ContactKind::VertexFace, true, 0, i, j}; }
+inline PairRef node_pair(std::uint32_t i, std::uint32_t j) { return {ContactKind::VertexFace, true, 0, 0, i, j}; }
 inline PairRef feature_pair(ContactKind k, std::uint32_t i, std::uint32_t j, std::uint8_t born = 0) {
-  return {k, false, born, i, j};
+  return {k, false, born, 0, i, j};
 }
 
 inline const FeatureTable& moving_table(const PreparedBody& b, ContactKind k) {

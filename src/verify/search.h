@@ -336,6 +336,14 @@ struct Check {
   // 2 tests far fewer feature pairs than 1 on pieces whose balls are still
   // too large to clear them).
   static constexpr std::uint64_t kExpandPairs = 64;
+
+  // 1 + twice log2(fattening / gap) of a slab test that failed by its
+  // fattening, clamped to 1..255 (a search decision only).
+  static std::uint8_t carry_shortfall(const SlabTest& slab) {
+    const double ratio = slab.fat / slab.gap;
+    if (!(ratio > 1)) return 1;
+    return static_cast<std::uint8_t>(std::min(255.0, 1 + std::floor(2 * std::log2(ratio))));
+  }
   static constexpr double kDescend = 2;
 
   // A feature pair is cleared on a piece when its hull test on the piece's
@@ -443,10 +451,21 @@ struct Check {
       // splitting or expanding them cannot help on this piece, while a
       // smaller piece can clear the whole pair at once.  (Slabs that overlap
       // even unfattened - flat nodes side by side in one plane - are
-      // descended: no piece clears them by their slabs.)
+      // descended: no piece clears them by their slabs.)  A pair carried
+      // before is carried again only if the shortfall, fattening over gap,
+      // has fallen by a factor of about 1.4 since: it does so while the gap
+      // holds and the pieces halve (a body hovering over a plane), not near
+      // a time where one slab passes through the other, where the gap
+      // shrinks with the pieces and carrying would halve them towards that
+      // time down to the stop at epsilon.
       if (!expand_all && slab.applicable && slab.apart_unfattened && !(slab.size > slab.fat)) {
-        alive.push_back(p);
-        continue;
+        const std::uint8_t shortfall = carry_shortfall(slab);
+        if (p.carried == 0 || shortfall + 1 < p.carried) {
+          PairRef carried = p;
+          carried.carried = shortfall;
+          alive.push_back(carried);
+          continue;
+        }
       }
       if (leaf_a && leaf_b) {
         // Two cells: their feature pairs, in a fixed order.

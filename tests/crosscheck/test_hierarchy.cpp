@@ -1409,4 +1409,59 @@ BOOST_AUTO_TEST_CASE(slab_test_never_clears_a_reachable_contact) {
   BOOST_TEST(apart > 50);  // the test exercises clears, not only refusals
 }
 
+// §1b, the carry rule (a search decision, no guarantee depends on it): a
+// flat grid whose plane passes through the plane of a fixed flat grid at
+// t = 1/3, two units to the side of it.  Near 1/3 the slabs are apart
+// without the fattening by a gap that shrinks with the pieces; a pair
+// carried there again and again would halve the pieces towards 1/3 down to
+// the stop at epsilon (nodes growing with log(1/epsilon), as the gripper's
+// did).  The search must need about the same pieces at every epsilon.
+BOOST_AUTO_TEST_CASE(slab_carry_does_not_chase_a_plane_crossing) {
+  auto grid = [](const std::string& name, int k, const Exact& x0) {
+    Body b;
+    b.name = name;
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        const std::vector<Vec3E> sq = {{x0 + Exact(i, k), Exact(j, k), 0}, {x0 + Exact(i + 1, k), Exact(j, k), 0},
+                                       {x0 + Exact(i + 1, k), Exact(j + 1, k), 0}, {x0 + Exact(i, k), Exact(j + 1, k), 0}};
+        b.polygons.push_back(sq);
+        b.pieces.push_back(ConvexPiece{static_cast<int>(b.polygons.size() - 1), sq});
+      }
+    b.mass = default_mass(body_vertices(b), Exact(1));
+    b.mass_is_default = true;
+    return b;
+  };
+  Scene scene;
+  scene.source = "slab carry";
+  // The fixed body: two grids in z = 0, at x in [0, 1] and [6, 7] (so that
+  // the swept boxes overlap and the search runs).
+  Body fixed = grid("fixed", 8, 0);
+  const Body far = grid("far", 8, 6);
+  for (const auto& poly : far.polygons) {
+    fixed.polygons.push_back(poly);
+    fixed.pieces.push_back(ConvexPiece{static_cast<int>(fixed.polygons.size() - 1), poly});
+  }
+  fixed.mass = default_mass(body_vertices(fixed), Exact(1));
+  scene.bodies = {grid("moving", 8, 3), fixed};
+  // z = 1 - 3t: the moving plane is z = 0 at t = 1/3; its grid stays at
+  // x in [3, 4], two units from either fixed grid.
+  scene.bodies[0].motion = Motion{0, 1, {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1}, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -2}}, {1, 1}};
+  scene.checks = {{0, 1}};
+  std::vector<std::uint64_t> nodes;
+  for (const Exact& eps : {Exact(1, 1000), Exact(1, 1000000), Exact(1, 1000000000)}) {
+    scene.epsilon = eps;
+    VerifyOptions o;
+    o.epsilon = eps;
+    o.max_depth = 60;
+    o.max_nodes = 100000;
+    const CheckResult r = verify_check(scene, 0, 1, o);
+    BOOST_TEST((r.verdict == Verdict::Safe), "epsilon " << to_string(eps) << ": " << to_string(r.verdict));
+    BOOST_TEST(r.stats.slab_clears > 0, "epsilon " << to_string(eps) << ": the slab test never cleared a pair");
+    nodes.push_back(r.stats.nodes);
+  }
+  BOOST_TEST_MESSAGE("slab carry: nodes " << nodes[0] << ", " << nodes[1] << ", " << nodes[2]);
+  BOOST_TEST(nodes[2] <= nodes[0] + 8, "nodes " << nodes[0] << " at epsilon 1e-3, " << nodes[1] << " at 1e-6, "
+                                                << nodes[2] << " at 1e-9: the search chases t = 1/3");
+}
+
 BOOST_AUTO_TEST_SUITE_END()
