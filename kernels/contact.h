@@ -218,6 +218,7 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
     return false;
   } else {
     if (nx == 0 || ny == 0) return false;
+    if constexpr (interval) CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
     if ((kind == ContactKind::EdgeEdge && (nx < 2 || ny < 2)) ||
         (kind == ContactKind::VertexFace && ny < 3) || (kind == ContactKind::FaceVertex && nx < 3))
       return false;
@@ -251,14 +252,32 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
       if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
       // Projection ranges, from the lower and upper ends of the projections.
+      // For intervals, the ends of n.x over the box of x directly: the
+      // largest value picks each coordinate's upper end where n_i >= 0 and
+      // its lower end where n_i < 0, the smallest the other ends; under the
+      // upward rounding the sum of the products rounds up, and the smallest
+      // is -(sum of (-n_i) times its ends), rounded up and negated: the same
+      // enclosure as interval arithmetic, without its sign cases per product.
       auto range = [&](const Vec3<FT>* pts, std::size_t count, double& low, double& high) {
         low = std::numeric_limits<double>::infinity();
         high = -low;
         for (std::size_t k = 0; k < count; ++k) {
-          const FT v = FT(n[0]) * pts[k][0] + FT(n[1]) * pts[k][1] + FT(n[2]) * pts[k][2];
-          if (!(lo(v) <= hi(v))) return false;  // NaN
-          low = std::min(low, lo(v));
-          high = std::max(high, hi(v));
+          double vlo, vhi;
+          if constexpr (interval) {
+            double up = 0, down = 0;  // an upper bound of the largest, of minus the smallest
+            for (int i = 0; i < 3; ++i) {
+              const double a = pts[k][i].inf(), b = pts[k][i].sup();
+              up += n[i] * (n[i] >= 0 ? b : a);
+              down += (-n[i]) * (n[i] >= 0 ? a : b);
+            }
+            vlo = -down;
+            vhi = up;
+          } else {
+            vlo = vhi = n[0] * pts[k][0] + n[1] * pts[k][1] + n[2] * pts[k][2];
+          }
+          if (!(vlo <= vhi)) return false;  // NaN
+          low = std::min(low, vlo);
+          high = std::max(high, vhi);
         }
         return true;
       };
