@@ -37,9 +37,10 @@ Metrics<B> metrics_of(const PreparedBody& m, const PreparedBody& f) {
   else return {&m.metric_data, &f.metric_data};
 }
 
-// The axis test's vertex images of one body's features under one ball's
-// centre (or as they are, for a fixed body), per feature table, computed on
-// first use: a piece tests each feature against many others.
+// The axis test's vertex images of one moving body's features under one
+// ball's centre, per feature table, computed on first use: a piece tests
+// each feature against many others.  (A fixed body's are kept with its
+// features: FeatureTable::fixed_images.)
 class VertexImages {
  public:
   // The images of feature i of table t (of `size` features); the pointer
@@ -114,8 +115,8 @@ struct FilteredPolicy {
       const FeatureGeometry<Interval>& y = Y.interval[p.j];
       const int tx = static_cast<int>(p.kind), ty = 2 - static_cast<int>(p.kind);  // tables: vertices, edges, faces
       const auto [xs, nx] = b.moving_images.get(tx, p.i, X.interval.size(), x, &b.interval.g1);
-      const auto [ys, ny] =
-          b.other_images.get(ty, p.j, Y.interval.size(), y, b.interval.body2_moving ? &b.interval.g2 : nullptr);
+      const auto [ys, ny] = b.interval.body2_moving ? b.other_images.get(ty, p.j, Y.interval.size(), y, &b.interval.g2)
+                                                    : Y.fixed_images(p.j);
       Interval rho = detail::max_rho2(x);
       if (b.interval.body2_moving) rho += detail::max_rho2(y);
       if (apart_along_axis<Interval>(p.kind, xs, nx, ys, ny, rho, b.interval.r2)) {

@@ -334,6 +334,13 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
     for (auto& f : t->interval) {
       f.rho2_max = detail::max_rho2(f).sup();  // once here, not per contact test
       t->approx.push_back(midpoint(f));
+      if (!moving) {  // world coordinates: the axis test's vertex images, once
+        std::array<Vec3<Interval>, detail::kAxisMaxVertices> tmp;
+        const std::size_t n = detail::vertex_images<Interval>(f, nullptr, tmp.data());
+        t->image_first.push_back(static_cast<std::uint32_t>(t->images.size()));
+        t->image_count.push_back(static_cast<std::uint8_t>(n));
+        t->images.insert(t->images.end(), tmp.begin(), tmp.begin() + n);
+      }
     }
 
   // A sphere per feature and the hierarchy over the cells (spheres around

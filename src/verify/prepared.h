@@ -25,7 +25,16 @@ struct FeatureTable {
   std::vector<FeatureGeometry<double>> approx;      // for the fast kernel only
   std::vector<int> part;                            // index into PreparedBody::parts
   std::vector<BvNode> spheres;                      // one per feature, certainly holding it
+  // Fixed bodies only: enclosures of each feature's vertices in the world
+  // (detail::vertex_images, for the axis test), feature k's `image_count[k]`
+  // of them from `images[image_first[k]]`; they do not change with the piece.
+  std::vector<std::uint32_t> image_first;
+  std::vector<std::uint8_t> image_count;
+  std::vector<Vec3<Interval>> images;
   std::size_t size() const { return interval.size(); }
+  std::pair<const Vec3<Interval>*, std::size_t> fixed_images(std::size_t k) const {
+    return {images.data() + image_first[k], image_count[k]};
+  }
 };
 
 // The exact features, in the same order as the tables.
