@@ -239,22 +239,30 @@ BallD<B> bounding_ball(const HomogeneousCurve<Interval, B>& piece, const Metrics
   // R^2 = max_k ||P_k - g||^2, each P_k = N_k / w_k enclosed by intervals.
   // Upward rounding makes the interval sup an upper bound of the exact value.
   RoundingGuard guard;
+  // G with its off-diagonal entries doubled (exact: times 2), per body.
+  std::array<std::array<Interval, 16>, B> g2;
+  for (int b = 0; b < B; ++b)
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) g2[b][4 * r + c] = r == c ? metrics[b]->g_interval[4 * r + c] : Interval(2) * metrics[b]->g_interval[4 * r + c];
   double r2 = 0;
   for (const HomogeneousPoint<Interval, B>& h : piece) {
     Interval s(0);
-    const Interval inv_w = Interval(1) / h[W];  // encloses 1/w: P = N * (1/w) is enclosed
+    // Encloses 1/w: P = N * (1/w) is enclosed.  A weight of exactly 1 (every
+    // polynomial motion) needs no product.
+    const bool unit = h[W].inf() == 1 && h[W].sup() == 1;
+    const Interval inv_w = unit ? Interval(1) : Interval(1) / h[W];
     for (int b = 0; b < B; ++b) {
-      const std::array<Interval, 16>& g = metrics[b]->g_interval;
+      const std::array<Interval, 16>& g = g2[b];
       for (int row = 0; row < 3; ++row) {
         Interval d[4];
         for (int c = 0; c < 4; ++c) {
           const int e = 12 * b + 4 * row + c;
-          d[c] = h[e] * inv_w - Interval(ball.center[e]);
+          d[c] = (unit ? h[e] : h[e] * inv_w) - Interval(ball.center[e]);
         }
         // d^T G d with G symmetric: diagonal plus twice the upper triangle.
         for (int r = 0; r < 4; ++r) {
           Interval t = g[5 * r] * d[r];
-          for (int c = r + 1; c < 4; ++c) t += Interval(2) * g[4 * r + c] * d[c];
+          for (int c = r + 1; c < 4; ++c) t += g[4 * r + c] * d[c];
           s += d[r] * t;
         }
       }
