@@ -257,7 +257,13 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
       // its lower end where n_i < 0, the smallest the other ends; under the
       // upward rounding the sum of the products rounds up, and the smallest
       // is -(sum of (-n_i) times its ends), rounded up and negated: the same
-      // enclosure as interval arithmetic, without its sign cases per product.
+      // enclosure as interval arithmetic, without its sign cases per product
+      // (-n passes through IA_opacify, as in CGAL's Interval_nt, so that the
+      // compiler cannot fold the negations; so do the resulting ends, so that
+      // they are computed before the caller's guard restores the rounding).
+      std::array<double, 3> neg_n{};
+      if constexpr (interval)
+        for (int i = 0; i < 3; ++i) neg_n[i] = CGAL::IA_opacify(-n[i]);
       auto range = [&](const Vec3<FT>* pts, std::size_t count, double& low, double& high) {
         low = std::numeric_limits<double>::infinity();
         high = -low;
@@ -268,7 +274,7 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
             for (int i = 0; i < 3; ++i) {
               const double a = pts[k][i].inf(), b = pts[k][i].sup();
               up += n[i] * (n[i] >= 0 ? b : a);
-              down += (-n[i]) * (n[i] >= 0 ? a : b);
+              down += neg_n[i] * (n[i] >= 0 ? a : b);
             }
             vlo = -down;
             vhi = up;
@@ -279,7 +285,11 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
           low = std::min(low, vlo);
           high = std::max(high, vhi);
         }
-        return true;
+        if constexpr (interval) {
+          low = CGAL::IA_opacify(low);
+          high = CGAL::IA_opacify(high);
+        }
+        return std::isfinite(low) && std::isfinite(high);  // unbounded: no claim
       };
       double xlo, xhi, ylo, yhi;
       if (!range(xs, nx, xlo, xhi) || !range(ys, ny, ylo, yhi)) continue;

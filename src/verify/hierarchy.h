@@ -21,11 +21,13 @@
 #include "kernels/contact.h"
 #include "kernels/number_types.h"
 
+#include <CGAL/FPU.h>
 #include <CGAL/number_utils.h>
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace tmcert {
@@ -181,10 +183,33 @@ WorldSphere<FT> world_sphere(const SphereFrame<FT>& fr, bool body1, const BvNode
 // call under RoundingGuard; a NaN or an overlap of the bounds gives false.
 template <class FT>
 bool world_spheres_apart(const WorldSphere<FT>& a, const WorldSphere<FT>& b) {
-  FT d2(0);
-  for (int i = 0; i < 3; ++i) d2 += CGAL::square(a.c[i] - b.c[i]);
-  const FT t = a.f + b.f;
-  return detail::certainly_greater(d2, t * t);
+  if constexpr (std::is_same_v<FT, Interval>) {
+    // The bounds interval arithmetic gives, without its sign cases.  Under
+    // the upward rounding, per axis the difference lies in [lo, hi] with
+    // lo = -(b.sup - a.inf) and hi = a.sup - b.inf; m, the lower bound of
+    // its absolute value, gives -m^2 <= (-m) m rounded up; so minus the sum
+    // of those is a lower bound of the squared distance.  (-m passes
+    // through IA_opacify, as in CGAL's Interval_nt, so that the compiler
+    // cannot fold the negations; so do the compared values.)
+    CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
+    double neg = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double lo = -(b.c[i].sup() - a.c[i].inf()), hi = a.c[i].sup() - b.c[i].inf();
+      if (!(lo <= hi)) return false;  // NaN
+      const double m = lo > 0 ? lo : hi < 0 ? -hi : 0;
+      neg += CGAL::IA_opacify(-m) * m;
+    }
+    const double t = a.f.sup() + b.f.sup();  // an upper bound of the radii's sum
+    // Opacified: computed here, under the caller's upward rounding.
+    const double d2_lo = -CGAL::IA_opacify(neg), t2_up = CGAL::IA_opacify(t * t);
+    if (!(t >= 0) || !std::isfinite(d2_lo)) return false;  // NaN or unbounded: no claim
+    return d2_lo > t2_up;
+  } else {
+    FT d2(0);
+    for (int i = 0; i < 3; ++i) d2 += CGAL::square(a.c[i] - b.c[i]);
+    const FT t = a.f + b.f;
+    return detail::certainly_greater(d2, t * t);
+  }
 }
 
 // True when no feature under `a` (body 1) can touch one under `b` (body 2)
@@ -250,28 +275,46 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   double alpha = 0;
   for (int j = 0; j < 3; ++j) alpha += CGAL::to_double(m[j]) * a.slab_n[j];
   if (!std::isfinite(alpha)) return out;
-  Interval perp_c(0), perp2(0);
+  // The bounds interval arithmetic gives, without its sign cases.  Under
+  // the upward rounding a sum or product rounds up, and a lower bound is
+  // minus an upper bound of the negated quantity (negated operands pass
+  // through IA_opacify, as in CGAL's Interval_nt, so that the compiler
+  // cannot fold the negations).  Per axis: perp = m - alpha n_a in
+  // [perp_lo, perp_hi]; then perp.c (c: a's centre) and |perp|^2.
+  auto neg = [](double x) { return CGAL::IA_opacify(-x); };
+  double c_up = 0, c_negdown = 0, perp2_up = 0;  // perp.c <= c_up, -(perp.c) <= c_negdown
   for (int j = 0; j < 3; ++j) {
-    const Interval perp = m[j] - Interval(alpha) * Interval(a.slab_n[j]);
-    perp_c += perp * Interval(a.c[j]);
-    perp2 += CGAL::square(perp);
+    const double n = a.slab_n[j], c = a.c[j];
+    const double p_up = alpha * n, p_negdown = neg(alpha) * n;  // alpha n <= p_up, -(alpha n) <= p_negdown
+    const double perp_hi = m[j].sup() + p_negdown;               // m - alpha n <= perp_hi
+    const double perp_lo = -(p_up - m[j].inf());                 // m - alpha n >= perp_lo
+    if (!(perp_lo <= perp_hi)) return out;                      // NaN
+    c_up += c * (c >= 0 ? perp_hi : perp_lo);
+    c_negdown += neg(c) * (c >= 0 ? perp_lo : perp_hi);
+    perp2_up += std::max(perp_lo * perp_lo, perp_hi * perp_hi);
   }
   const Interval& shift = sb.shift;
   // Upper bounds only: under the guard the rounding is upward, so sqrt,
   // products and sums of non-negative upper bounds round up (cheaper than
   // interval square roots, which switch the rounding mode).
-  const double size_up = std::sqrt(perp2.sup()) * a.r;
+  const double size_up = std::sqrt(perp2_up) * a.r;
   const double fat_up = sb.nb_up * f.R.sup() * a.p;
   const double spread = size_up + fat_up;
   if (!(spread >= 0) || !std::isfinite(spread)) return out;  // NaN or unbounded: no claim
-  const Interval size(0, size_up);
-  const Interval w = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-spread, spread);
+  // alpha (n_a.x) over a's slab [slab_lo, slab_hi], plus perp.c and the shift.
+  const double s_hi = alpha >= 0 ? a.slab_hi : a.slab_lo, s_lo = alpha >= 0 ? a.slab_lo : a.slab_hi;
+  const double base_up = alpha * s_hi + c_up + shift.sup();
+  const double base_negdown = neg(alpha) * s_lo + c_negdown + neg(shift.inf());
+  // Opacified: computed here, under the caller's upward rounding.
+  const double hi_up = CGAL::IA_opacify(base_up + spread), lo_negdown = CGAL::IA_opacify(base_negdown + spread);
+  if (!std::isfinite(hi_up) || !std::isfinite(lo_negdown) || !(-lo_negdown <= hi_up)) return out;  // NaN or unbounded: no claim
+  // The range of n_b.(g(x) + delta(x)): [-(base_negdown + spread), base_up + spread].
   out.applicable = true;
-  out.apart = w.sup() < b.slab_lo || w.inf() > b.slab_hi;
-  const double reach = size.sup();
-  const Interval w0 = Interval(alpha) * Interval(a.slab_lo, a.slab_hi) + perp_c + shift + Interval(-reach, reach);
-  out.apart_unfattened = w0.sup() < b.slab_lo || w0.inf() > b.slab_hi;
-  out.gap = std::max(b.slab_lo - w0.sup(), w0.inf() - b.slab_hi);
+  out.apart = hi_up < b.slab_lo || -lo_negdown > b.slab_hi;
+  const double reach = size_up;  // descent decisions only, from here
+  const double w0_hi = base_up + reach, w0_lo = -(base_negdown + reach);
+  out.apart_unfattened = w0_hi < b.slab_lo || w0_lo > b.slab_hi;
+  out.gap = std::max(b.slab_lo - w0_hi, w0_lo - b.slab_hi);
   out.size = size_up;
   out.fat = fat_up;
   return out;
