@@ -2,64 +2,218 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace tmcert {
 
 namespace {
 
-nlohmann::ordered_json check_json(const Scene& scene, const CheckResult& c) {
-  nlohmann::ordered_json j;
-  j["bodies"] = {scene.bodies[c.bodies[0]].name, scene.bodies[c.bodies[1]].name};
-  j["verdict"] = to_string(c.verdict);
-  if (c.first_contact) j["first_contact"] = {{"t", {to_string(c.first_contact->first), to_string(c.first_contact->second)}}};
-  if (c.witness) {
-    const Witness& w = *c.witness;
-    j["witness"] = {{"t", to_string(w.t)},
-                    {"features", {w.features[0], w.features[1]}},
-                    {"point", {to_string(w.point[0]), to_string(w.point[1]), to_string(w.point[2])}}};
+// Writes JSON text laid out exactly as nlohmann's dump(2): every member and
+// element on a line of its own, indented by two spaces per level, "key": value,
+// and empty containers as {} or [].  A result of many checks as an
+// nlohmann::ordered_json tree cost more than verifying them; this writes the
+// same bytes directly.
+class JsonWriter {
+ public:
+  std::string take() && { return std::move(out_); }
+
+  void begin_object() { open('{'); }
+  void end_object() { close('}'); }
+  void begin_array() { open('['); }
+  void end_array() { close(']'); }
+
+  // A member's key: its value follows with the next call.
+  void key(std::string_view name) {
+    next_item();
+    string_text(name);
+    out_ += ": ";
+    after_key_ = true;
   }
-  nlohmann::ordered_json und = nlohmann::ordered_json::array();
-  for (const UndecidedInterval& u : c.undecided)
-    und.push_back({{"t", {to_string(u.t0), to_string(u.t1)}}, {"reason", to_string(u.reason)}});
-  j["undecided"] = und;
+
+  void value(std::string_view s) {
+    next_item();
+    string_text(s);
+  }
+  // Without it a string literal would convert to bool.
+  void value(const char* s) { value(std::string_view(s)); }
+  void value(bool b) {
+    next_item();
+    out_ += b ? "true" : "false";
+  }
+  void value(std::uint64_t n) { integer(n); }
+  void value(int n) { integer(n); }
+  void value(double x) {
+    next_item();
+    // nlohmann's own shortest round-trip form (e.g. 0.0012, 1e-05, 2.0).
+    out_ += nlohmann::json(x).dump();
+  }
+
+  template <typename T>
+  void member(std::string_view name, const T& v) {
+    key(name);
+    value(v);
+  }
+
+ private:
+  template <typename Int>
+  void integer(Int n) {
+    next_item();
+    char digits[24];
+    const auto end = std::to_chars(digits, digits + sizeof digits, n).ptr;
+    out_.append(digits, end);
+  }
+
+  // A string literal.  Printable ASCII without quote or backslash is written
+  // as it is; anything else goes through nlohmann's escaping (control
+  // characters, and its check of the UTF-8), so every string comes out as
+  // dump() writes it.
+  void string_text(std::string_view s) {
+    const bool plain = std::all_of(s.begin(), s.end(), [](char c) {
+      return c >= 0x20 && c < 0x7f && c != '"' && c != '\\';
+    });
+    if (plain) {
+      out_ += '"';
+      out_ += s;
+      out_ += '"';
+    } else {
+      out_ += nlohmann::json(std::string(s)).dump();
+    }
+  }
+
+  void open(char bracket) {
+    next_item();
+    out_ += bracket;
+    empty_.push_back(true);
+  }
+
+  void close(char bracket) {
+    const bool was_empty = empty_.back();
+    empty_.pop_back();
+    if (!was_empty) {
+      out_ += '\n';
+      indent();
+    }
+    out_ += bracket;
+  }
+
+  // Before a value or key: nothing after a key; otherwise the separator
+  // from the previous item, a line break and the indentation.
+  void next_item() {
+    if (after_key_) {
+      after_key_ = false;
+      return;
+    }
+    if (empty_.empty()) return;  // the document's top-level value
+    if (!empty_.back()) out_ += ',';
+    empty_.back() = false;
+    out_ += '\n';
+    indent();
+  }
+
+  void indent() { out_.append(2 * empty_.size(), ' '); }
+
+  std::string out_;
+  std::vector<bool> empty_;  // per open container: nothing written into it yet
+  bool after_key_ = false;
+};
+
+void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
+  w.begin_object();
+  w.key("bodies");
+  w.begin_array();
+  w.value(scene.bodies[c.bodies[0]].name);
+  w.value(scene.bodies[c.bodies[1]].name);
+  w.end_array();
+  w.member("verdict", to_string(c.verdict));
+  if (c.first_contact) {
+    w.key("first_contact");
+    w.begin_object();
+    w.key("t");
+    w.begin_array();
+    w.value(to_string(c.first_contact->first));
+    w.value(to_string(c.first_contact->second));
+    w.end_array();
+    w.end_object();
+  }
+  if (c.witness) {
+    const Witness& wit = *c.witness;
+    w.key("witness");
+    w.begin_object();
+    w.member("t", to_string(wit.t));
+    w.key("features");
+    w.begin_array();
+    w.value(wit.features[0]);
+    w.value(wit.features[1]);
+    w.end_array();
+    w.key("point");
+    w.begin_array();
+    for (const Exact& x : wit.point) w.value(to_string(x));
+    w.end_array();
+    w.end_object();
+  }
+  w.key("undecided");
+  w.begin_array();
+  for (const UndecidedInterval& u : c.undecided) {
+    w.begin_object();
+    w.key("t");
+    w.begin_array();
+    w.value(to_string(u.t0));
+    w.value(to_string(u.t1));
+    w.end_array();
+    w.member("reason", to_string(u.reason));
+    w.end_object();
+  }
+  w.end_array();
   const CheckStats& s = c.stats;
-  j["stats"] = {{"nodes", s.nodes},
-                {"max_depth", s.max_depth},
-                {"predicate_calls", s.contact.calls},
-                {"exact_fallbacks", s.contact.exact_fallbacks},
-                {"vertex_face_calls", s.by_kind[0].calls},
-                {"vertex_face_exact", s.by_kind[0].exact_fallbacks},
-                {"edge_edge_calls", s.by_kind[1].calls},
-                {"edge_edge_exact", s.by_kind[1].exact_fallbacks},
-                {"face_vertex_calls", s.by_kind[2].calls},
-                {"face_vertex_exact", s.by_kind[2].exact_fallbacks},
-                {"exact_static_tests", s.static_tests},
-                {"static_configurations", s.static_configurations},
-                {"static_filter_pairs", s.static_filter_pairs},
-                {"static_filter_exact", s.static_filter_exact},
-                {"sphere_tests", s.sphere_tests},
-                {"slab_clears", s.slab_clears},
-                {"hull_clears", s.hull_clears},
-                {"axis_clears", s.axis_clears},
-                {"stops", s.stops},
-                {"prefiltered", s.prefiltered},
-                {"seconds", s.seconds}};
-  return j;
+  w.key("stats");
+  w.begin_object();
+  w.member("nodes", s.nodes);
+  w.member("max_depth", s.max_depth);
+  w.member("predicate_calls", s.contact.calls);
+  w.member("exact_fallbacks", s.contact.exact_fallbacks);
+  w.member("vertex_face_calls", s.by_kind[0].calls);
+  w.member("vertex_face_exact", s.by_kind[0].exact_fallbacks);
+  w.member("edge_edge_calls", s.by_kind[1].calls);
+  w.member("edge_edge_exact", s.by_kind[1].exact_fallbacks);
+  w.member("face_vertex_calls", s.by_kind[2].calls);
+  w.member("face_vertex_exact", s.by_kind[2].exact_fallbacks);
+  w.member("exact_static_tests", s.static_tests);
+  w.member("static_configurations", s.static_configurations);
+  w.member("static_filter_pairs", s.static_filter_pairs);
+  w.member("static_filter_exact", s.static_filter_exact);
+  w.member("sphere_tests", s.sphere_tests);
+  w.member("slab_clears", s.slab_clears);
+  w.member("hull_clears", s.hull_clears);
+  w.member("axis_clears", s.axis_clears);
+  w.member("stops", s.stops);
+  w.member("prefiltered", s.prefiltered);
+  w.member("seconds", s.seconds);
+  w.end_object();
+  w.end_object();
 }
 
 }  // namespace
 
 std::string result_json(const Scene& scene, const SceneResult& r) {
-  nlohmann::ordered_json j;
-  j["format"] = "tmcert-result/1";
-  j["verdict"] = to_string(r.verdict);
-  j["kernel"] = to_string(r.kernel);
-  j["certified"] = r.certified;
-  j["epsilon"] = to_string(r.epsilon);
-  j["checks"] = nlohmann::ordered_json::array();
-  for (const CheckResult& c : r.checks) j["checks"].push_back(check_json(scene, c));
-  return j.dump(2) + "\n";
+  JsonWriter w;
+  w.begin_object();
+  w.member("format", "tmcert-result/1");
+  w.member("verdict", to_string(r.verdict));
+  w.member("kernel", to_string(r.kernel));
+  w.member("certified", r.certified);
+  w.member("epsilon", to_string(r.epsilon));
+  w.key("checks");
+  w.begin_array();
+  for (const CheckResult& c : r.checks) write_check(w, scene, c);
+  w.end_array();
+  w.end_object();
+  return std::move(w).take() + "\n";
 }
 
 std::string result_summary(const Scene& scene, const SceneResult& r) {

@@ -26,8 +26,10 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <span>
 #include <sstream>
 #include <string_view>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -75,15 +77,63 @@ std::string located(const std::string& source, const std::string& path, const st
   return source + ": " + (path.empty() ? std::string("document") : path) + ": " + what;
 }
 
+// A JSON path kept as a chain of steps on the call stack (the document, its
+// member "bodies", element 1 of that, ...) and spelled out by member_path
+// and index_path only for a message: reading a scene passes one to every
+// number it reads.  A step refers to the path it extends and must not
+// outlive it: make steps as arguments, or as variables in the scope of
+// the path they extend.
+class Path {
+ public:
+  Path() = default;  // the document itself
+
+  Path member(std::string_view key) const { return Path(this, key, 0, false); }
+  Path index(std::size_t i) const { return Path(this, {}, i, true); }
+
+  std::string str() const {
+    if (!parent_) return {};
+    const std::string parent = parent_->str();
+    return is_index_ ? index_path(parent, index_) : member_path(parent, std::string(key_));
+  }
+
+ private:
+  Path(const Path* parent, std::string_view key, std::size_t index, bool is_index)
+      : parent_(parent), key_(key), index_(index), is_index_(is_index) {}
+
+  const Path* parent_ = nullptr;  // null for the document
+  std::string_view key_;          // a member's key
+  std::size_t index_ = 0;         // an element's index
+  bool is_index_ = false;
+};
+
 // ---------------------------------------------------------------- JSON tree
 
+// A value of a Tree.  Counts and indices fit in 32 bits: a document has at
+// most kMaxValues values.
 struct Node {
-  enum class Kind { Null, Boolean, Number, String, Array, Object };
+  enum class Kind : std::uint8_t { Null, Boolean, Number, String, Array, Object };
   Kind kind = Kind::Null;
   bool boolean = false;
-  std::string text;               // a number as written, or a string's value
-  std::vector<Node> items;        // array elements, or object member values
-  std::vector<std::string> keys;  // object member keys, parallel to items
+  std::uint32_t size = 0;       // a container's items are Tree::nodes[first, first + size)
+  std::uint32_t first = 0;
+  std::uint32_t first_key = 0;  // an object's keys are Tree::keys[first_key, first_key + size)
+  std::size_t text = 0;         // a number as written, or a string's value:
+  std::size_t text_size = 0;    // Tree::text[text, text + text_size)
+};
+static_assert(kMaxValues <= std::numeric_limits<std::uint32_t>::max());
+
+// A whole document.  Every value but the root lives in one array, the items
+// of each container next to each other; every object key in another,
+// parallel to its object's items; and the text of every number and string
+// in one string: a scene of many bodies has millions of small containers
+// and numbers, which would otherwise each need an allocation.
+struct Tree {
+  Node root;
+  std::vector<Node> nodes;
+  std::vector<std::string> keys;
+  std::string text;
+
+  std::string_view text_of(const Node& node) const { return std::string_view(text).substr(node.text, node.text_size); }
 };
 
 const char* kind_name(Node::Kind kind) {
@@ -100,30 +150,32 @@ const char* kind_name(Node::Kind kind) {
 
 // SAX handler building the tree iteratively (nlohmann's SAX parser keeps
 // its own explicit stack, and so do we), so deep nesting cannot overflow
-// the call stack; the nesting limit also bounds the recursion of Node's
-// destructor.  On error a callback stores the message and returns false,
+// the call stack.  On error a callback stores the message and returns false,
 // which stops the parse.
+//
+// An open container waits on the stack, and its finished items and keys on
+// shared lists, until it closes; then they move into the tree, side by side.
 constexpr char kNumberMark = '\x01';
 
 class TreeBuilder {
  public:
   using json = nlohmann::json;
 
-  explicit TreeBuilder(std::string source) : source_(std::move(source)) {}
+  explicit TreeBuilder(std::string source) : source_(std::move(source)) { stack_.reserve(kMaxNesting); }
 
-  Node& root() { return root_; }
+  Tree& tree() { return tree_; }
   const std::string& error() const { return error_; }
 
-  bool null() { return add(Node{}) != nullptr; }
+  bool null() { return add(Node{}); }
   bool boolean(bool value) {
     Node node;
     node.kind = Node::Kind::Boolean;
     node.boolean = value;
-    return add(std::move(node)) != nullptr;
+    return add(std::move(node));
   }
   // Integers arrive as machine integers; their decimal text is exact.
-  bool number_integer(json::number_integer_t value) { return add_number(std::to_string(value)); }
-  bool number_unsigned(json::number_unsigned_t value) { return add_number(std::to_string(value)); }
+  bool number_integer(json::number_integer_t value) { return add_text(Node::Kind::Number, std::to_string(value)); }
+  bool number_unsigned(json::number_unsigned_t value) { return add_text(Node::Kind::Number, std::to_string(value)); }
   // Everything else (fractions, exponents, integers beyond 64 bits) comes
   // with the raw token; the double is ignored.
   bool number_float(json::number_float_t, const std::string& raw) {
@@ -133,29 +185,27 @@ class TreeBuilder {
     for (char& c : text)
       if (!std::isdigit(static_cast<unsigned char>(c)) && c != '-' && c != '+' && c != 'e' && c != 'E')
         c = '.';
-    return add_number(std::move(text));
+    return add_text(Node::Kind::Number, text);
   }
   bool string(std::string& value) {
     // A number token too large for the reader's double, marked by
     // quote_overflowing_numbers: still a number, with its exact text.
-    if (value.size() > 1 && value[0] == kNumberMark) return add_number(value.substr(1));
-    Node node;
-    node.kind = Node::Kind::String;
-    node.text = std::move(value);
-    return add(std::move(node)) != nullptr;
+    if (value.size() > 1 && value[0] == kNumberMark)
+      return add_text(Node::Kind::Number, std::string_view(value).substr(1));
+    return add_text(Node::Kind::String, value);
   }
   bool binary(json::binary_t&) { return fail(pending_path(), "binary values are not allowed"); }
   bool start_object(std::size_t) { return open(Node::Kind::Object); }
   bool start_array(std::size_t) { return open(Node::Kind::Array); }
   bool key(std::string& key) {
     Frame& frame = stack_.back();
-    if (!frame.keys.insert(key).second)
+    if (is_duplicate(frame, key))
       return fail(member_path(container_path(), key), "duplicate key " + quote_text(key));
-    frame.node->keys.push_back(std::move(key));
+    pending_keys_.push_back(key);
     return true;
   }
-  bool end_object() { stack_.pop_back(); return true; }
-  bool end_array() { stack_.pop_back(); return true; }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
 
   bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) {
     if (ex.id == 406)  // the reader's double overflowed: the number is finite, but too big for it
@@ -171,9 +221,16 @@ class TreeBuilder {
   }
 
  private:
+  // Objects with this many keys or more find duplicates through a hash set
+  // (so that a huge object cannot make the search quadratic); smaller ones,
+  // nearly all of them, by looking through their keys.
+  static constexpr std::size_t kKeysWithoutSet = 16;
+
   struct Frame {
-    Node* node;                            // an open array or object
-    std::unordered_set<std::string> keys;  // keys seen so far, for objects
+    Node::Kind kind;                          // an open array or object
+    std::size_t first = 0;                    // where its finished items start in pending_
+    std::size_t first_key = 0;                // where its keys start in pending_keys_
+    std::unordered_set<std::string> key_set;  // its keys, once it has kKeysWithoutSet of them
   };
 
   bool fail(const std::string& path, const std::string& what) {
@@ -181,63 +238,111 @@ class TreeBuilder {
     return false;
   }
 
-  bool add_number(std::string text) {
+  // A number or a string, its text stored in the tree's.
+  bool add_text(Node::Kind kind, std::string_view text) {
+    if (!count_value()) return false;
     Node node;
-    node.kind = Node::Kind::Number;
-    node.text = std::move(text);
-    return add(std::move(node)) != nullptr;
+    node.kind = kind;
+    node.text = tree_.text.size();
+    node.text_size = text.size();
+    tree_.text += text;
+    place(std::move(node));
+    return true;
   }
 
-  // Places a finished or just-opened value into the open container (or as
-  // the root) and returns where it now lives.
-  Node* add(Node&& node) {
-    if (++values_ > kMaxValues) {
-      fail(pending_path(), "document has more than " + std::to_string(kMaxValues) + " values");
-      return nullptr;
-    }
-    if (stack_.empty()) {
-      root_ = std::move(node);
-      return &root_;
-    }
-    // Appending may move earlier siblings, but never an open container:
-    // those live in their own parents' vectors.
-    Node* parent = stack_.back().node;
-    parent->items.push_back(std::move(node));
-    return &parent->items.back();
+  // Counts a value (finished, or a container just opened) against the limit.
+  bool count_value() {
+    if (++values_ <= kMaxValues) return true;
+    return fail(pending_path(), "document has more than " + std::to_string(kMaxValues) + " values");
+  }
+
+  // Places a finished value into the open container (or as the root).
+  void place(Node&& node) {
+    if (stack_.empty())
+      tree_.root = std::move(node);
+    else
+      pending_.push_back(std::move(node));
+  }
+
+  bool add(Node&& node) {
+    if (!count_value()) return false;
+    place(std::move(node));
+    return true;
   }
 
   bool open(Node::Kind kind) {
     if (stack_.size() >= kMaxNesting)
       return fail(pending_path(), "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
-    Node node;
-    node.kind = kind;
-    Node* placed = add(std::move(node));
-    if (!placed) return false;
-    stack_.push_back(Frame{placed, {}});
+    if (!count_value()) return false;
+    Frame frame;
+    frame.kind = kind;
+    frame.first = pending_.size();
+    frame.first_key = pending_keys_.size();
+    stack_.push_back(std::move(frame));
     return true;
   }
 
+  // The container's items (and keys) move into the tree, next to each other.
+  bool close() {
+    const Frame& frame = stack_.back();
+    Node node;
+    node.kind = frame.kind;
+    node.first = static_cast<std::uint32_t>(tree_.nodes.size());
+    node.size = static_cast<std::uint32_t>(pending_.size() - frame.first);
+    node.first_key = static_cast<std::uint32_t>(tree_.keys.size());
+    move_tail(pending_, frame.first, tree_.nodes);
+    move_tail(pending_keys_, frame.first_key, tree_.keys);
+    stack_.pop_back();
+    place(std::move(node));
+    return true;
+  }
+
+  // Moves from[start, end) to the end of `to`.
+  template <typename T>
+  static void move_tail(std::vector<T>& from, std::size_t start, std::vector<T>& to) {
+    const auto tail = from.begin() + static_cast<std::ptrdiff_t>(start);
+    to.insert(to.end(), std::make_move_iterator(tail), std::make_move_iterator(from.end()));
+    from.erase(tail, from.end());
+  }
+
+  bool is_duplicate(Frame& frame, const std::string& key) const {
+    const auto keys = pending_keys_.begin() + static_cast<std::ptrdiff_t>(frame.first_key);
+    if (pending_keys_.end() - keys < static_cast<std::ptrdiff_t>(kKeysWithoutSet))
+      return std::find(keys, pending_keys_.end(), key) != pending_keys_.end();
+    if (frame.key_set.empty()) frame.key_set.insert(keys, pending_keys_.end());
+    return !frame.key_set.insert(key).second;
+  }
+
+  // Finished items of the open container at stack_[level].
+  std::size_t item_count(std::size_t level) const {
+    const std::size_t end = level + 1 < stack_.size() ? stack_[level + 1].first : pending_.size();
+    return end - stack_[level].first;
+  }
+
+  // The latest key of the open object at stack_[level].
+  const std::string& last_key(std::size_t level) const {
+    const std::size_t end = level + 1 < stack_.size() ? stack_[level + 1].first_key : pending_keys_.size();
+    return pending_keys_[end - 1];
+  }
+
   // Path of the innermost open container (`pending` false) or of the value
-  // about to be added to it (`pending` true).
+  // about to be added to it (`pending` true).  The value at each level below
+  // (open, or about to be added) follows that container's finished items.
   std::string path(bool pending) const {
     std::string p;
     const std::size_t levels = pending ? stack_.size() : (stack_.empty() ? 0 : stack_.size() - 1);
-    for (std::size_t i = 0; i < levels; ++i) {
-      const Node* container = stack_[i].node;
-      const bool next_is_pending = pending && i + 1 == stack_.size();
-      if (container->kind == Node::Kind::Array)
-        p = index_path(p, container->items.size() - (next_is_pending ? 0 : 1));
-      else
-        p = member_path(p, container->keys.back());
-    }
+    for (std::size_t i = 0; i < levels; ++i)
+      p = stack_[i].kind == Node::Kind::Array ? index_path(p, item_count(i)) : member_path(p, last_key(i));
     return p;
   }
   std::string pending_path() const { return path(true); }
   std::string container_path() const { return path(false); }
 
   std::string source_;
-  Node root_;
+  Tree tree_;
   std::vector<Frame> stack_;
+  std::vector<Node> pending_;                // finished items of all open containers, innermost last
+  std::vector<std::string> pending_keys_;    // their keys (of open objects), likewise
   std::size_t values_ = 0;
   std::string error_;
 };
@@ -247,47 +352,55 @@ class TreeBuilder {
 // the way and stops at an overflow.  Such tokens are turned into strings
 // behind a control character (U+0001, kNumberMark) before reading, and the
 // tree builder turns them back into numbers with their exact text: so they
-// stay numbers (a name cannot be 1e400).
-std::string quote_overflowing_numbers(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  bool in_string = false;
+// stay numbers (a name cannot be 1e400).  Returns false, leaving `out`
+// alone, when no token needs it: then the text is read as it is.
+bool quote_overflowing_numbers(const std::string& text, std::string& out) {
+  std::size_t copied = 0;  // text[0, copied) is in `out`
   for (std::size_t i = 0; i < text.size();) {
     const char c = text[i];
-    if (in_string) {
-      out += c;
-      if (c == '\\' && i + 1 < text.size()) out += text[++i];
-      else if (c == '"') in_string = false;
+    if (c == '"') {  // skip the string, with its escapes
+      ++i;
+      while (i < text.size() && text[i] != '"') i += text[i] == '\\' ? 2 : 1;
       ++i;
       continue;
     }
-    if (c == '"') { in_string = true; out += c; ++i; continue; }
     if (c == '-' || (c >= '0' && c <= '9')) {
       std::size_t j = i;
       while (j < text.size() && std::strchr("+-0123456789.eE", text[j]) != nullptr) ++j;
-      const std::string token = text.substr(i, j - i);
-      if (std::isinf(std::strtod(token.c_str(), nullptr))) out += "\"\\u0001" + token + '"';
-      else out += token;
+      const std::string_view token(text.data() + i, j - i);
+      // Without an exponent, fewer than 309 digits stay below the largest
+      // double: only other tokens need the test.
+      const bool may_overflow = token.size() > 300 || token.find_first_of("eE") != std::string_view::npos;
+      if (may_overflow && std::isinf(std::strtod(std::string(token).c_str(), nullptr))) {
+        if (copied == 0) out.reserve(text.size() + 16);
+        out.append(text, copied, i - copied);
+        out += "\"\\u0001";
+        out += token;
+        out += '"';
+        copied = j;
+      }
       i = j;
       continue;
     }
-    out += c;
     ++i;
   }
-  return out;
+  if (copied == 0) return false;
+  out.append(text, copied, std::string::npos);
+  return true;
 }
 
-Node parse_json(const std::string& raw_text, const std::string& source) {
+Tree parse_json(const std::string& raw_text, const std::string& source) {
   TreeBuilder builder(source);
   bool ok = false;
-  const std::string text = quote_overflowing_numbers(raw_text);
+  std::string quoted;
+  const std::string& text = quote_overflowing_numbers(raw_text, quoted) ? quoted : raw_text;
   try {
     ok = nlohmann::json::sax_parse(text, &builder);
   } catch (const nlohmann::json::exception& ex) {  // not expected with a SAX handler; be safe
     throw InputError(source + ": invalid JSON: " + one_line(ex.what()));
   }
   if (!ok) throw InputError(builder.error().empty() ? source + ": invalid JSON" : builder.error());
-  return std::move(builder.root());
+  return std::move(builder.tree());
 }
 
 // ---------------------------------------------------------------- exact geometry
@@ -595,178 +708,191 @@ class SceneReader {
  public:
   // `base` is the directory mesh file names are relative to ("" for the
   // current directory).
-  SceneReader(std::string source, std::filesystem::path base)
-      : source_(std::move(source)), base_(std::move(base)) {}
+  SceneReader(std::string source, std::filesystem::path base, const Tree& tree)
+      : source_(std::move(source)), base_(std::move(base)), tree_(tree) {}
 
-  // Consumes the tree: each body's subtree is freed once it is read (on a
-  // scene of many bodies the tree is most of the parser's memory).
-  Scene read(Node& root) {
+  Scene read() {
     Scene scene;
     scene.source = source_;
-    const Node& doc = object(root, "");
+    const Path document;
+    const Members doc = object(tree_.root, document);
 
     const Node* format = find(doc, "format");
-    if (!format) fail("format", std::string("missing required field (expected \"") + kFormat + "\")");
-    if (format->kind != Node::Kind::String || format->text != kFormat)
-      fail("format", "unknown format version " + describe(*format) + ", expected \"" + kFormat + "\"");
-    reject_unknown_keys(doc, "", {"format", "epsilon", "max_depth", "bodies", "checks"});
+    if (!format) fail(document.member("format"), std::string("missing required field (expected \"") + kFormat + "\")");
+    if (format->kind != Node::Kind::String || text(*format) != kFormat)
+      fail(document.member("format"), "unknown format version " + describe(*format) + ", expected \"" + kFormat + "\"");
+    reject_unknown_keys(doc, document, {"format", "epsilon", "max_depth", "bodies", "checks"});
 
     if (const Node* eps = find(doc, "epsilon")) {
-      scene.epsilon = number(*eps, "epsilon");
-      if (!(*scene.epsilon > 0)) fail("epsilon", "must be positive");
+      const Path eps_path = document.member("epsilon");
+      scene.epsilon = number(*eps, eps_path);
+      if (!(*scene.epsilon > 0)) fail(eps_path, "must be positive");
     }
-    if (const Node* depth = find(doc, "max_depth")) scene.max_depth = max_depth(*depth, "max_depth");
+    if (const Node* depth = find(doc, "max_depth")) scene.max_depth = max_depth(*depth, document.member("max_depth"));
 
+    const Path bodies_path = document.member("bodies");
     const Node* bodies = find(doc, "bodies");
-    if (!bodies) fail("bodies", "missing required field");
-    // The tree is ours (see above): the list may be emptied as it is read.
-    Node& list = const_cast<Node&>(array(*bodies, "bodies"));
-    if (list.items.empty()) fail("bodies", "at least one body is required");
-    std::map<std::string, std::size_t> names;
-    scene.bodies.reserve(list.items.size());
-    for (std::size_t i = 0; i < list.items.size(); ++i) {
-      const std::string path = index_path("bodies", i);
-      scene.bodies.push_back(body(list.items[i], path));
-      list.items[i] = Node{};
+    if (!bodies) fail(bodies_path, "missing required field");
+    const std::span<const Node> list = array(*bodies, bodies_path);
+    if (list.empty()) fail(bodies_path, "at least one body is required");
+    std::unordered_map<std::string, std::size_t> names;
+    names.reserve(list.size());
+    scene.bodies.reserve(list.size());
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const Path path = bodies_path.index(i);
+      scene.bodies.push_back(body(list[i], path));
       const std::string& name = scene.bodies.back().name;
       if (auto [it, fresh] = names.emplace(name, i); !fresh)
-        fail(member_path(path, "name"),
+        fail(path.member("name"),
              "duplicate body name " + quote_text(name) + " (also " + index_path("bodies", it->second) + ")");
     }
-    assign_masses(scene);
+    assign_masses(scene, bodies_path);
 
     if (const Node* checks = find(doc, "checks"))
-      scene.checks = explicit_checks(*checks, names);
+      scene.checks = explicit_checks(*checks, document.member("checks"), names);
     else
       scene.checks = default_checks(scene);
     return scene;
   }
 
  private:
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw InputError(located(source_, path, what));
+  [[noreturn]] void fail(const Path& path, const std::string& what) const {
+    throw InputError(located(source_, path.str(), what));
   }
+
+  std::string_view text(const Node& node) const { return tree_.text_of(node); }
 
   // A value for a message: a string quoted, anything else by its kind.
-  static std::string describe(const Node& node) {
-    return node.kind == Node::Kind::String ? quote_text(node.text) : std::string("(") + kind_name(node.kind) + ")";
+  std::string describe(const Node& node) const {
+    return node.kind == Node::Kind::String ? quote_text(std::string(text(node)))
+                                           : std::string("(") + kind_name(node.kind) + ")";
   }
 
-  static const Node* find(const Node& object, std::string_view key) {
+  // An object's keys and member values, side by side.
+  struct Members {
+    std::span<const std::string> keys;
+    std::span<const Node> values;
+  };
+
+  static const Node* find(const Members& object, std::string_view key) {
     for (std::size_t i = 0; i < object.keys.size(); ++i)
-      if (object.keys[i] == key) return &object.items[i];
+      if (object.keys[i] == key) return &object.values[i];
     return nullptr;
   }
 
   // Keys starting with "_" and "comment" are free for annotations.
   static bool is_annotation(const std::string& key) { return key == "comment" || (!key.empty() && key[0] == '_'); }
 
-  void reject_unknown_keys(const Node& object, const std::string& path,
+  void reject_unknown_keys(const Members& object, const Path& path,
                            std::initializer_list<std::string_view> known) const {
     for (const std::string& key : object.keys)
       if (!is_annotation(key) && std::find(known.begin(), known.end(), key) == known.end())
-        fail(member_path(path, key), "unknown field " + quote_text(key));
+        fail(path.member(key), "unknown field " + quote_text(key));
   }
 
-  const Node& object(const Node& node, const std::string& path) const {
+  Members object(const Node& node, const Path& path) const {
     if (node.kind != Node::Kind::Object) fail(path, std::string("expected an object, got ") + kind_name(node.kind));
-    return node;
+    return {std::span(tree_.keys).subspan(node.first_key, node.size),
+            std::span(tree_.nodes).subspan(node.first, node.size)};
   }
 
-  const Node& array(const Node& node, const std::string& path) const {
+  // An array's items.
+  std::span<const Node> array(const Node& node, const Path& path) const {
     if (node.kind != Node::Kind::Array) fail(path, std::string("expected an array, got ") + kind_name(node.kind));
-    return node;
+    return std::span(tree_.nodes).subspan(node.first, node.size);
   }
 
   // A JSON number (exactly the decimal it spells) or a string holding an
   // integer, "p/q" or a decimal.
-  Exact number(const Node& node, const std::string& path) const {
+  Exact number(const Node& node, const Path& path) const {
     Exact value;
     if (node.kind == Node::Kind::Number) {
-      if (!parse_exact(node.text, value)) fail(path, "number " + node.text.substr(0, 60) + " is out of range");
+      const std::string written(text(node));
+      if (!parse_exact(written, value)) fail(path, "number " + written.substr(0, 60) + " is out of range");
     } else if (node.kind == Node::Kind::String) {
-      if (!parse_exact(node.text, value))
-        fail(path, "not a number: " + quote_text(node.text) + " (expected an integer, \"p/q\" with q > 0, or a decimal)");
+      const std::string written(text(node));
+      if (!parse_exact(written, value))
+        fail(path, "not a number: " + quote_text(written) + " (expected an integer, \"p/q\" with q > 0, or a decimal)");
     } else {
       fail(path, std::string("expected a number, got ") + kind_name(node.kind));
     }
     return value;
   }
 
-  int max_depth(const Node& node, const std::string& path) const {
+  int max_depth(const Node& node, const Path& path) const {
     const Exact value = number(node, path);
     if (value.denominator() != 1) fail(path, "must be an integer");
     if (value < 1 || value > 200) fail(path, "must be between 1 and 200");
     return static_cast<int>(CGAL::to_double(value));
   }
 
-  Vec3E point(const Node& node, const std::string& path) const {
-    const Node& coords = array(node, path);
-    if (coords.items.size() != 3)
-      fail(path, "a point needs exactly 3 coordinates, got " + std::to_string(coords.items.size()));
-    return {number(coords.items[0], index_path(path, 0)), number(coords.items[1], index_path(path, 1)),
-            number(coords.items[2], index_path(path, 2))};
+  Vec3E point(const Node& node, const Path& path) const {
+    const std::span<const Node> coords = array(node, path);
+    if (coords.size() != 3)
+      fail(path, "a point needs exactly 3 coordinates, got " + std::to_string(coords.size()));
+    return {number(coords[0], path.index(0)), number(coords[1], path.index(1)),
+            number(coords[2], path.index(2))};
   }
 
-  std::vector<Vec3E> points(const Node& node, const std::string& path) const {
-    const Node& list = array(node, path);
+  std::vector<Vec3E> points(const Node& node, const Path& path) const {
+    const std::span<const Node> list = array(node, path);
     std::vector<Vec3E> out;
-    out.reserve(list.items.size());
-    for (std::size_t i = 0; i < list.items.size(); ++i) out.push_back(point(list.items[i], index_path(path, i)));
+    out.reserve(list.size());
+    for (std::size_t i = 0; i < list.size(); ++i) out.push_back(point(list[i], path.index(i)));
     return out;
   }
 
   // A 3x4 affine matrix [A | a] written as 3 rows of 4 numbers.
-  Mat34E affine(const Node& node, const std::string& path) const {
-    const Node& rows = array(node, path);
-    if (rows.items.size() != 3)
-      fail(path, "a control point is a 3x4 matrix: expected 3 rows, got " + std::to_string(rows.items.size()));
+  Mat34E affine(const Node& node, const Path& path) const {
+    const std::span<const Node> rows = array(node, path);
+    if (rows.size() != 3)
+      fail(path, "a control point is a 3x4 matrix: expected 3 rows, got " + std::to_string(rows.size()));
     Mat34E m;
     for (std::size_t r = 0; r < 3; ++r) {
-      const std::string row_path = index_path(path, r);
-      const Node& row = array(rows.items[r], row_path);
-      if (row.items.size() != 4)
-        fail(row_path, "a matrix row needs exactly 4 numbers, got " + std::to_string(row.items.size()));
-      for (std::size_t c = 0; c < 4; ++c) m[4 * r + c] = number(row.items[c], index_path(row_path, c));
+      const Path row_path = path.index(r);
+      const std::span<const Node> row = array(rows[r], row_path);
+      if (row.size() != 4)
+        fail(row_path, "a matrix row needs exactly 4 numbers, got " + std::to_string(row.size()));
+      for (std::size_t c = 0; c < 4; ++c) m[4 * r + c] = number(row[c], row_path.index(c));
     }
     return m;
   }
 
-  Body body(const Node& node, const std::string& path) const {
-    const Node& obj = object(node, path);
+  Body body(const Node& node, const Path& path) const {
+    const Members obj = object(node, path);
     reject_unknown_keys(obj, path, {"name", "polygons", "segments", "points", "mass", "motion", "solid", "mesh"});
     Body b;
 
     const Node* name = find(obj, "name");
-    if (!name) fail(member_path(path, "name"), "missing required field");
-    if (name->kind != Node::Kind::String || name->text.empty())
-      fail(member_path(path, "name"), "a body name must be a non-empty string");
-    b.name = name->text;
+    if (!name) fail(path.member("name"), "missing required field");
+    if (name->kind != Node::Kind::String || text(*name).empty())
+      fail(path.member("name"), "a body name must be a non-empty string");
+    b.name = text(*name);
 
     if (const Node* polygons = find(obj, "polygons")) {
-      const std::string list_path = member_path(path, "polygons");
-      const Node& list = array(*polygons, list_path);
-      for (std::size_t i = 0; i < list.items.size(); ++i) polygon(b, list.items[i], index_path(list_path, i));
+      const Path list_path = path.member("polygons");
+      const std::span<const Node> list = array(*polygons, list_path);
+      for (std::size_t i = 0; i < list.size(); ++i) polygon(b, list[i], list_path.index(i));
     }
     if (const Node* segments = find(obj, "segments")) {
-      const std::string list_path = member_path(path, "segments");
-      const Node& list = array(*segments, list_path);
-      for (std::size_t i = 0; i < list.items.size(); ++i) {
-        const std::string seg_path = index_path(list_path, i);
-        const std::vector<Vec3E> ends = points(list.items[i], seg_path);
+      const Path list_path = path.member("segments");
+      const std::span<const Node> list = array(*segments, list_path);
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const Path seg_path = list_path.index(i);
+        const std::vector<Vec3E> ends = points(list[i], seg_path);
         if (ends.size() != 2) fail(seg_path, "a segment needs exactly 2 points, got " + std::to_string(ends.size()));
         if (ends[0] == ends[1]) fail(seg_path, "segment endpoints are equal");
         b.segments.push_back({ends[0], ends[1]});
       }
     }
-    if (const Node* pts = find(obj, "points")) b.points = points(*pts, member_path(path, "points"));
+    if (const Node* pts = find(obj, "points")) b.points = points(*pts, path.member("points"));
     // Mesh faces come after the explicit polygons (polygon indices go on).
-    if (const Node* file = find(obj, "mesh")) mesh(b, *file, member_path(path, "mesh"));
+    if (const Node* file = find(obj, "mesh")) mesh(b, *file, path.member("mesh"));
     if (b.polygons.empty() && b.segments.empty() && b.points.empty())
       fail(path, "body has no features (needs at least one of polygons, segments, points, mesh)");
 
     if (const Node* solid = find(obj, "solid")) {
-      const std::string solid_path = member_path(path, "solid");
+      const Path solid_path = path.member("solid");
       if (solid->kind != Node::Kind::Boolean) fail(solid_path, "expected true or false");
       // The inside of a solid counts as contact, and "inside" is only
       // defined for a closed surface (proofs/containment.md).
@@ -774,18 +900,18 @@ class SceneReader {
       b.solid = solid->boolean;
     }
     if (const Node* mass = find(obj, "mass")) {
-      b.mass = explicit_mass(*mass, member_path(path, "mass"));
+      b.mass = explicit_mass(*mass, path.member("mass"));
       b.mass_is_default = false;
     }
-    if (const Node* m = find(obj, "motion")) b.motion = motion(*m, member_path(path, "motion"));
+    if (const Node* m = find(obj, "motion")) b.motion = motion(*m, path.member("motion"));
     return b;
   }
 
-  void polygon(Body& b, const Node& node, const std::string& path) const {
-    const Node& list = array(node, path);
-    if (list.items.size() < 3)
-      fail(path, "a polygon needs at least 3 vertices, got " + std::to_string(list.items.size()));
-    if (list.items.size() > kMaxPolygonVertices)
+  void polygon(Body& b, const Node& node, const Path& path) const {
+    const std::span<const Node> list = array(node, path);
+    if (list.size() < 3)
+      fail(path, "a polygon needs at least 3 vertices, got " + std::to_string(list.size()));
+    if (list.size() > kMaxPolygonVertices)
       fail(path, "polygon has more than " + std::to_string(kMaxPolygonVertices) + " vertices");
     const std::vector<Vec3E> vertices = points(node, path);
     try {
@@ -800,12 +926,13 @@ class SceneReader {
   // "mesh": a file name relative to the scene file's directory.  Each face
   // becomes a polygon through the same checks as explicit polygons; an
   // error names the file and the face.
-  void mesh(Body& b, const Node& node, const std::string& path) const {
-    if (node.kind != Node::Kind::String || node.text.empty())
+  void mesh(Body& b, const Node& node, const Path& path) const {
+    const std::string name(text(node));
+    if (node.kind != Node::Kind::String || name.empty())
       fail(path, std::string("expected a mesh file name (a non-empty string), got ") +
                      (node.kind == Node::Kind::String ? "an empty string" : kind_name(node.kind)));
-    if (node.text.find('\0') != std::string::npos) fail(path, "file name contains a NUL character");
-    const std::string file = (base_ / std::filesystem::path(node.text)).string();
+    if (name.find('\0') != std::string::npos) fail(path, "file name contains a NUL character");
+    const std::string file = (base_ / std::filesystem::path(name)).string();
     MeshData data;
     try {
       data = read_mesh(file);
@@ -828,22 +955,22 @@ class SceneReader {
     }
   }
 
-  void require_closed(const Body& b, const std::string& path) const {
+  void require_closed(const Body& b, const Path& path) const {
     const std::string problem = solid_problem(b);
     if (!problem.empty()) fail(path, problem);
   }
 
-  MassDistribution explicit_mass(const Node& node, const std::string& path) const {
-    const Node& obj = object(node, path);
+  MassDistribution explicit_mass(const Node& node, const Path& path) const {
+    const Members obj = object(node, path);
     reject_unknown_keys(obj, path, {"points", "weights"});
     const Node* pts = find(obj, "points");
-    if (!pts) fail(member_path(path, "points"), "missing required field");
+    if (!pts) fail(path.member("points"), "missing required field");
     const Node* weights = find(obj, "weights");
-    if (!weights) fail(member_path(path, "weights"), "missing required field");
+    if (!weights) fail(path.member("weights"), "missing required field");
     MassDistribution mass;
-    mass.points = points(*pts, member_path(path, "points"));
-    if (mass.points.empty()) fail(member_path(path, "points"), "at least one mass point is required");
-    mass.weights = positive_weights(*weights, member_path(path, "weights"), mass.points.size(), "mass point");
+    mass.points = points(*pts, path.member("points"));
+    if (mass.points.empty()) fail(path.member("points"), "at least one mass point is required");
+    mass.weights = positive_weights(*weights, path.member("weights"), mass.points.size(), "mass point");
     try {
       Metric::require_positive_definite(mass);
     } catch (const InputError& e) {
@@ -853,57 +980,59 @@ class SceneReader {
   }
 
   // `count` weights, each > 0 (one per point / control point).
-  std::vector<Exact> positive_weights(const Node& node, const std::string& path, std::size_t count,
+  std::vector<Exact> positive_weights(const Node& node, const Path& path, std::size_t count,
                                       const std::string& per) const {
-    const Node& list = array(node, path);
-    if (list.items.size() != count)
+    const std::span<const Node> list = array(node, path);
+    if (list.size() != count)
       fail(path, "expected " + std::to_string(count) + " weights (one per " + per + "), got " +
-                     std::to_string(list.items.size()));
+                     std::to_string(list.size()));
     std::vector<Exact> out;
+    out.reserve(count);
     for (std::size_t i = 0; i < count; ++i) {
-      const std::string item_path = index_path(path, i);
-      out.push_back(number(list.items[i], item_path));
+      const Path item_path = path.index(i);
+      out.push_back(number(list[i], item_path));
       if (!(out.back() > 0)) fail(item_path, "weight must be positive");
     }
     return out;
   }
 
-  Motion motion(const Node& node, const std::string& path) const {
-    const Node& obj = object(node, path);
-    const std::string type_path = member_path(path, "type");
+  Motion motion(const Node& node, const Path& path) const {
+    const Members obj = object(node, path);
+    const Path type_path = path.member("type");
     const Node* type = find(obj, "type");
     if (!type) fail(type_path, "missing required field (e.g. \"rational_bezier\")");
-    if (type->kind != Node::Kind::String || type->text != "rational_bezier")
+    if (type->kind != Node::Kind::String || text(*type) != "rational_bezier")
       fail(type_path, "unknown motion type " + describe(*type) + " (supported: \"rational_bezier\")");
     reject_unknown_keys(obj, path, {"type", "interval", "control_points", "weights"});
 
     Motion m;
     if (const Node* interval = find(obj, "interval")) {
-      const std::string interval_path = member_path(path, "interval");
-      const Node& ends = array(*interval, interval_path);
-      if (ends.items.size() != 2)
-        fail(interval_path, "expected [t0, t1], got " + std::to_string(ends.items.size()) + " values");
-      m.t0 = number(ends.items[0], index_path(interval_path, 0));
-      m.t1 = number(ends.items[1], index_path(interval_path, 1));
+      const Path interval_path = path.member("interval");
+      const std::span<const Node> ends = array(*interval, interval_path);
+      if (ends.size() != 2)
+        fail(interval_path, "expected [t0, t1], got " + std::to_string(ends.size()) + " values");
+      m.t0 = number(ends[0], interval_path.index(0));
+      m.t1 = number(ends[1], interval_path.index(1));
       if (!(m.t0 < m.t1)) fail(interval_path, "interval start must be less than its end");
     }
-    const std::string cp_path = member_path(path, "control_points");
+    const Path cp_path = path.member("control_points");
     const Node* cps = find(obj, "control_points");
     if (!cps) fail(cp_path, "missing required field");
-    const Node& list = array(*cps, cp_path);
-    if (list.items.empty()) fail(cp_path, "at least one control point is required");
-    for (std::size_t k = 0; k < list.items.size(); ++k)
-      m.control_points.push_back(affine(list.items[k], index_path(cp_path, k)));
+    const std::span<const Node> list = array(*cps, cp_path);
+    if (list.empty()) fail(cp_path, "at least one control point is required");
+    m.control_points.reserve(list.size());
+    for (std::size_t k = 0; k < list.size(); ++k)
+      m.control_points.push_back(affine(list[k], cp_path.index(k)));
     if (const Node* weights = find(obj, "weights"))
-      m.weights = positive_weights(*weights, member_path(path, "weights"), list.items.size(), "control point");
+      m.weights = positive_weights(*weights, path.member("weights"), list.size(), "control point");
     else
-      m.weights.assign(list.items.size(), Exact(1));
+      m.weights.assign(list.size(), Exact(1));
     return m;
   }
 
   // Default masses need the size of the whole scene, so they come after all
   // bodies are read.  Every mass, default or not, must give a metric.
-  void assign_masses(Scene& scene) const {
+  void assign_masses(Scene& scene, const Path& bodies_path) const {
     auto vertices_of = [](const Body& b) {
       std::vector<Vec3E> v;
       for (const auto& polygon : b.polygons) v.insert(v.end(), polygon.begin(), polygon.end());
@@ -920,28 +1049,29 @@ class SceneReader {
       try {
         Metric::require_positive_definite(b.mass);
       } catch (const InputError& e) {  // default_mass promises this cannot happen
-        fail(index_path("bodies", i), std::string("default mass: ") + e.what());
+        fail(bodies_path.index(i), std::string("default mass: ") + e.what());
       }
     }
   }
 
-  std::vector<std::pair<int, int>> explicit_checks(const Node& node,
-                                                   const std::map<std::string, std::size_t>& names) const {
-    const Node& list = array(node, "checks");
+  std::vector<std::pair<int, int>> explicit_checks(const Node& node, const Path& checks_path,
+                                                   const std::unordered_map<std::string, std::size_t>& names) const {
+    const std::span<const Node> list = array(node, checks_path);
     std::vector<std::pair<int, int>> out;
     std::map<std::pair<int, int>, std::size_t> seen;  // unordered pair -> where it was written
-    for (std::size_t k = 0; k < list.items.size(); ++k) {
-      const std::string path = index_path("checks", k);
-      const Node& pair = array(list.items[k], path);
-      if (pair.items.size() != 2)
-        fail(path, "a check names exactly 2 bodies, got " + std::to_string(pair.items.size()));
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const Path path = checks_path.index(k);
+      const std::span<const Node> pair = array(list[k], path);
+      if (pair.size() != 2)
+        fail(path, "a check names exactly 2 bodies, got " + std::to_string(pair.size()));
       int idx[2];
       for (std::size_t s = 0; s < 2; ++s) {
-        const std::string side = index_path(path, s);
-        const Node& name = pair.items[s];
+        const Path side = path.index(s);
+        const Node& name = pair[s];
         if (name.kind != Node::Kind::String) fail(side, std::string("expected a body name, got ") + kind_name(name.kind));
-        const auto it = names.find(name.text);
-        if (it == names.end()) fail(side, "unknown body " + quote_text(name.text));
+        const std::string written(text(name));
+        const auto it = names.find(written);
+        if (it == names.end()) fail(side, "unknown body " + quote_text(written));
         idx[s] = static_cast<int>(it->second);
       }
       if (idx[0] == idx[1]) fail(path, "a body cannot be checked against itself");
@@ -965,11 +1095,12 @@ class SceneReader {
 
   std::string source_;
   std::filesystem::path base_;
+  const Tree& tree_;
 };
 
 Scene parse_with_base(const std::string& text, const std::string& source, const std::filesystem::path& base) {
-  Node root = parse_json(text, source);
-  return SceneReader(source, base).read(root);
+  const Tree tree = parse_json(text, source);
+  return SceneReader(source, base, tree).read();
 }
 
 }  // namespace
@@ -1079,7 +1210,11 @@ Scene parse_scene_file(const std::string& path) {
     text = buffer.str();
   }
   if (in.bad()) throw InputError(path + ": cannot read file");
-  return parse_with_base(text, path, std::filesystem::path(path).parent_path());
+  // The text goes once it is parsed: for a large scene it is a good part of
+  // the memory that reading the scene takes.
+  const Tree tree = parse_json(text, path);
+  std::string().swap(text);
+  return SceneReader(path, std::filesystem::path(path).parent_path(), tree).read();
 }
 
 }  // namespace tmcert
