@@ -243,12 +243,16 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
       const Vec3<FT>* face = kind == ContactKind::VertexFace ? ys : xs;
       axes[0] = cross(d(face[1], face[0]), d(face[2], face[0]));
     }
-    axes[1] = {0, 0, 0};
-    for (std::size_t k = 0; k < ny; ++k)
-      for (int i = 0; i < 3; ++i) axes[1][i] += mid(ys[k][i]) / static_cast<double>(ny);
-    for (std::size_t k = 0; k < nx; ++k)
-      for (int i = 0; i < 3; ++i) axes[1][i] -= mid(xs[k][i]) / static_cast<double>(nx);
-    for (const std::array<double, 3>& n : axes) {
+    for (int which = 0; which < 2; ++which) {
+      if (which == 1) {  // the centroids' line, only when the first axis fails
+        const double wy = 1 / static_cast<double>(ny), wx = 1 / static_cast<double>(nx);
+        axes[1] = {0, 0, 0};
+        for (std::size_t k = 0; k < ny; ++k)
+          for (int i = 0; i < 3; ++i) axes[1][i] += mid(ys[k][i]) * wy;
+        for (std::size_t k = 0; k < nx; ++k)
+          for (int i = 0; i < 3; ++i) axes[1][i] -= mid(xs[k][i]) * wx;
+      }
+      const std::array<double, 3>& n = axes[which];
       if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
       if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
       // Projection ranges, from the lower and upper ends of the projections.
@@ -296,9 +300,21 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
       const double gap = std::max(ylo - xhi, xlo - yhi);  // rounded: only a candidate, checked below
       if (!(gap > 0)) continue;
       // gap^2 > R^2 |n|^2 (rho terms), with the gap's own rounding enclosed.
-      const FT g = ylo - xhi >= xlo - yhi ? FT(ylo) - FT(xhi) : FT(xlo) - FT(yhi);
-      const FT bound = r2 * (FT(n[0]) * FT(n[0]) + FT(n[1]) * FT(n[1]) + FT(n[2]) * FT(n[2])) * rho;
-      if (lo(g) > 0 && lo(g * g) > hi(bound)) return true;
+      if constexpr (interval) {
+        // Directly, under the upward rounding: a lower bound of the gap is
+        // minus the difference the other way round, rounded up; of its
+        // square, minus (-g) g rounded up; the bound's factors are
+        // non-negative upper bounds, so their products round up.
+        // (Opacified as above.)
+        const double g_lo = ylo - xhi >= xlo - yhi ? -CGAL::IA_opacify(xhi - ylo) : -CGAL::IA_opacify(yhi - xlo);
+        const double g2_lo = -CGAL::IA_opacify(CGAL::IA_opacify(-g_lo) * g_lo);
+        const double bound_up = CGAL::IA_opacify(hi(r2) * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * hi(rho));
+        if (g_lo > 0 && g2_lo > bound_up) return true;
+      } else {
+        const FT g = ylo - xhi >= xlo - yhi ? FT(ylo) - FT(xhi) : FT(xlo) - FT(yhi);
+        const FT bound = r2 * (FT(n[0]) * FT(n[0]) + FT(n[1]) * FT(n[1]) + FT(n[2]) * FT(n[2])) * rho;
+        if (lo(g) > 0 && lo(g * g) > hi(bound)) return true;
+      }
     }
     return false;
   }
