@@ -144,18 +144,128 @@ CGAL::Sign min_sign(const Quadratic2<FT>& q, const ConvexDomain<FT>& d) {
 
 namespace detail {
 
-// The candidates of min_sign; over intervals, candidates it cannot settle
-// set m.uncertain instead of ending the search.
+// The candidate of one edge, v + t e for t in [0, 1], where q is
+// alpha t^2 + beta t + gamma (gamma = q(v)): its interior minimum, if any.
+// Returns true when the minimum is now NEGATIVE (the search ends).
 template <class FT>
-CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m) {
+bool edge_candidate(const FT& alpha, const FT& beta, const FT& gamma, MinSign& m) {
   using Bool = decltype(FT(0) < FT(0));  // bool, or CGAL::Uncertain<bool> over intervals
+  const FT zero(0);
+  const Bool curved = alpha > zero;
+  if (CGAL::certainly_not(curved)) return false;  // no interior minimum on this edge
+  if (CGAL::certainly(curved)) {
+    // Critical t* = -beta / (2 alpha) lies in (0, 1)  <=>  0 < -beta < 2 alpha.
+    const Bool inside = (beta < zero) & (-beta < FT(2) * alpha);
+    if (CGAL::certainly_not(inside)) return false;
+    // Minimum gamma - beta^2 / (4 alpha) has the sign of 4 alpha gamma - beta^2.
+    const FT value = FT(4) * alpha * gamma - beta * beta;
+    if (CGAL::certainly(inside)) {
+      detail::take(m, value);
+      return m.negative();
+    }
+    if (CGAL::certainly(value > zero)) return false;  // positive wherever t* is
+  }
+  // Only intervals get here (an uncertain comparison): q positive on the
+  // whole edge settles it; otherwise the exact run decides.
+  if (!detail::positive_on_edge(alpha, beta, gamma)) m.uncertain = true;
+  return false;
+}
+
+// The interior candidate: the critical point s* of q when the Hessian is
+// positive definite and `inside_of(s1, s2)` (a Bool: s* in the closed
+// polygon).  Returns false when it could not be settled (only intervals:
+// the caller then tries the bounding box).
+template <class FT, class Inside>
+bool interior_candidate(const Quadratic2<FT>& q, Inside&& inside_of, MinSign& m) {
+  using Bool = decltype(FT(0) < FT(0));
+  const FT zero(0);
+  const FT det = q.h11 * q.h22 - q.h12 * q.h12;
+  const Bool definite = (q.h11 > zero) & (det > zero);
+  if (CGAL::certainly_not(definite)) return true;
+  if (CGAL::certainly(definite)) {
+    // Critical point s* solves [h11 h12; h12 h22] s = -b / 2.
+    const FT s1 = (q.h12 * q.b2 - q.h22 * q.b1) / (FT(2) * det);
+    const FT s2 = (q.h12 * q.b1 - q.h11 * q.b2) / (FT(2) * det);
+    const Bool inside = inside_of(s1, s2);
+    if (CGAL::certainly_not(inside)) return true;
+    // q(s*) = c + (b . s*) / 2.
+    const FT value = FT(2) * q.c + q.b1 * s1 + q.b2 * s2;
+    if (CGAL::certainly(inside)) {
+      detail::take(m, value);
+      return true;
+    }
+    if (CGAL::certainly(value > zero)) return true;  // positive wherever s* is
+  }
+  return false;
+}
+
+inline bool is_value(const CGAL::Interval_nt<false>& x, double v) { return x.inf() == v && x.sup() == v; }
+
+// The standard triangle (0,0), (1,0), (0,1) and the unit square (0,0),
+// (1,0), (1,1), (0,1), both counter-clockwise: every triangle's and every
+// edge pair's domain (make_face in src/verify/prepared.cpp, contact_sign).
+// Returns 3 or 4 for them, else 0.
+inline int unit_domain(const ConvexDomain<CGAL::Interval_nt<false>>& d) {
+  if (d.orientation != 1 || (d.count != 3 && d.count != 4)) return 0;
+  const auto* v = d.vertices;
+  if (!is_value(v[0][0], 0) || !is_value(v[0][1], 0) || !is_value(v[1][0], 1) || !is_value(v[1][1], 0)) return 0;
+  if (d.count == 3) return is_value(v[2][0], 0) && is_value(v[2][1], 1) ? 3 : 0;
+  return is_value(v[2][0], 1) && is_value(v[2][1], 1) && is_value(v[3][0], 0) && is_value(v[3][1], 1) ? 4 : 0;
+}
+
+// The candidates on a unit domain (kind 3 or 4): those of the general
+// polygon below with the 0/1 coordinates folded into the sums (fewer
+// interval products).  Returns false when the interior could not be
+// settled.
+template <class FT>
+bool min_sign_unit(const Quadratic2<FT>& q, int kind, MinSign& m) {
+  const FT zero(0), one(1), two(2);
+  // Vertices: q(0,0) = c, q(1,0) = h11 + b1 + c, q(0,1) = h22 + b2 + c,
+  // q(1,1) = q(1,0) + h22 + b2 + 2 h12.
+  const FT q00 = q.c, q10 = q.h11 + q.b1 + q.c, q01 = q.h22 + q.b2 + q.c;
+  const FT q11 = kind == 4 ? q10 + q.h22 + q.b2 + two * q.h12 : zero;
+  detail::take(m, q00);
+  detail::take(m, q10);
+  if (kind == 4) detail::take(m, q11);
+  detail::take(m, q01);
+  if (m.negative()) return true;
+  // Edges from v along e: alpha = e^T H e, beta = (gradient at v).e with
+  // gradient (2 h11 s1 + 2 h12 s2 + b1, 2 h12 s1 + 2 h22 s2 + b2), gamma = q(v).
+  if (edge_candidate(q.h11, q.b1, q00, m)) return true;  // (0,0) -> (1,0)
+  if (kind == 3) {
+    // (1,0) -> (0,1): e = (-1, 1), gradient at (1,0) = (2 h11 + b1, 2 h12 + b2).
+    const FT alpha = q.h11 - two * q.h12 + q.h22;
+    const FT beta = (two * q.h12 + q.b2) - (two * q.h11 + q.b1);
+    if (edge_candidate(alpha, beta, q10, m)) return true;
+  } else {
+    // (1,0) -> (1,1): e = (0, 1), second entry at (1,0) = 2 h12 + b2.
+    if (edge_candidate(q.h22, two * q.h12 + q.b2, q10, m)) return true;
+    // (1,1) -> (0,1): e = (-1, 0), first entry at (1,1) = 2 h11 + 2 h12 + b1.
+    if (edge_candidate(q.h11, -(two * (q.h11 + q.h12) + q.b1), q11, m)) return true;
+  }
+  // (0,1) -> (0,0): e = (0, -1), second entry at (0,1) = 2 h22 + b2.
+  if (edge_candidate(q.h22, -(two * q.h22 + q.b2), q01, m)) return true;
+  // Interior: s1 >= 0, s2 >= 0 and s1 + s2 <= 1 (triangle) or s1, s2 <= 1.
+  return interior_candidate(
+      q,
+      [&](const FT& s1, const FT& s2) {
+        if (kind == 3) return (s1 >= zero) & (s2 >= zero) & (one - s1 - s2 >= zero);
+        return (s1 >= zero) & (s2 >= zero) & (one - s1 >= zero) & (one - s2 >= zero);
+      },
+      m);
+}
+
+// The candidates on a general polygon.  Returns false when the interior
+// could not be settled (only intervals).
+template <class FT>
+bool min_sign_polygon(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m) {
   const FT zero(0);
   // Vertices.
   for (std::size_t i = 0; i < d.count; ++i) {
     detail::take(m, q(d.vertices[i][0], d.vertices[i][1]));
-    if (m.negative()) return m.sign;
+    if (m.negative()) return true;
   }
-  if (d.count < 2) return m.sign;
+  if (d.count < 2) return true;
   // Edges: q(v + t e) = alpha t^2 + beta t + gamma, t in [0, 1].
   const std::size_t edges = d.count == 2 ? 1 : d.count;
   for (std::size_t i = 0; i < edges; ++i) {
@@ -163,56 +273,43 @@ CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& 
     const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
     const FT e1 = w[0] - v[0], e2 = w[1] - v[1];
     const FT alpha = q.h11 * e1 * e1 + FT(2) * q.h12 * e1 * e2 + q.h22 * e2 * e2;
-    const Bool curved = alpha > zero;
-    if (CGAL::certainly_not(curved)) continue;  // no interior minimum on this edge
     // Gradient of q at v, dotted with e.
     const FT g1 = FT(2) * (q.h11 * v[0] + q.h12 * v[1]) + q.b1;
     const FT g2 = FT(2) * (q.h12 * v[0] + q.h22 * v[1]) + q.b2;
     const FT beta = g1 * e1 + g2 * e2;
-    const FT gamma = q(v[0], v[1]);
-    if (CGAL::certainly(curved)) {
-      // Critical t* = -beta / (2 alpha) lies in (0, 1)  <=>  0 < -beta < 2 alpha.
-      const Bool inside = (beta < zero) & (-beta < FT(2) * alpha);
-      if (CGAL::certainly_not(inside)) continue;
-      // Minimum gamma - beta^2 / (4 alpha) has the sign of 4 alpha gamma - beta^2.
-      const FT value = FT(4) * alpha * gamma - beta * beta;
-      if (CGAL::certainly(inside)) {
-        detail::take(m, value);
-        if (m.negative()) return m.sign;
-        continue;
-      }
-      if (CGAL::certainly(value > zero)) continue;  // positive wherever t* is
-    }
-    // Only intervals get here (an uncertain comparison): q positive on the
-    // whole edge settles it; otherwise the exact run decides.
-    if (!detail::positive_on_edge(alpha, beta, gamma)) m.uncertain = true;
+    if (edge_candidate(alpha, beta, q(v[0], v[1]), m)) return true;
   }
-  if (d.count < 3) return m.sign;
-  // Interior: only a positive definite Hessian has an interior minimum.
-  const FT det = q.h11 * q.h22 - q.h12 * q.h12;
-  const Bool definite = (q.h11 > zero) & (det > zero);
-  if (CGAL::certainly_not(definite)) return m.sign;
-  if (CGAL::certainly(definite)) {
-    // Critical point s* solves [h11 h12; h12 h22] s = -b / 2.
-    const FT s1 = (q.h12 * q.b2 - q.h22 * q.b1) / (FT(2) * det);
-    const FT s2 = (q.h12 * q.b1 - q.h11 * q.b2) / (FT(2) * det);
-    // Inside the closed polygon: no edge sees s* on its outer side.
-    Bool inside(true);
-    for (std::size_t i = 0; i < d.count; ++i) {
-      const Pt2<FT>& v = d.vertices[i];
-      const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
-      const FT side = (w[0] - v[0]) * (s2 - v[1]) - (w[1] - v[1]) * (s1 - v[0]);
-      inside = inside & (d.orientation > 0 ? side >= zero : side <= zero);
-      if (CGAL::certainly_not(inside)) return m.sign;
-    }
-    // q(s*) = c + (b . s*) / 2.
-    const FT value = FT(2) * q.c + q.b1 * s1 + q.b2 * s2;
-    if (CGAL::certainly(inside)) {
-      detail::take(m, value);
-      return m.sign;
-    }
-    if (CGAL::certainly(value > zero)) return m.sign;  // positive wherever s* is
+  if (d.count < 3) return true;
+  // Interior: only a positive definite Hessian has an interior minimum;
+  // inside the closed polygon: no edge sees s* on its outer side.
+  return interior_candidate(
+      q,
+      [&](const FT& s1, const FT& s2) {
+        decltype(FT(0) < FT(0)) inside(true);
+        for (std::size_t i = 0; i < d.count; ++i) {
+          const Pt2<FT>& v = d.vertices[i];
+          const Pt2<FT>& w = d.vertices[(i + 1) % d.count];
+          const FT side = (w[0] - v[0]) * (s2 - v[1]) - (w[1] - v[1]) * (s1 - v[0]);
+          inside = inside & (d.orientation > 0 ? side >= zero : side <= zero);
+          if (CGAL::certainly_not(inside)) break;
+        }
+        return inside;
+      },
+      m);
+}
+
+// The candidates of min_sign; over intervals, candidates it cannot settle
+// set m.uncertain instead of ending the search.
+template <class FT>
+CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m) {
+  bool settled;
+  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) {
+    const int kind = unit_domain(d);
+    settled = kind ? min_sign_unit(q, kind, m) : min_sign_polygon(q, d, m);
+  } else {
+    settled = min_sign_polygon(q, d, m);
   }
+  if (settled || m.negative()) return m.sign;
   // Only intervals get here: q positive on the domain's bounding box
   // settles it; otherwise the exact run decides.
   if (!detail::positive_on_box(q, d)) m.uncertain = true;

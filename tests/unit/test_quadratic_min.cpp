@@ -6,6 +6,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -181,6 +182,58 @@ BOOST_AUTO_TEST_CASE(positive_means_positive_everywhere_sampled) {
   // Both outcomes must occur, or the test proves nothing.
   BOOST_TEST(positives > 20);
   BOOST_TEST(nonpositives > 20);
+}
+
+// The unit triangle and square (every face's and edge pair's domain) take
+// a path of their own over intervals, with the 0/1 coordinates folded in
+// (detail::min_sign_unit).  On random quadratics, definite, indefinite and
+// degenerate, with small coefficients so that zero minima and ties occur:
+// whenever the interval run answers it equals the exact sign of the general
+// polygon code, and the same polygon given from another first vertex (which
+// takes the general interval path) never disagrees with it.
+BOOST_AUTO_TEST_CASE(unit_domains_agree_with_the_general_polygon) {
+  std::mt19937 rng(20261124);
+  std::uniform_int_distribution<int> coef(-3, 3);
+  const std::vector<Pt2<Exact>> tri = {{0, 0}, {1, 0}, {0, 1}}, tri_other = {{1, 0}, {0, 1}, {0, 0}};
+  const std::vector<Pt2<Exact>> sq_other = {{1, 1}, {0, 1}, {0, 0}, {1, 0}};
+  auto to_i = [](const std::vector<Pt2<Exact>>& d) {
+    std::vector<Pt2<Interval>> out;
+    for (const auto& v : d) out.push_back({to_interval(v[0]), to_interval(v[1])});
+    return out;
+  };
+  const auto tri_i = to_i(tri), tri_other_i = to_i(tri_other), sq_i = to_i(kSquare), sq_other_i = to_i(sq_other);
+  int answered = 0, counts[3] = {0, 0, 0};
+  for (int iter = 0; iter < 4000; ++iter) {
+    const Quadratic2<Exact> q{coef(rng), coef(rng), coef(rng), coef(rng), coef(rng), Exact(coef(rng), 2)};
+    const Quadratic2<Interval> qi{to_interval(q.h11), to_interval(q.h12), to_interval(q.h22),
+                                  to_interval(q.b1), to_interval(q.b2), to_interval(q.c)};
+    for (int square = 0; square < 2; ++square) {
+      const std::vector<Pt2<Exact>>& d = square ? kSquare : tri;
+      const CGAL::Sign exact = min_sign(q, ConvexDomain<Exact>{d.data(), d.size(), 1});
+      ++counts[exact + 1];
+      const auto& unit = square ? sq_i : tri_i;
+      const auto& other = square ? sq_other_i : tri_other_i;
+      std::optional<CGAL::Sign> a, b;
+      RoundingGuard guard;
+      try {
+        a = min_sign(qi, ConvexDomain<Interval>{unit.data(), unit.size(), 1});
+      } catch (const CGAL::Uncertain_conversion_exception&) {
+      }
+      try {
+        b = min_sign(qi, ConvexDomain<Interval>{other.data(), other.size(), 1});
+      } catch (const CGAL::Uncertain_conversion_exception&) {
+      }
+      if (a) {
+        ++answered;
+        BOOST_CHECK_MESSAGE(*a == exact, "unit path contradicts exact, iteration " << iter << (square ? " square" : " triangle"));
+      }
+      if (b) BOOST_CHECK_MESSAGE(*b == exact, "general path contradicts exact, iteration " << iter);
+    }
+  }
+  BOOST_TEST(answered > 4000);
+  BOOST_TEST(counts[0] > 100);  // NEGATIVE
+  BOOST_TEST(counts[1] > 100);  // ZERO
+  BOOST_TEST(counts[2] > 100);  // POSITIVE
 }
 
 // Over intervals, a candidate whose existence is uncertain (a curvature or
