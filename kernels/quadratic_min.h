@@ -200,12 +200,14 @@ bool interior_candidate(const Quadratic2<FT>& q, Inside&& inside_of, MinSign& m)
 }
 
 inline bool is_value(const CGAL::Interval_nt<false>& x, double v) { return x.inf() == v && x.sup() == v; }
+inline bool is_value(double x, double v) { return x == v; }
 
 // The standard triangle (0,0), (1,0), (0,1) and the unit square (0,0),
 // (1,0), (1,1), (0,1), both counter-clockwise: every triangle's and every
 // edge pair's domain (make_face in src/verify/prepared.cpp, contact_sign).
 // Returns 3 or 4 for them, else 0.
-inline int unit_domain(const ConvexDomain<CGAL::Interval_nt<false>>& d) {
+template <class FT>
+int unit_domain(const ConvexDomain<FT>& d) {
   if (d.orientation != 1 || (d.count != 3 && d.count != 4)) return 0;
   const auto* v = d.vertices;
   if (!is_value(v[0][0], 0) || !is_value(v[0][1], 0) || !is_value(v[1][0], 1) || !is_value(v[1][1], 0)) return 0;
@@ -303,7 +305,7 @@ bool min_sign_polygon(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSig
 template <class FT>
 CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m) {
   bool settled;
-  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>>) {
+  if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>> || std::is_same_v<FT, double>) {
     const int kind = unit_domain(d);
     settled = kind ? min_sign_unit(q, kind, m) : min_sign_polygon(q, d, m);
   } else {
