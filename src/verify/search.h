@@ -608,9 +608,18 @@ struct Check {
     left = Item<Policy>{Node{2 * node.index, node.depth + 1, node.alive}, {}, nullptr};
     right = Item<Policy>{Node{2 * node.index + 1, node.depth + 1, std::move(node.alive)}, {}, nullptr};
     policy.split(item.piece, left.piece, right.piece);
-    if (options.hierarchy) {  // the piece is no longer needed here: the ancestor keeps it
-      left.parent = right.parent = std::make_shared<const Ancestor<Policy>>(
-          Ancestor<Policy>{ball, std::move(item.piece), item.parent, node.depth});
+    if (options.hierarchy) {
+      // This piece is an ancestor retest_above needs only for feature pairs
+      // made below it, which only a node pair alive here can make; without
+      // one the sub-pieces keep the chain above (pairs made at this depth or
+      // above are re-tested only on pieces above theirs).
+      const bool nodes_alive =
+          std::any_of(left.node.alive.begin(), left.node.alive.end(), [](const PairRef& p) { return p.nodes; });
+      if (nodes_alive)  // the piece is no longer needed here: the ancestor keeps it
+        left.parent = right.parent = std::make_shared<const Ancestor<Policy>>(
+            Ancestor<Policy>{ball, std::move(item.piece), item.parent, node.depth});
+      else
+        left.parent = right.parent = item.parent;
     }
     return Outcome::Split;
   }
