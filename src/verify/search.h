@@ -453,7 +453,8 @@ struct Check {
       // even unfattened - flat nodes side by side in one plane - are
       // descended: no piece clears them by their slabs.)  A pair carried
       // before is carried again only if the shortfall, fattening over gap,
-      // has fallen by a factor of about 1.4 since: it does so while the gap
+      // has fallen by about half since (two steps of carry_shortfall, each
+      // a factor of sqrt 2 up to rounding down): it does so while the gap
       // holds and the pieces halve (a body hovering over a plane), not near
       // a time where one slab passes through the other, where the gap
       // shrinks with the pieces and carrying would halve them towards that
