@@ -8,6 +8,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev
   libboost-test-dev librapidcheck-dev
   nlohmann-json3-dev libcli11-dev
+  libflint-arb-dev
 )
 
 missing=()

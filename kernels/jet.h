@@ -1,0 +1,53 @@
+// Second-order Taylor jets over intervals: a value and its first two
+// derivatives with respect to one parameter, each an interval.  Evaluating a
+// formula on Jet{s, 1, 0} with s a point interval encloses f(s), f'(s) and
+// f''(s); with s an interval S, the `dd` part encloses f'' over all of S
+// (interval arithmetic is inclusion isotone), which is what a Taylor
+// remainder bound needs.  proofs/enclosures.md section 2.
+//
+// Arithmetic must run under RoundingGuard (it is Interval arithmetic).
+#pragma once
+
+#include "kernels/number_types.h"
+#include "kernels/validated.h"
+
+namespace tmcert {
+
+struct Jet {
+  Interval v = Interval(0), d = Interval(0), dd = Interval(0);
+
+  Jet() = default;
+  Jet(const Interval& value) : v(value) {}  // a constant
+  Jet(const Interval& value, const Interval& first, const Interval& second) : v(value), d(first), dd(second) {}
+  // The parameter itself at s (or over s).
+  static Jet variable(const Interval& s) { return Jet(s, Interval(1), Interval(0)); }
+};
+
+inline Jet operator+(const Jet& a, const Jet& b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+inline Jet operator-(const Jet& a, const Jet& b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+inline Jet operator-(const Jet& a) { return {-a.v, -a.d, -a.dd}; }
+// (fg)' = f'g + fg', (fg)'' = f''g + 2f'g' + fg''.
+inline Jet operator*(const Jet& a, const Jet& b) {
+  return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + Interval(2) * a.d * b.d + a.v * b.dd};
+}
+inline Jet operator*(const Interval& c, const Jet& a) { return {c * a.v, c * a.d, c * a.dd}; }
+// (f/g)' = (f' - q g') / g, (f/g)'' = (f'' - 2 q' g' - q g'') / g with q = f/g.
+inline Jet operator/(const Jet& a, const Jet& b) {
+  const Interval q = a.v / b.v;
+  const Interval q1 = (a.d - q * b.d) / b.v;
+  const Interval q2 = (a.dd - Interval(2) * q1 * b.d - q * b.dd) / b.v;
+  return {q, q1, q2};
+}
+inline Jet& operator+=(Jet& a, const Jet& b) { return a = a + b; }
+
+// sin(f)' = cos(f) f', sin(f)'' = cos(f) f'' - sin(f) f'^2; cos likewise.
+inline Jet sin(const Jet& a) {
+  const Interval s = validated::sin(a.v), c = validated::cos(a.v);
+  return {s, c * a.d, c * a.dd - s * CGAL::square(a.d)};
+}
+inline Jet cos(const Jet& a) {
+  const Interval s = validated::sin(a.v), c = validated::cos(a.v);
+  return {c, -s * a.d, -s * a.dd - c * CGAL::square(a.d)};
+}
+
+}  // namespace tmcert
