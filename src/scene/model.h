@@ -47,6 +47,48 @@ struct Motion {
   int degree() const { return static_cast<int>(control_points.size()) - 1; }
 };
 
+// A rotation as written in a pose (SCENE_FORMAT.md "Rigid poses").
+struct Rotation {
+  enum class Kind { Identity, Quaternion, Rpy, Matrix };
+  Kind kind = Kind::Identity;
+  std::array<Exact, 4> quaternion;  // Quaternion: [w, x, y, z] as written, nonzero
+  std::array<Exact, 3> rpy;         // Rpy: roll, pitch, yaw in radians (R = Rz Ry Rx)
+  std::array<Exact, 9> matrix;      // Matrix: rows, exactly orthonormal, det +1
+  // The rotation is known exactly (everything but rpy).
+  bool exact() const { return kind != Kind::Rpy; }
+};
+
+// x -> R x + translation.
+struct Pose {
+  Vec3E translation{Exact(0), Exact(0), Exact(0)};
+  Rotation rotation;
+};
+
+enum class Interpolation { Slerp, Screw, Nlerp };
+
+// One piece of a body's motion over the scene parameters [t0, t1]: either a
+// rational Bezier curve (exact; `rational`, whose own t0/t1 are these), or
+// the interpolation of two keyframe poses that is not rational (slerp and
+// screw between different rotations, nlerp between rotations not given as
+// exact quaternions), enclosed rigorously wherever it is evaluated
+// (src/motion/segment.h, proofs/enclosures.md).  The segment parameter is
+// s = (t - t0) / (t1 - t0).
+struct MotionSegment {
+  Exact t0, t1;
+  std::optional<Motion> rational;
+  Pose from, to;                      // when not rational
+  Interpolation interpolation = Interpolation::Slerp;
+};
+
+// A body's motion when it is not one rational Bezier curve: keyframes with
+// more than one piece or a transcendental interpolation, and piecewise
+// motions.  Segments abut exactly and agree at the joins.
+struct Trajectory {
+  std::vector<MotionSegment> segments;  // in parameter order, >= 1
+  Exact t0() const { return segments.front().t0; }
+  Exact t1() const { return segments.back().t1; }
+};
+
 struct Body {
   std::string name;
   // Features as written (polygons with exactly collinear vertices removed,
@@ -59,8 +101,24 @@ struct Body {
   std::vector<ConvexPiece> pieces;
   MassDistribution mass;            // explicit, or the documented default
   bool mass_is_default = true;
-  std::optional<Motion> motion;     // absent: fixed at the identity
+  // The motion: `motion` when it is one rational Bezier curve (every scene
+  // of rational_bezier motions, and keyframes that reduce to one exactly),
+  // else `trajectory`; neither: fixed at the identity.  Never both.
+  std::optional<Motion> motion;
+  std::optional<Trajectory> trajectory;
   bool solid = false;
+  // The paper's toleranced motion: every affine map within this distance of
+  // the nominal pose, in the body's metric, is possible (0: none).
+  Exact tolerance = 0;
+
+  // Moves over a parameter interval (a one-pose motion does not).
+  bool moves() const { return trajectory || (motion && motion->degree() >= 1); }
+  // The parameter interval of the motion, when there is one.
+  std::optional<std::pair<Exact, Exact>> interval() const {
+    if (trajectory) return std::pair{trajectory->t0(), trajectory->t1()};
+    if (motion) return std::pair{motion->t0, motion->t1};
+    return std::nullopt;
+  }
 };
 
 struct Scene {
@@ -69,6 +127,14 @@ struct Scene {
   std::optional<Exact> epsilon;         // absent: 1/1000 of the scene diagonal
   int max_depth = 40;
   std::vector<std::pair<int, int>> checks;  // indices into bodies; explicit or default
+  // Minimum separation (SCENE_FORMAT.md "Tolerance and clearance"): the
+  // scene's, and per check when written there (empty: the scene's for all).
+  Exact clearance = 0;
+  std::vector<std::optional<Exact>> check_clearance;  // parallel to checks
+  Exact clearance_of(std::size_t check) const {
+    if (check < check_clearance.size() && check_clearance[check]) return *check_clearance[check];
+    return clearance;
+  }
 };
 
 }  // namespace tmcert

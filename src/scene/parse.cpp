@@ -10,6 +10,8 @@
 // every face goes through the same polygon checks.
 #include "src/scene/parse.h"
 
+#include "src/motion/segment.h"
+
 #include "src/metric/metric.h"
 #include "src/scene/mesh.h"
 
@@ -721,7 +723,8 @@ class SceneReader {
     if (!format) fail(document.member("format"), std::string("missing required field (expected \"") + kFormat + "\")");
     if (format->kind != Node::Kind::String || text(*format) != kFormat)
       fail(document.member("format"), "unknown format version " + describe(*format) + ", expected \"" + kFormat + "\"");
-    reject_unknown_keys(doc, document, {"format", "epsilon", "max_depth", "bodies", "checks"});
+    reject_unknown_keys(doc, document, {"format", "epsilon", "max_depth", "bodies", "checks", "clearance"});
+    if (const Node* c = find(doc, "clearance")) scene.clearance = non_negative(*c, document.member("clearance"));
 
     if (const Node* eps = find(doc, "epsilon")) {
       const Path eps_path = document.member("epsilon");
@@ -749,7 +752,7 @@ class SceneReader {
     assign_masses(scene, bodies_path);
 
     if (const Node* checks = find(doc, "checks"))
-      scene.checks = explicit_checks(*checks, document.member("checks"), names);
+      scene.checks = explicit_checks(*checks, document.member("checks"), names, scene.check_clearance);
     else
       scene.checks = default_checks(scene);
     return scene;
@@ -860,7 +863,8 @@ class SceneReader {
 
   Body body(const Node& node, const Path& path) const {
     const Members obj = object(node, path);
-    reject_unknown_keys(obj, path, {"name", "polygons", "segments", "points", "mass", "motion", "solid", "mesh"});
+    reject_unknown_keys(obj, path,
+                        {"name", "polygons", "segments", "points", "mass", "motion", "solid", "mesh", "tolerance"});
     Body b;
 
     const Node* name = find(obj, "name");
@@ -903,8 +907,15 @@ class SceneReader {
       b.mass = explicit_mass(*mass, path.member("mass"));
       b.mass_is_default = false;
     }
-    if (const Node* m = find(obj, "motion")) b.motion = motion(*m, path.member("motion"));
+    if (const Node* m = find(obj, "motion")) motion(b, *m, path.member("motion"));
+    if (const Node* t = find(obj, "tolerance")) b.tolerance = non_negative(*t, path.member("tolerance"));
     return b;
+  }
+
+  Exact non_negative(const Node& node, const Path& path) const {
+    const Exact value = number(node, path);
+    if (value < 0) fail(path, "must not be negative");
+    return value;
   }
 
   void polygon(Body& b, const Node& node, const Path& path) const {
@@ -996,13 +1007,202 @@ class SceneReader {
     return out;
   }
 
-  Motion motion(const Node& node, const Path& path) const {
+  // A body's motion: one rational Bezier curve stays `Body::motion` (also
+  // when keyframes or pieces reduce to one exactly), anything else becomes
+  // a trajectory of segments.
+  void motion(Body& b, const Node& node, const Path& path) const {
+    std::vector<MotionSegment> segments;
+    std::optional<Motion> single = motion_segments(node, path, segments);
+    if (single) {
+      b.motion = std::move(single);
+      return;
+    }
+    if (segments.size() == 1 && segments[0].rational) {
+      b.motion = segments[0].rational;
+      return;
+    }
+    b.trajectory = Trajectory{std::move(segments)};
+  }
+
+  // Appends the segments of a motion; returns a motionless or one-curve
+  // rational_bezier motion instead, as it is.
+  std::optional<Motion> motion_segments(const Node& node, const Path& path, std::vector<MotionSegment>& out) const {
     const Members obj = object(node, path);
     const Path type_path = path.member("type");
     const Node* type = find(obj, "type");
     if (!type) fail(type_path, "missing required field (e.g. \"rational_bezier\")");
-    if (type->kind != Node::Kind::String || text(*type) != "rational_bezier")
-      fail(type_path, "unknown motion type " + describe(*type) + " (supported: \"rational_bezier\")");
+    const std::string kind = type->kind == Node::Kind::String ? std::string(text(*type)) : std::string();
+    if (kind == "keyframes") {
+      keyframes(obj, path, out);
+      return std::nullopt;
+    }
+    if (kind == "piecewise") {
+      piecewise(obj, path, out);
+      return std::nullopt;
+    }
+    if (kind != "rational_bezier")
+      fail(type_path, "unknown motion type " + describe(*type) +
+                          " (supported: \"rational_bezier\", \"keyframes\", \"piecewise\")");
+    Motion m = rational_bezier(obj, path);
+    if (m.degree() >= 1) {
+      MotionSegment seg;
+      seg.t0 = m.t0;
+      seg.t1 = m.t1;
+      seg.rational = m;
+      out.push_back(std::move(seg));
+    }
+    return m;
+  }
+
+  // {"translation": [x, y, z], "rotation": {...}} (SCENE_FORMAT.md "Rigid poses").
+  Pose pose(const Node& node, const Path& path) const {
+    const Members obj = object(node, path);
+    reject_unknown_keys(obj, path, {"translation", "rotation"});
+    Pose p;
+    if (const Node* t = find(obj, "translation")) p.translation = point(*t, path.member("translation"));
+    if (const Node* r = find(obj, "rotation")) {
+      const Path rpath = path.member("rotation");
+      const Members rot = object(*r, rpath);
+      reject_unknown_keys(rot, rpath, {"quaternion", "rpy", "matrix"});
+      const Node* q = find(rot, "quaternion");
+      const Node* e = find(rot, "rpy");
+      const Node* m = find(rot, "matrix");
+      if ((q ? 1 : 0) + (e ? 1 : 0) + (m ? 1 : 0) != 1)
+        fail(rpath, "a rotation is exactly one of \"quaternion\", \"rpy\" or \"matrix\"");
+      if (q) {
+        const Path qpath = rpath.member("quaternion");
+        const std::span<const Node> items = array(*q, qpath);
+        if (items.size() != 4) fail(qpath, "a quaternion is [w, x, y, z]: expected 4 numbers, got " + std::to_string(items.size()));
+        p.rotation.kind = Rotation::Kind::Quaternion;
+        for (int i = 0; i < 4; ++i) p.rotation.quaternion[i] = number(items[i], qpath.index(i));
+        if (std::all_of(p.rotation.quaternion.begin(), p.rotation.quaternion.end(), [](const Exact& x) { return x == 0; }))
+          fail(qpath, "the quaternion is zero (it has no rotation)");
+      } else if (e) {
+        const Path epath = rpath.member("rpy");
+        const std::span<const Node> items = array(*e, epath);
+        if (items.size() != 3) fail(epath, "rpy is [roll, pitch, yaw] in radians: expected 3 numbers, got " + std::to_string(items.size()));
+        p.rotation.kind = Rotation::Kind::Rpy;
+        for (int i = 0; i < 3; ++i) {
+          p.rotation.rpy[i] = number(items[i], epath.index(i));
+          // Far beyond any angle: the enclosures of sin and cos would be [-1, 1].
+          if (CGAL::abs(p.rotation.rpy[i]) > 1000000) fail(epath.index(i), "angle out of range (at most 10^6 radians)");
+        }
+      } else {
+        const Path mpath = rpath.member("matrix");
+        const std::span<const Node> rows = array(*m, mpath);
+        if (rows.size() != 3) fail(mpath, "a rotation matrix has 3 rows, got " + std::to_string(rows.size()));
+        p.rotation.kind = Rotation::Kind::Matrix;
+        for (std::size_t r = 0; r < 3; ++r) {
+          const Path row_path = mpath.index(r);
+          const std::span<const Node> row = array(rows[r], row_path);
+          if (row.size() != 3) fail(row_path, "a rotation matrix row has 3 numbers, got " + std::to_string(row.size()));
+          for (std::size_t c = 0; c < 3; ++c) p.rotation.matrix[3 * r + c] = number(row[c], row_path.index(c));
+        }
+        if (const std::string problem = rotation_matrix_problem(p.rotation.matrix); !problem.empty())
+          fail(mpath, "not a rotation: " + problem);
+      }
+    }
+    return p;
+  }
+
+  // Strictly increasing parameter values, `count` of them.
+  std::vector<Exact> times(const Node& node, const Path& path, std::size_t count, const std::string& per) const {
+    const std::span<const Node> list = array(node, path);
+    if (list.size() != count)
+      fail(path, "expected " + std::to_string(count) + " times (one per " + per + "), got " + std::to_string(list.size()));
+    std::vector<Exact> out;
+    for (std::size_t i = 0; i < count; ++i) {
+      out.push_back(number(list[i], path.index(i)));
+      if (i > 0 && !(out[i - 1] < out[i])) fail(path.index(i), "times must be strictly increasing");
+    }
+    return out;
+  }
+
+  void keyframes(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const {
+    reject_unknown_keys(obj, path, {"type", "interpolation", "times", "poses"});
+    Interpolation how = Interpolation::Slerp;
+    if (const Node* i = find(obj, "interpolation")) {
+      const Path ipath = path.member("interpolation");
+      const std::string name = i->kind == Node::Kind::String ? std::string(text(*i)) : std::string();
+      if (name == "slerp") how = Interpolation::Slerp;
+      else if (name == "screw") how = Interpolation::Screw;
+      else if (name == "nlerp") how = Interpolation::Nlerp;
+      else fail(ipath, "unknown interpolation " + describe(*i) + " (supported: \"slerp\", \"screw\", \"nlerp\")");
+    }
+    const Path ppath = path.member("poses");
+    const Node* poses_node = find(obj, "poses");
+    if (!poses_node) fail(ppath, "missing required field");
+    const std::span<const Node> list = array(*poses_node, ppath);
+    if (list.size() < 2) fail(ppath, "keyframes need at least 2 poses, got " + std::to_string(list.size()));
+    std::vector<Pose> poses;
+    for (std::size_t k = 0; k < list.size(); ++k) poses.push_back(pose(list[k], ppath.index(k)));
+    std::vector<Exact> t;
+    if (const Node* tn = find(obj, "times")) {
+      t = times(*tn, path.member("times"), poses.size(), "pose");
+    } else {
+      for (std::size_t k = 0; k < poses.size(); ++k) t.push_back(Exact(static_cast<long>(k)) / Exact(static_cast<long>(poses.size() - 1)));
+    }
+    for (std::size_t k = 0; k + 1 < poses.size(); ++k) {
+      try {
+        require_interpolable(poses[k], poses[k + 1], how);
+      } catch (const InputError& e) {
+        fail(ppath.index(k + 1), std::string(e.what()) + " (from poses[" + std::to_string(k) + "])");
+      }
+      MotionSegment seg;
+      seg.t0 = t[k];
+      seg.t1 = t[k + 1];
+      seg.from = poses[k];
+      seg.to = poses[k + 1];
+      seg.interpolation = how;
+      seg.rational = rational_keyframe_segment(poses[k], poses[k + 1], how, t[k], t[k + 1]);
+      out.push_back(std::move(seg));
+    }
+  }
+
+  void piecewise(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const {
+    reject_unknown_keys(obj, path, {"type", "pieces"});
+    const Path ppath = path.member("pieces");
+    const Node* pieces = find(obj, "pieces");
+    if (!pieces) fail(ppath, "missing required field");
+    const std::span<const Node> list = array(*pieces, ppath);
+    if (list.empty()) fail(ppath, "at least one piece is required");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const Path piece_path = ppath.index(k);
+      std::vector<MotionSegment> segs;
+      const std::optional<Motion> still = motion_segments(list[k], piece_path, segs);
+      if (segs.empty()) fail(piece_path, "a piece must move over an interval (one control point is a pose, not a motion)");
+      (void)still;
+      if (!out.empty()) {
+        const MotionSegment& prev = out.back();
+        const MotionSegment& next = segs.front();
+        const std::string join = "join with pieces[" + std::to_string(k - 1) + "]";
+        if (prev.t1 != next.t0)
+          fail(piece_path, join + ": the intervals do not abut (the previous piece ends at " + to_string(prev.t1) +
+                               ", this one starts at " + to_string(next.t0) + ")");
+        const std::optional<Mat34E> end = segment_end(prev, true), start = segment_end(next, false);
+        if (end && start) {
+          if (*end != *start) fail(piece_path, join + ": the poses differ at t = " + to_string(next.t0) + " (a jump)");
+        } else if (!(!prev.rational && !next.rational && same_pose(prev.to, next.from))) {
+          fail(piece_path, join + ": the poses at t = " + to_string(next.t0) +
+                               " cannot be proven equal (an rpy pose must be written the same way on both sides)");
+        }
+      }
+      for (MotionSegment& seg : segs) out.push_back(std::move(seg));
+    }
+  }
+
+  static bool same_pose(const Pose& a, const Pose& b) {
+    if (a.translation != b.translation || a.rotation.kind != b.rotation.kind) return false;
+    return a.rotation.kind != Rotation::Kind::Rpy || a.rotation.rpy == b.rotation.rpy;
+  }
+
+  // The exact pose at a segment's end (`last`) or start, when it is exact.
+  static std::optional<Mat34E> segment_end(const MotionSegment& seg, bool last) {
+    if (seg.rational) return motion_pose(*seg.rational, last ? seg.t1 : seg.t0);
+    return exact_pose(last ? seg.to : seg.from);
+  }
+
+  Motion rational_bezier(const Members& obj, const Path& path) const {
     reject_unknown_keys(obj, path, {"type", "interval", "control_points", "weights"});
 
     Motion m;
@@ -1055,13 +1255,28 @@ class SceneReader {
   }
 
   std::vector<std::pair<int, int>> explicit_checks(const Node& node, const Path& checks_path,
-                                                   const std::unordered_map<std::string, std::size_t>& names) const {
+                                                   const std::unordered_map<std::string, std::size_t>& names,
+                                                   std::vector<std::optional<Exact>>& clearances) const {
     const std::span<const Node> list = array(node, checks_path);
     std::vector<std::pair<int, int>> out;
     std::map<std::pair<int, int>, std::size_t> seen;  // unordered pair -> where it was written
     for (std::size_t k = 0; k < list.size(); ++k) {
-      const Path path = checks_path.index(k);
-      const std::span<const Node> pair = array(list[k], path);
+      const Path item_path = checks_path.index(k);
+      const Path bodies_path = item_path.member("bodies");
+      const Path* where = &item_path;
+      const Node* pair_node = &list[k];
+      clearances.emplace_back();
+      if (list[k].kind == Node::Kind::Object) {
+        // {"bodies": ["a", "b"], "clearance": d}
+        const Members obj = object(list[k], item_path);
+        reject_unknown_keys(obj, item_path, {"bodies", "clearance"});
+        if (const Node* c = find(obj, "clearance")) clearances.back() = non_negative(*c, item_path.member("clearance"));
+        pair_node = find(obj, "bodies");
+        if (!pair_node) fail(bodies_path, "missing required field");
+        where = &bodies_path;
+      }
+      const Path& path = *where;
+      const std::span<const Node> pair = array(*pair_node, path);
       if (pair.size() != 2)
         fail(path, "a check names exactly 2 bodies, got " + std::to_string(pair.size()));
       int idx[2];
@@ -1089,7 +1304,8 @@ class SceneReader {
     const int n = static_cast<int>(scene.bodies.size());
     for (int i = 0; i < n; ++i)
       for (int j = i + 1; j < n; ++j)
-        if (scene.bodies[i].motion || scene.bodies[j].motion) out.emplace_back(i, j);
+        if (scene.bodies[i].motion || scene.bodies[i].trajectory || scene.bodies[j].motion || scene.bodies[j].trajectory)
+          out.emplace_back(i, j);
     return out;
   }
 

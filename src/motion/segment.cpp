@@ -1,0 +1,436 @@
+#include "src/motion/segment.h"
+
+#include "src/motion/bezier.h"
+
+#include <CGAL/number_utils.h>
+
+namespace tmcert {
+
+namespace {
+
+template <class T>
+using Quat = std::array<T, 4>;
+
+// R(q) for a unit quaternion q = (w, x, y, z) times |q|^2: the quadratic
+// form whose value at a unit quaternion is its rotation matrix (rows).
+template <class T>
+std::array<T, 9> rotation_form(const Quat<T>& q) {
+  const T &w = q[0], &x = q[1], &y = q[2], &z = q[3];
+  const T two(2);
+  return {w * w + x * x - y * y - z * z, two * (x * y - w * z), two * (x * z + w * y),
+          two * (x * y + w * z), w * w - x * x + y * y - z * z, two * (y * z - w * x),
+          two * (x * z - w * y), two * (y * z + w * x), w * w - x * x - y * y + z * z};
+}
+
+// The symmetric bilinear form of rotation_form: B(q, q) = rotation_form(q).
+template <class T>
+std::array<T, 9> rotation_bilinear(const Quat<T>& p, const Quat<T>& q) {
+  Quat<T> s;
+  for (int i = 0; i < 4; ++i) s[i] = p[i] + q[i];
+  const std::array<T, 9> a = rotation_form(s), b = rotation_form(p), c = rotation_form(q);
+  std::array<T, 9> out;
+  for (int i = 0; i < 9; ++i) out[i] = (a[i] - b[i] - c[i]) / T(2);
+  return out;
+}
+
+template <class T>
+T qdot(const Quat<T>& a, const Quat<T>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+}
+
+// Hamilton product: R(a b) = R(a) R(b).
+template <class T>
+Quat<T> qmul(const Quat<T>& a, const Quat<T>& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+          a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+          a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+
+Interval isqrt(const Interval& x) { return CGAL::sqrt(x); }
+
+const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+bool all_zero(const std::array<Exact, 3>& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+
+// Two rotations are equal, proven exactly (false also when unknown).
+bool same_rotation(const Rotation& a, const Rotation& b) {
+  if (a.kind == Rotation::Kind::Rpy && b.kind == Rotation::Kind::Rpy) return a.rpy == b.rpy;
+  const auto qa = exact_quaternion(a), qb = exact_quaternion(b);
+  if (!qa || !qb) return false;
+  // Proportional quaternions (either sign): every 2x2 minor vanishes.
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if ((*qa)[i] * (*qb)[j] != (*qa)[j] * (*qb)[i]) return false;
+  return true;
+}
+
+
+}  // namespace
+
+// ------------------------------------------------------------------ poses
+
+std::optional<std::array<Exact, 4>> exact_quaternion(const Rotation& r) {
+  switch (r.kind) {
+    case Rotation::Kind::Identity: return std::array<Exact, 4>{1, 0, 0, 0};
+    case Rotation::Kind::Quaternion: return r.quaternion;
+    case Rotation::Kind::Rpy:
+      if (all_zero(r.rpy)) return std::array<Exact, 4>{1, 0, 0, 0};
+      return std::nullopt;
+    case Rotation::Kind::Matrix: {
+      // A nonzero multiple of the quaternion, rationally: (1 + tr, m21 - m12,
+      // m02 - m20, m10 - m01) = 4w q, or the branch of the largest diagonal
+      // entry when 1 + tr = 0 (a half turn).
+      const auto& m = r.matrix;
+      const Exact tr = m[0] + m[4] + m[8];
+      if (1 + tr > 0) return std::array<Exact, 4>{1 + tr, m[7] - m[5], m[2] - m[6], m[3] - m[1]};
+      if (m[0] >= m[4] && m[0] >= m[8]) return std::array<Exact, 4>{m[7] - m[5], 1 + m[0] - m[4] - m[8], m[1] + m[3], m[2] + m[6]};
+      if (m[4] >= m[8]) return std::array<Exact, 4>{m[2] - m[6], m[1] + m[3], 1 - m[0] + m[4] - m[8], m[5] + m[7]};
+      return std::array<Exact, 4>{m[3] - m[1], m[2] + m[6], m[5] + m[7], 1 - m[0] - m[4] + m[8]};
+    }
+  }
+  return std::nullopt;
+}
+
+std::array<Interval, 4> unit_quaternion(const Rotation& r) {
+  if (const auto q = exact_quaternion(r)) {
+    const Interval n = validated::sqrt(qdot(*q, *q));
+    return {to_interval((*q)[0]) / n, to_interval((*q)[1]) / n, to_interval((*q)[2]) / n, to_interval((*q)[3]) / n};
+  }
+  // R = Rz(yaw) Ry(pitch) Rx(roll): q = qz qy qx with half angles.
+  auto half = [](const Exact& a) { return to_interval(a) / Interval(2); };
+  const Interval hr = half(r.rpy[0]), hp = half(r.rpy[1]), hy = half(r.rpy[2]);
+  const Quat<Interval> qx{validated::cos(hr), validated::sin(hr), Interval(0), Interval(0)};
+  const Quat<Interval> qy{validated::cos(hp), Interval(0), validated::sin(hp), Interval(0)};
+  const Quat<Interval> qz{validated::cos(hy), Interval(0), Interval(0), validated::sin(hy)};
+  return qmul(qmul(qz, qy), qx);
+}
+
+std::optional<Mat34E> exact_pose(const Pose& p) {
+  Mat34E m = kIdentity;
+  if (p.rotation.kind == Rotation::Kind::Matrix) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[4 * r + c] = p.rotation.matrix[3 * r + c];
+  } else {
+    const auto q = exact_quaternion(p.rotation);
+    if (!q) return std::nullopt;
+    const Exact n2 = qdot(*q, *q);
+    const std::array<Exact, 9> R = rotation_form(*q);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[4 * r + c] = R[3 * r + c] / n2;
+  }
+  for (int r = 0; r < 3; ++r) m[4 * r + 3] = p.translation[r];
+  return m;
+}
+
+PoseInterval interval_pose(const Pose& p) {
+  PoseInterval out;
+  if (const auto m = exact_pose(p)) {
+    for (int e = 0; e < 12; ++e) out[e] = to_interval((*m)[e]);
+    return out;
+  }
+  const std::array<Interval, 9> R = rotation_form(unit_quaternion(p.rotation));
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
+    out[4 * r + 3] = to_interval(p.translation[r]);
+  }
+  return out;
+}
+
+std::string rotation_matrix_problem(const std::array<Exact, 9>& m) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Exact d = m[3 * i] * m[3 * j] + m[3 * i + 1] * m[3 * j + 1] + m[3 * i + 2] * m[3 * j + 2];
+      if (d != (i == j ? 1 : 0)) return "the rows are not exactly orthonormal (row " + std::to_string(i) + " . row " +
+                                        std::to_string(j) + " = " + to_string(d) + ")";
+    }
+  const Exact det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
+                    m[2] * (m[3] * m[7] - m[4] * m[6]);
+  if (det != 1) return "the determinant is " + to_string(det) + ", not +1 (a reflection)";
+  return {};
+}
+
+// ------------------------------------------------------------------ exact segments
+
+namespace {
+
+Motion translation_motion(const Mat34E& from, const Vec3E& to, const Exact& t0, const Exact& t1) {
+  Motion m;
+  m.t0 = t0;
+  m.t1 = t1;
+  Mat34E end = from;
+  for (int r = 0; r < 3; ++r) end[4 * r + 3] = to[r];
+  m.control_points = {from, end};
+  m.weights = {1, 1};
+  return m;
+}
+
+}  // namespace
+
+std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, Interpolation how, const Exact& t0,
+                                                const Exact& t1) {
+  const auto pa = exact_pose(a), pb = exact_pose(b);
+  if (same_rotation(a.rotation, b.rotation) && pa) return translation_motion(*pa, b.translation, t0, t1);
+  if (how != Interpolation::Nlerp || !pa || !pb) return std::nullopt;
+  // q(s) = (1 - s) q0 + s q1 (q1 negated when q0 . q1 < 0): the rotation
+  // form R(q(s)) is quadratic with Bernstein controls B(q0,q0), B(q0,q1),
+  // B(q1,q1), and so is the weight |q(s)|^2; the translation times the
+  // weight is cubic.  Everything is raised to degree 3.
+  const std::array<Exact, 4> q0 = *exact_quaternion(a.rotation);
+  std::array<Exact, 4> q1 = *exact_quaternion(b.rotation);
+  if (qdot(q0, q1) < 0)
+    for (Exact& x : q1) x = -x;
+  const std::array<std::array<Exact, 9>, 3> R = {rotation_form(q0), rotation_bilinear(q0, q1), rotation_form(q1)};
+  const std::array<Exact, 3> w = {qdot(q0, q0), qdot(q0, q1), qdot(q1, q1)};
+  const Vec3E &T0 = a.translation, &T1 = b.translation;
+  Motion m;
+  m.t0 = t0;
+  m.t1 = t1;
+  // Degree elevation 2 -> 3: c'0 = c0, c'1 = (c0 + 2 c1) / 3, c'2 = (2 c1 + c2) / 3, c'3 = c2.
+  auto elevate = [](const Exact& c0, const Exact& c1, const Exact& c2) {
+    return std::array<Exact, 4>{c0, (c0 + 2 * c1) / 3, (2 * c1 + c2) / 3, c2};
+  };
+  const std::array<Exact, 4> weights = elevate(w[0], w[1], w[2]);
+  m.weights.assign(weights.begin(), weights.end());
+  m.control_points.assign(4, Mat34E{});
+  for (int e = 0; e < 9; ++e) {
+    const std::array<Exact, 4> c = elevate(R[0][e], R[1][e], R[2][e]);
+    for (int k = 0; k < 4; ++k) m.control_points[k][4 * (e / 3) + e % 3] = c[k] / weights[k];
+  }
+  for (int r = 0; r < 3; ++r) {
+    // (w T) as the product of a quadratic (w) and a linear (T) Bernstein form.
+    const std::array<Exact, 4> wt = {w[0] * T0[r], (2 * w[1] * T0[r] + w[0] * T1[r]) / 3,
+                                     (w[2] * T0[r] + 2 * w[1] * T1[r]) / 3, w[2] * T1[r]};
+    for (int k = 0; k < 4; ++k) m.control_points[k][4 * r + 3] = wt[k] / weights[k];
+  }
+  return m;
+}
+
+void require_interpolable(const Pose& a, const Pose& b, Interpolation how) {
+  if (how == Interpolation::Nlerp || same_rotation(a.rotation, b.rotation)) return;
+  const auto qa = exact_quaternion(a.rotation), qb = exact_quaternion(b.rotation);
+  if (qa && qb) {
+    if (qdot(*qa, *qb) == 0)
+      throw InputError("the two rotations are exactly 180 degrees apart: the interpolation has no shorter arc");
+    return;
+  }
+  RoundingGuard guard;
+  const Interval d = qdot(unit_quaternion(a.rotation), unit_quaternion(b.rotation));
+  if (!(d.inf() > 0) && !(d.sup() < 0))
+    throw InputError("cannot prove which arc between the two rotations is shorter (they are 180 degrees apart or "
+                     "within rounding of it)");
+}
+
+Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
+  if (t0 == m.t0 && t1 == m.t1) return m;
+  const Exact span = m.t1 - m.t0;
+  HomogeneousCurve<Exact, 1> c = homogeneous_curve(m);
+  auto split_at = [](HomogeneousCurve<Exact, 1>& curve, const Exact& u, bool keep_right) {
+    // De Casteljau at u: left controls are the first entries of each
+    // column, right controls the last.
+    const std::size_t n = curve.size();
+    HomogeneousCurve<Exact, 1> work = curve, left(n), right(n);
+    for (std::size_t level = 0; level < n; ++level) {
+      left[level] = work[0];
+      right[n - 1 - level] = work[n - 1 - level];
+      for (std::size_t k = 0; k + 1 < n - level; ++k)
+        for (std::size_t e = 0; e < work[k].size(); ++e) work[k][e] = (1 - u) * work[k][e] + u * work[k + 1][e];
+    }
+    curve = keep_right ? right : left;
+  };
+  const Exact a = (t0 - m.t0) / span, b = (t1 - m.t0) / span;
+  if (a > 0) split_at(c, a, true);
+  const Exact b2 = a > 0 ? (b - a) / (1 - a) : b;
+  if (b2 < 1) split_at(c, b2, false);
+  Motion out;
+  out.t0 = t0;
+  out.t1 = t1;
+  for (const auto& p : c) {
+    const Exact& w = p[12];
+    Mat34E cp;
+    for (int e = 0; e < 12; ++e) cp[e] = p[e] / w;
+    out.control_points.push_back(cp);
+    out.weights.push_back(w);
+  }
+  return out;
+}
+
+Mat34E motion_pose(const Motion& m, const Exact& t) {
+  return evaluate<1>(homogeneous_curve(m), (t - m.t0) / (m.t1 - m.t0));
+}
+
+// ------------------------------------------------------------------ models
+
+namespace {
+
+// A rational Bezier curve evaluated on jets: de Casteljau on the
+// homogeneous control points, then the quotient by the weight.
+class BezierModel final : public SegmentModel {
+ public:
+  explicit BezierModel(const Motion& m) : curve_(homogeneous_curve(m)) {
+    RoundingGuard guard;
+    enclosed_ = enclose(curve_);
+  }
+  PoseJet pose(const Jet& s) const override {
+    const std::size_t n = enclosed_.size();
+    std::vector<std::array<Jet, 13>> work(n);
+    for (std::size_t k = 0; k < n; ++k)
+      for (int e = 0; e < 13; ++e) work[k][e] = Jet(enclosed_[k][e]);
+    const Jet one_minus = Jet(Interval(1)) - s;
+    for (std::size_t level = 1; level < n; ++level)
+      for (std::size_t k = 0; k + level < n; ++k)
+        for (int e = 0; e < 13; ++e) work[k][e] = one_minus * work[k][e] + s * work[k + 1][e];
+    PoseJet out;
+    for (int e = 0; e < 12; ++e) out[e] = work[0][e] / work[0][12];
+    return out;
+  }
+  std::optional<Mat34E> exact_pose(const Exact& s) const override { return evaluate<1>(curve_, s); }
+
+ private:
+  HomogeneousCurve<Exact, 1> curve_;
+  HomogeneousCurve<Interval, 1> enclosed_;
+};
+
+// Slerp, screw and nlerp between two keyframe poses, enclosed (the
+// rotations' unit quaternions and every transcendental constant are
+// intervals; proofs/enclosures.md section 3).
+class KeyframeModel final : public SegmentModel {
+ public:
+  KeyframeModel(const Pose& a, const Pose& b, Interpolation how)
+      : how_(how), exact_from_(tmcert::exact_pose(a)), exact_to_(tmcert::exact_pose(b)) {
+    RoundingGuard guard;
+    // nlerp interpolates the quaternions as written (a matrix's: the
+    // rational multiple exact_quaternion gives); slerp and screw the unit ones.
+    auto nlerp_quaternion = [](const Rotation& r) {
+      if (const auto q = exact_quaternion(r))
+        return Quat<Interval>{to_interval((*q)[0]), to_interval((*q)[1]), to_interval((*q)[2]), to_interval((*q)[3])};
+      return unit_quaternion(r);
+    };
+    p0_ = how == Interpolation::Nlerp ? nlerp_quaternion(a.rotation) : unit_quaternion(a.rotation);
+    p1_ = how == Interpolation::Nlerp ? nlerp_quaternion(b.rotation) : unit_quaternion(b.rotation);
+    constant_ = same_rotation(a.rotation, b.rotation);
+    // The shorter arc: require_interpolable has proven the sign of p0 . p1
+    // (for nlerp with exact quaternions the exact sign decides).
+    const auto qa = exact_quaternion(a.rotation), qb = exact_quaternion(b.rotation);
+    const bool negate = qa && qb ? qdot(*qa, *qb) < 0 : qdot(p0_, p1_).sup() < 0;
+    if (negate)
+      for (Interval& x : p1_) x = -x;
+    for (int i = 0; i < 3; ++i) {
+      t0_[i] = to_interval(a.translation[i]);
+      t1_[i] = to_interval(b.translation[i]);
+    }
+    if (constant_) return;
+    Quat<Interval> diff, sum;
+    for (int i = 0; i < 4; ++i) {
+      diff[i] = p0_[i] - p1_[i];
+      sum[i] = p0_[i] + p1_[i];
+    }
+    // The angle between the unit quaternions, well conditioned for small
+    // angles: |p0 - p1| = 2 sin(theta/2), |p0 + p1| = 2 cos(theta/2).
+    theta_ = Interval(2) * validated::atan2(isqrt(qdot(diff, diff)), isqrt(qdot(sum, sum)));
+    sin_theta_ = validated::sin(theta_);
+    if (how_ == Interpolation::Screw) {
+      // Relative rotation d = conj(p0) p1 (w >= 0: the shorter arc), its
+      // angle phi and unit axis k; the relative translation in the frame
+      // of the first pose; the screw's pitch part along k and the point c
+      // on its axis: c = (t_perp + cot(phi/2) k x t_perp) / 2.
+      const Quat<Interval> conj0{p0_[0], -p0_[1], -p0_[2], -p0_[3]};
+      const Quat<Interval> d = qmul(conj0, p1_);
+      const Interval vnorm = isqrt(d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
+      phi_ = Interval(2) * validated::atan2(vnorm, d[0]);
+      for (int i = 0; i < 3; ++i) k_[i] = d[i + 1] / vnorm;
+      const std::array<Interval, 9> R0 = rotation_form(p0_);
+      for (int i = 0; i < 9; ++i) r0_[i] = R0[i];
+      std::array<Interval, 3> td;  // R0^T (t1 - t0)
+      for (int i = 0; i < 3; ++i) td[i] = R0[i] * (t1_[0] - t0_[0]) + R0[3 + i] * (t1_[1] - t0_[1]) + R0[6 + i] * (t1_[2] - t0_[2]);
+      along_ = k_[0] * td[0] + k_[1] * td[1] + k_[2] * td[2];
+      std::array<Interval, 3> perp;
+      for (int i = 0; i < 3; ++i) perp[i] = td[i] - along_ * k_[i];
+      const Interval cot = d[0] / vnorm;
+      const std::array<Interval, 3> kp = cross(k_, perp);
+      std::array<Interval, 3> c;
+      for (int i = 0; i < 3; ++i) c[i] = (perp[i] + cot * kp[i]) / Interval(2);
+      kc_ = cross(k_, c);
+      kkc_ = cross(k_, kc_);
+    }
+  }
+
+  PoseJet pose(const Jet& s) const override {
+    PoseJet out;
+    const Jet one(Interval(1));
+    if (how_ == Interpolation::Screw && !constant_) {
+      // A(s) = R(p0 (cos(s phi/2), sin(s phi/2) k)); a(s) = t0 + R0 (-sin(s phi) k x c
+      //        - (1 - cos(s phi)) k x (k x c) + s along k).
+      const Jet half = (phi_ / Interval(2)) * s, full = phi_ * s;
+      const Jet ch = cos(half), sh = sin(half);
+      const Quat<Jet> rel{ch, sh * Jet(k_[0]), sh * Jet(k_[1]), sh * Jet(k_[2])};
+      const Quat<Jet> p0{Jet(p0_[0]), Jet(p0_[1]), Jet(p0_[2]), Jet(p0_[3])};
+      const std::array<Jet, 9> R = rotation_form(qmul(p0, rel));
+      const Jet sf = sin(full), vers = one - cos(full);
+      std::array<Jet, 3> local;
+      for (int i = 0; i < 3; ++i) local[i] = -(sf * Jet(kc_[i])) - vers * Jet(kkc_[i]) + (along_ * s) * Jet(k_[i]);
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
+        out[4 * r + 3] = Jet(t0_[r]) + r0_[3 * r] * local[0] + r0_[3 * r + 1] * local[1] + r0_[3 * r + 2] * local[2];
+      }
+      return out;
+    }
+    Quat<Jet> q;
+    bool unit = true;
+    if (constant_) {
+      for (int i = 0; i < 4; ++i) q[i] = Jet(p0_[i]);
+      unit = false;  // nlerp's quaternions are as written
+    } else if (how_ == Interpolation::Slerp || how_ == Interpolation::Screw) {
+      // q(s) = (sin((1 - s) theta) p0 + sin(s theta) p1) / sin(theta).
+      const Jet a = sin(theta_ * (one - s)), b = sin(theta_ * s);
+      const Interval inv = Interval(1) / sin_theta_;
+      for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
+    } else {  // nlerp: R(q) / |q|^2
+      for (int i = 0; i < 4; ++i) q[i] = Jet(p0_[i]) + (p1_[i] - p0_[i]) * s;
+      unit = false;
+    }
+    std::array<Jet, 9> R = rotation_form(q);
+    if (!unit) {
+      const Jet n2 = qdot(q, q);
+      for (Jet& x : R) x = x / n2;
+    }
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
+      out[4 * r + 3] = Jet(t0_[r]) + (t1_[r] - t0_[r]) * s;
+    }
+    return out;
+  }
+
+  std::optional<Mat34E> exact_pose(const Exact& s) const override {
+    if (s == 0) return exact_from_;
+    if (s == 1) return exact_to_;
+    return std::nullopt;
+  }
+
+ private:
+  static std::array<Interval, 3> cross(const std::array<Interval, 3>& a, const std::array<Interval, 3>& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  }
+
+  Interpolation how_;
+  std::optional<Mat34E> exact_from_, exact_to_;
+  bool constant_ = false;
+  Quat<Interval> p0_, p1_;
+  std::array<Interval, 3> t0_, t1_;
+  Interval theta_, sin_theta_;
+  // Screw only.
+  Interval phi_, along_;
+  std::array<Interval, 3> k_, kc_, kkc_;
+  std::array<Interval, 9> r0_;
+};
+
+}  // namespace
+
+std::unique_ptr<SegmentModel> make_bezier_model(const Motion& motion) { return std::make_unique<BezierModel>(motion); }
+
+std::unique_ptr<SegmentModel> make_segment_model(const MotionSegment& segment) {
+  if (segment.rational) return make_bezier_model(*segment.rational);
+  return std::make_unique<KeyframeModel>(segment.from, segment.to, segment.interpolation);
+}
+
+}  // namespace tmcert

@@ -1,0 +1,79 @@
+// The motions planners produce, as one interface the search needs: the
+// pose at a parameter (exactly where it is rational, else enclosed) and
+// second-order jets of the pose from which a piece's Taylor enclosure is
+// built (src/motion/enclosure.h).  A new motion type is one class here.
+// proofs/enclosures.md.
+#pragma once
+
+#include "kernels/jet.h"
+#include "src/scene/model.h"
+
+#include <array>
+#include <memory>
+#include <optional>
+
+namespace tmcert {
+
+using PoseJet = std::array<Jet, 12>;              // [A | a] row-major
+using PoseInterval = std::array<Interval, 12>;
+
+// One motion segment over its own parameter s in [0, 1].
+class SegmentModel {
+ public:
+  virtual ~SegmentModel() = default;
+  // Jets of the pose at s (a point jet) or over an interval of s; the
+  // result encloses the exact pose and its first two derivatives.  Call
+  // under RoundingGuard.
+  virtual PoseJet pose(const Jet& s) const = 0;
+  // The exact pose at a rational s, when it is known exactly there (a
+  // rational motion anywhere, a keyframe with an exact rotation at its
+  // keyframe); nullopt otherwise.
+  virtual std::optional<Mat34E> exact_pose(const Exact& s) const = 0;
+};
+
+// The model of a segment (rational or keyframe interpolation).
+std::unique_ptr<SegmentModel> make_segment_model(const MotionSegment& segment);
+
+// The model of a rational Bezier motion over its curve parameter.
+std::unique_ptr<SegmentModel> make_bezier_model(const Motion& motion);
+
+// ---------------------------------------------------------------- poses
+
+// A quaternion proportional to the rotation (w, x, y, z), exactly, when the
+// rotation is exact (identity, quaternion as written, matrix); nullopt for
+// rpy.
+std::optional<std::array<Exact, 4>> exact_quaternion(const Rotation& r);
+
+// The unit quaternion of the rotation, enclosed (any sign).  Call under
+// RoundingGuard.
+std::array<Interval, 4> unit_quaternion(const Rotation& r);
+
+// The pose as an exact 3x4 map, when its rotation is exact.
+std::optional<Mat34E> exact_pose(const Pose& p);
+
+// The pose enclosed.  Call under RoundingGuard.
+PoseInterval interval_pose(const Pose& p);
+
+// Why a matrix is not a rotation (not orthonormal, det != 1), or empty.
+std::string rotation_matrix_problem(const std::array<Exact, 9>& m);
+
+// The exact rational Bezier motion of the keyframe segment from `a` to
+// `b` over [t0, t1], when it is one: nlerp between exact rotations (the
+// quaternions as written; a degree-3 rational curve), or any interpolation
+// between equal rotations (a translation).  nullopt otherwise.
+std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, Interpolation how, const Exact& t0,
+                                                const Exact& t1);
+
+// Throws InputError (message without a path) when the interpolation from
+// `a` to `b` is not defined: slerp and screw between rotations exactly 180
+// degrees apart, or whose shorter arc cannot be proven (rpy).
+void require_interpolable(const Pose& a, const Pose& b, Interpolation how);
+
+// The restriction of a rational Bezier motion to [t0, t1] inside its
+// interval, exactly (de Casteljau at rational parameters).
+Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1);
+
+// Exact pose of a rational Bezier motion at scene parameter t.
+Mat34E motion_pose(const Motion& m, const Exact& t);
+
+}  // namespace tmcert
