@@ -11,6 +11,7 @@
 // when the numbers fit (60-bit limbs, coordinates below 2^62), GMP integers
 // otherwise.  No floating point is used anywhere.
 #include "src/certificate/check.h"
+#include "src/certificate/writer.h"
 #include "src/scene/parse.h"
 
 #include <gmp.h>
@@ -1459,6 +1460,11 @@ std::size_t nesting(const std::string& text) {
 }  // namespace
 
 CheckOutcome check_certificate(const Scene& scene, const nlohmann::json& certificate, const std::string& source) {
+  // The checker models only rational Bezier motions without tolerance or
+  // clearance: anything else would be checked against a motion other than
+  // the scene's.
+  if (const std::string why = uncertifiable(scene); !why.empty())
+    throw InputError(source + ": certificates do not cover this scene: " + why);
   return Checker(scene, source).run(certificate);
 }
 

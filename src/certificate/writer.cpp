@@ -696,8 +696,21 @@ struct CheckWriter {
 
 }  // namespace
 
+std::string uncertifiable(const Scene& scene) {
+  for (const Body& b : scene.bodies) {
+    if (b.trajectory)
+      return "body \"" + b.name + "\" has a keyframe or piecewise motion that is not one rational Bezier curve";
+    if (b.tolerance > 0) return "body \"" + b.name + "\" has a tolerance";
+  }
+  for (std::size_t k = 0; k < scene.checks.size(); ++k)
+    if (scene.clearance_of(k) > 0) return "check " + std::to_string(k) + " has a clearance";
+  return {};
+}
+
 std::string certificate_json(const Scene& scene, const SceneResult& result, WriteStats* stats) {
   if (!result.certified) throw InputError("--certificate: the fast kernel is not certified; use filtered or exact");
+  if (const std::string why = uncertifiable(scene); !why.empty())
+    throw InputError("--certificate: certificates do not cover this scene: " + why);
   const auto started = std::chrono::steady_clock::now();
   WriteStats local;
   WriteStats& s = stats ? *stats : local;

@@ -28,4 +28,10 @@ struct WriteStats {
 // cleared piece cannot be proven within the bisection limit.
 std::string certificate_json(const Scene& scene, const SceneResult& result, WriteStats* stats = nullptr);
 
+// Why certificates (tmcert-certificate/1) cannot cover this scene: keyframe
+// and piecewise motions, tolerances and clearances are not part of the
+// format; empty when they can.  Both the writer and the checker refuse such
+// scenes (bad input, exit 3) rather than certify a motion they do not model.
+std::string uncertifiable(const Scene& scene);
+
 }  // namespace tmcert::certificate

@@ -90,6 +90,9 @@ int run_verify(const VerifyArgs& args) {
   if (options.record_cover && options.kernel == KernelKind::Fast)
     throw InputError("--certificate: the fast kernel is not certified; use --kernel filtered or exact");
   require_supported(scene);
+  if (!args.certificate.empty())
+    if (const std::string why = certificate::uncertifiable(scene); !why.empty())
+      throw InputError("--certificate: certificates do not cover this scene: " + why);
   std::shared_ptr<Progress> progress;
   if (isatty(STDERR_FILENO)) {
     progress = std::make_shared<Progress>();

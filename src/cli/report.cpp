@@ -1,5 +1,10 @@
 #include "src/cli/report.h"
 
+#include "src/motion/segment.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -131,6 +136,10 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.value(scene.bodies[c.bodies[1]].name);
   w.end_array();
   w.member("verdict", to_string(c.verdict));
+  if (c.clearance > 0) {
+    w.member("clearance", to_string(c.clearance));
+    w.member("clearance_violated", c.verdict == Verdict::Collision);
+  }
   if (c.first_contact) {
     w.key("first_contact");
     w.begin_object();
@@ -151,10 +160,40 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     w.value(wit.features[0]);
     w.value(wit.features[1]);
     w.end_array();
-    w.key("point");
-    w.begin_array();
-    for (const Exact& x : wit.point) w.value(to_string(x));
-    w.end_array();
+    if (wit.point_box) {
+      // An enclosed pose: a rational box holding the common point.
+      w.key("point_box");
+      w.begin_array();
+      for (const auto& range : *wit.point_box) {
+        w.begin_array();
+        w.value(to_string(range[0]));
+        w.value(to_string(range[1]));
+        w.end_array();
+      }
+      w.end_array();
+    } else {
+      w.key("point");
+      w.begin_array();
+      for (const Exact& x : wit.point) w.value(to_string(x));
+      w.end_array();
+    }
+    if (wit.points) {
+      w.key("points");
+      w.begin_array();
+      for (const Vec3E& p : *wit.points) {
+        w.begin_array();
+        for (const Exact& x : p) w.value(to_string(x));
+        w.end_array();
+      }
+      w.end_array();
+    }
+    if (wit.displacement) {
+      w.key("displacement");
+      w.begin_array();
+      for (const Exact& x : *wit.displacement) w.value(to_string(x));
+      w.end_array();
+      w.member("displaced", scene.bodies[c.bodies[wit.displaced]].name);
+    }
     w.end_object();
   }
   w.key("undecided");
@@ -198,6 +237,65 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.end_object();
 }
 
+// For a rational Bezier motion whose poses are not rigid: how much the body
+// is stretched or shrunk, at worst over the control points and 33 sampled
+// parameters (for people: the check is exact for the affine motion as
+// written, but a user who interpolated rotation matrices linearly shrank
+// the body without meaning to).  Empty for rigid motions.
+std::string rigidity_note(const Body& b) {
+  if (!b.motion || b.motion->degree() < 1) return {};
+  const Motion& m = *b.motion;
+  auto linear_equal = [](const Mat34E& x, const Mat34E& y) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        if (x[4 * r + c] != y[4 * r + c]) return false;
+    return true;
+  };
+  auto orthonormal = [](const Mat34E& p) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        if (p[r] * p[c] + p[4 + r] * p[4 + c] + p[8 + r] * p[8 + c] != (r == c ? 1 : 0)) return false;
+    return true;
+  };
+  // One linear part throughout (translations, such as continuous-collision
+  // queries): rigid exactly when it is orthonormal.  No sampling needed.
+  if (std::all_of(m.control_points.begin(), m.control_points.end(),
+                  [&](const Mat34E& p) { return linear_equal(p, m.control_points[0]); }) &&
+      orthonormal(m.control_points[0]))
+    return {};
+  double worst_lo = 1, worst_hi = 1;
+  Exact worst_t = m.t0;
+  bool rigid = true;
+  for (int k = 0; k <= 32; ++k) {
+    const Exact t = m.t0 + (m.t1 - m.t0) * Exact(k, 32);
+    const Mat34E p = motion_pose(m, t);
+    Eigen::Matrix3d a;
+    bool exact_rotation = true;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        a(r, c) = CGAL::to_double(p[4 * r + c]);
+        Exact dot = p[4 * 0 + r] * p[4 * 0 + c] + p[4 * 1 + r] * p[4 * 1 + c] + p[4 * 2 + r] * p[4 * 2 + c];
+        if (dot != (r == c ? 1 : 0)) exact_rotation = false;
+      }
+    if (exact_rotation) continue;
+    rigid = false;
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(a);
+    const double lo = svd.singularValues().minCoeff(), hi = svd.singularValues().maxCoeff();
+    if (std::max(hi - 1, 1 - lo) > std::max(worst_hi - 1, 1 - worst_lo)) {
+      worst_lo = lo;
+      worst_hi = hi;
+      worst_t = t;
+    }
+  }
+  if (rigid) return {};
+  std::ostringstream out;
+  out.precision(4);
+  out << "the motion of " << b.name << " is not rigid (an affine motion, checked as written): at t = "
+      << CGAL::to_double(worst_t) << " lengths are scaled by " << worst_lo << " to " << worst_hi;
+  if (std::abs(worst_hi - 1) < 1e-12 && std::abs(worst_lo - 1) < 1e-12) out << " (within rounding of rigid)";
+  return out.str();
+}
+
 }  // namespace
 
 std::string result_json(const Scene& scene, const SceneResult& r) {
@@ -224,12 +322,21 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
   for (const CheckResult& c : r.checks) {
     out << "  " << scene.bodies[c.bodies[0]].name << " x " << scene.bodies[c.bodies[1]].name << ": "
         << to_string(c.verdict);
-    if (c.witness)
-      out << " at t = " << to_string(c.witness->t) << " (" << c.witness->features[0] << " meets "
-          << c.witness->features[1] << ")";
+    if (c.clearance > 0) out << " (clearance " << to_string(c.clearance) << (c.verdict == Verdict::Collision ? " violated" : "") << ")";
+    if (c.witness) {
+      out << " at t = " << to_string(c.witness->t) << " (" << c.witness->features[0]
+          << (c.witness->points ? " comes within the clearance of " : " meets ") << c.witness->features[1];
+      if (c.witness->displacement)
+        out << " when " << scene.bodies[c.bodies[c.witness->displaced]].name
+            << " is displaced within its tolerance";
+      out << ")";
+    }
     if (c.first_contact)
       out << "; no contact before t = " << to_string(c.first_contact->first);
     if (!c.undecided.empty()) out << "; " << c.undecided.size() << " undecided interval(s)";
+    for (int side = 0; side < 2; ++side)
+      if (const std::string note = rigidity_note(scene.bodies[c.bodies[side]]); !note.empty())
+        out << "\n    note: " << note;
     out << "  (" << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls
         << " tests, " << c.stats.contact.exact_fallbacks << " exact, " << c.stats.seconds << " s)\n";
   }

@@ -6,6 +6,7 @@
 #include "kernels/separation.h"
 #include "src/verify/pairs.h"
 #include "src/verify/verify.h"
+#include "src/motion/enclosure.h"
 
 #include <CGAL/number_utils.h>
 
@@ -29,6 +30,17 @@ Placement<FT> make_placement(const std::array<FT, 12 * B>& center, const FT& r2)
   }
   p.r2 = r2;
   return p;
+}
+
+// A ball of squared radius r2 widened by `tube` (a tolerance, or the
+// remainder of an enclosed motion): (sqrt(r2) + tube)^2, rounded upward.
+// Infinity when not finite.
+inline double widen_r2(double r2, double tube) {
+  if (tube == 0) return r2;
+  RoundingGuard guard;
+  const Interval r = CGAL::sqrt(Interval(r2)) + Interval(tube);
+  const double out = CGAL::square(r).sup();
+  return std::isfinite(out) ? out : std::numeric_limits<double>::infinity();
 }
 
 template <int B>
@@ -73,7 +85,8 @@ template <int B>
 struct FilteredPolicy {
   using Piece = HomogeneousCurve<Interval, B>;
   struct Ball {
-    BallD<B> ball;
+    BallD<B> ball;            // the control points' ball: its r2 decides the stops
+    double placed_r2 = 0;     // widened by the tube: what the tests use
     Placement<Interval> interval;
     std::optional<Placement<Exact>> exact;  // built on the first exact fallback
     VertexImages moving_images, other_images;  // for the axis test
@@ -83,18 +96,26 @@ struct FilteredPolicy {
   const PreparedBody& m;
   const PreparedBody& f;
   const HomogeneousCurve<Exact, B>& curve;
+  double tube = 0;  // every pose of the check lies within this of its piece's curve (tolerance)
 
   Piece root() const { return enclose(curve); }
   void split(const Piece& p, Piece& l, Piece& r) const {
     RoundingGuard guard;  // interval de Casteljau encloses the exact halves
     split_half(p, l, r);
   }
-  Ball ball(const Piece& p) const {
-    Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}, std::nullopt};
+  Ball ball(const Piece& p) const { return ball_of(p, tube); }
+  // The ball of control points `p` widened by `widen`.
+  Ball ball_of(const Piece& p, double widen) const {
+    Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), 0, {}, std::nullopt};
     if (b.ball.valid) {
+      b.placed_r2 = widen_r2(b.ball.r2, widen);
+      if (!std::isfinite(b.placed_r2)) {
+        b.ball.valid = false;
+        return b;
+      }
       std::array<Interval, 12 * B> c;
       for (int e = 0; e < 12 * B; ++e) c[e] = Interval(b.ball.center[e]);
-      b.interval = make_placement<B>(c, Interval(b.ball.r2));
+      b.interval = make_placement<B>(c, Interval(b.placed_r2));
     }
     return b;
   }
@@ -130,7 +151,7 @@ struct FilteredPolicy {
           if (!b.exact) {
             std::array<Exact, 12 * B> c;
             for (int e = 0; e < 12 * B; ++e) c[e] = Exact(b.ball.center[e]);
-            b.exact = make_placement<B>(c, Exact(b.ball.r2));
+            b.exact = make_placement<B>(c, Exact(b.placed_r2));
           }
           return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], *b.exact);
         },
@@ -141,6 +162,7 @@ struct FilteredPolicy {
   // over the intervals enclosing the control points and features.  An
   // uncertain comparison only means "not cleared": no exact fallback.
   bool hull(const Piece& piece, const PairRef& p) const {
+    if (tube > 0) return false;  // the hull test knows no tube: it clears nothing then
     const FeatureTable& X = moving_table(m, p.kind);
     const FeatureTable& Y = other_table(f, p.kind);
     return hull_search<B>(piece, X.approx[p.i], Y.approx[p.j], [&](const HullPlane& plane) {
@@ -155,18 +177,26 @@ struct ExactPolicy {
   using Piece = HomogeneousCurve<Exact, B>;
   struct Ball {
     Placement<Exact> placement;
+    double hull_r2 = 0;  // the control points' ball, for the stops
     bool valid() const { return true; }
-    double r2() const { return CGAL::to_double(placement.r2); }
+    double r2() const { return hull_r2; }
   };
   const PreparedBody& m;
   const PreparedBody& f;
   const HomogeneousCurve<Exact, B>& curve;
+  double tube = 0;
 
   Piece root() const { return curve; }
   void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
   Ball ball(const Piece& p) const {
     BallE<B> b = bounding_ball<B>(p, metrics_of<B>(m, f));
-    return Ball{make_placement<B>(b.center, b.r2)};
+    const double r2 = CGAL::to_double(b.r2);
+    if (tube > 0) {
+      // (sqrt(r2) + tube)^2 from an upper bound of r2: a larger ball, still exact.
+      const double widened = widen_r2(to_interval(b.r2).sup(), tube);
+      b.r2 = std::isfinite(widened) ? Exact(widened) : b.r2 + Exact(1e300);
+    }
+    return Ball{make_placement<B>(b.center, b.r2), r2};
   }
   // The sphere test over intervals enclosing the exact ball: certified, and
   // it only ever skips contact tests that would clear too.
@@ -190,6 +220,7 @@ struct ExactPolicy {
   }
   // The hull test, decided exactly (proofs/hull-test.md).
   bool hull(const Piece& piece, const PairRef& p) const {
+    if (tube > 0) return false;
     return hull_search<B>(piece, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
                           [&](const HullPlane& plane) {
                             return hull_apart<B>(piece, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], plane);
@@ -209,12 +240,14 @@ struct FastPolicy {
   const PreparedBody& m;
   const PreparedBody& f;
   const HomogeneousCurve<Exact, B>& curve;
+  double tube = 0;
 
   Piece root() const { return approximate(curve); }
   void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
   Ball ball(const Piece& p) const {
     Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}};
-    b.placement = make_placement<B>(b.ball.center, b.ball.r2);
+    const double r = std::sqrt(b.ball.r2) + tube;
+    b.placement = make_placement<B>(b.ball.center, tube > 0 ? r * r : b.ball.r2);
     return b;
   }
   using SphereFT = double;
@@ -228,11 +261,104 @@ struct FastPolicy {
   }
   // The hull test in double (not certified, like everything here).
   bool hull(const Piece& piece, const PairRef& p) const {
+    if (tube > 0) return false;
     const FeatureGeometry<double>& X = moving_table(m, p.kind).approx[p.i];
     const FeatureGeometry<double>& Y = other_table(f, p.kind).approx[p.j];
     return hull_search<B>(piece, X, Y, [&](const HullPlane& plane) { return hull_apart<B>(piece, X, Y, plane); });
   }
 };
 
+
+// ------------------------------------------------------------------ enclosed motions
+// The motions of a check's bodies over one parameter interval, as segment
+// models (keyframe interpolations that are not rational, or rational ones
+// checked together with them): each body's segment parameter is
+// s = s0 + u (s1 - s0) for the check's curve parameter u in [0, 1].
+template <int B>
+struct EnclosedSource {
+  std::array<const SegmentModel*, B> models{};
+  std::array<Exact, B> s0, s1;
+  std::array<const MetricData*, B> metrics{};
+  std::array<double, B> tube{};  // per body: tolerance (and clearance), in its metric
+
+  Exact s_of(int b, const Exact& u) const { return s0[b] + u * (s1[b] - s0[b]); }
+  // The poses at u, enclosed.
+  std::array<PoseInterval, B> poses(const Exact& u) const {
+    std::array<PoseInterval, B> out;
+    for (int b = 0; b < B; ++b) out[b] = enclose_pose(*models[b], s_of(b, u));
+    return out;
+  }
+  // The poses at u exactly, when every one is known exactly there.
+  std::optional<std::array<Mat34E, B>> exact_poses(const Exact& u) const {
+    std::array<Mat34E, B> out;
+    for (int b = 0; b < B; ++b) {
+      const auto m = models[b]->exact_pose(s_of(b, u));
+      if (!m) return std::nullopt;
+      out[b] = *m;
+    }
+    return out;
+  }
+};
+
+// The search's policy for enclosed motions: a piece is the degree-1 Taylor
+// enclosure of every body's motion on it (src/motion/enclosure.h), whose
+// ball is widened by the remainder tube (and the bodies' tolerances); the
+// tests are the filtered kernel's.  Sub-pieces are enclosed anew from the
+// motion, not subdivided.  No hull test (it knows no tube).
+template <int B>
+struct EnclosedPolicy {
+  struct Piece {
+    Exact u0, u1;
+    HomogeneousCurve<Interval, B> controls;
+    double tube = 0;
+  };
+  using Ball = typename FilteredPolicy<B>::Ball;
+  using SphereFT = Interval;
+  FilteredPolicy<B> base;
+  const EnclosedSource<B>& source;
+
+  Piece enclose_on(const Exact& u0, const Exact& u1) const {
+    Piece p{u0, u1, HomogeneousCurve<Interval, B>(2), 0};
+    Interval tube2(0);
+    bool valid = true;
+    for (int b = 0; b < B; ++b) {
+      const PieceEnclosure e =
+          enclose_piece(*source.models[b], source.s_of(b, u0), source.s_of(b, u1), source.metrics[b]->g_interval);
+      valid = valid && e.valid;
+      for (int k = 0; k < 2; ++k) {
+        for (int i = 0; i < 12; ++i) p.controls[k][12 * b + i] = e.controls[k][i];
+        p.controls[k][12 * B] = Interval(1);
+      }
+      RoundingGuard guard;
+      tube2 += CGAL::square(Interval(e.tube) + Interval(source.tube[b]));
+    }
+    {
+      // The product metric: |(d1, d2)| = sqrt(|d1|^2 + |d2|^2).
+      RoundingGuard guard;
+      p.tube = valid ? CGAL::sqrt(tube2).sup() : std::numeric_limits<double>::infinity();
+    }
+    if (!std::isfinite(p.tube)) p.tube = std::numeric_limits<double>::infinity();
+    return p;
+  }
+  Piece root() const { return enclose_on(Exact(0), Exact(1)); }
+  void split(const Piece& p, Piece& l, Piece& r) const {
+    const Exact mid = (p.u0 + p.u1) / 2;
+    l = enclose_on(p.u0, mid);
+    r = enclose_on(mid, p.u1);
+  }
+  Ball ball(const Piece& p) const {
+    if (!std::isfinite(p.tube)) {
+      Ball b{};
+      b.ball.valid = false;
+      return b;
+    }
+    return base.ball_of(p.controls, p.tube);
+  }
+  SphereFrame<Interval> frame(const Ball& b) const { return base.frame(b); }
+  CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats, bool axis = false) const {
+    return base.test(b, p, stats, axis);
+  }
+  bool hull(const Piece&, const PairRef&) const { return false; }
+};
 
 }  // namespace tmcert::detail

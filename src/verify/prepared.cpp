@@ -256,7 +256,9 @@ std::optional<std::array<Interval, 16>> interval_inverse(const std::array<Interv
 
 }  // namespace
 
-PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motion->degree() >= 1), pose_(kIdentity) {
+// A body with a tolerance is prepared as a moving one (body frame, metric)
+// even when it stands still: the search moves it within its tolerance.
+PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.moves() || b.tolerance > 0), pose_(kIdentity) {
   if (b.motion && !moving) pose_ = b.motion->control_points[0];
   const bool identity = pose_ == kIdentity;
   auto place = [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); };
@@ -280,7 +282,7 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.motion && b.motio
   // Metric, enclosed by intervals.
   std::optional<std::array<Interval, 16>> gi;
   if (moving) {
-    curve = homogeneous_curve(*b.motion);
+    if (b.motion) curve = homogeneous_curve(*b.motion);
     {
       RoundingGuard guard;
       metric_data.g_interval.fill(Interval(0));
@@ -396,6 +398,9 @@ const ExactFeatures& PreparedBody::exact() const {
 }
 
 SweptBox swept_box(const Body& body) {
+  // Keyframe and piecewise motions and tolerances: no box (a check with
+  // such a body is never cleared by the prefilter).
+  if (body.trajectory || body.tolerance > 0) return SweptBox{};
   std::vector<Mat34E> maps;
   if (body.motion) maps = body.motion->control_points;
   else maps.push_back(kIdentity);

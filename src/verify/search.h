@@ -4,6 +4,8 @@
 #pragma once
 
 #include "src/verify/kernel_policies.h"
+#include "kernels/distance.h"
+#include "kernels/robust_crossing.h"
 
 #include <algorithm>
 #include <atomic>
@@ -26,6 +28,130 @@ namespace tmcert::detail {
 struct StaticHit {
   int part_moving, part_other;
   Vec3E point;
+  std::optional<std::array<Interval, 3>> box;  // an enclosed configuration's crossing: `point` unused
+};
+
+// Adds `part`, the result of the parameter range right after everything in
+// `total`, to `total`: statistics, cleared pieces, undecided intervals
+// (joined where they abut with the same reason), the first-contact bracket
+// and the witness.  False once a witness ends the search.
+inline bool merge_result(CheckResult& total, const CheckResult& part) {
+  CheckStats& s = total.stats;
+  const CheckStats& p = part.stats;
+  s.nodes += p.nodes;
+  s.stops += p.stops;
+  s.max_depth = std::max(s.max_depth, p.max_depth);
+  s.contact += p.contact;
+  for (int k = 0; k < 3; ++k) s.by_kind[k] += p.by_kind[k];
+  s.static_tests += p.static_tests;
+  s.static_configurations += p.static_configurations;
+  s.static_filter_pairs += p.static_filter_pairs;
+  s.static_filter_exact += p.static_filter_exact;
+  s.sphere_tests += p.sphere_tests;
+  s.slab_clears += p.slab_clears;
+  s.hull_clears += p.hull_clears;
+  s.axis_clears += p.axis_clears;
+  total.cleared.insert(total.cleared.end(), part.cleared.begin(), part.cleared.end());
+  for (const UndecidedInterval& u : part.undecided) {
+    if (!total.undecided.empty() && total.undecided.back().t1 == u.t0 && total.undecided.back().reason == u.reason)
+      total.undecided.back().t1 = u.t1;
+    else
+      total.undecided.push_back(u);
+  }
+  if (part.witness) {
+    total.witness = part.witness;
+    total.verdict = Verdict::Collision;
+    const Exact lo = total.first_contact ? total.first_contact->first : part.first_contact->first;
+    total.first_contact = std::pair{lo, part.first_contact->second};
+    return false;
+  }
+  if (!total.first_contact && part.first_contact) total.first_contact = part.first_contact;
+  return true;
+}
+
+// The closest pair of points of two bodies' parts (placed by `ma`, `mb`
+// when given; restricted to the part pairs in `only` when given), exactly,
+// when their distance squared is at most `bound2`.
+struct DistanceHit {
+  int part_a, part_b;
+  ClosestPoints points;
+};
+
+inline std::optional<DistanceHit> closest_within(const std::vector<StaticPart>& a, const Mat34E* ma,
+                                                 const std::vector<StaticPart>& b, const Mat34E* mb,
+                                                 const Exact& bound2, const std::set<std::pair<int, int>>* only,
+                                                 CheckStats& stats) {
+  double reach;
+  {
+    RoundingGuard guard;
+    reach = CGAL::sqrt(to_interval(bound2)).sup();
+  }
+  struct Placed {
+    int part;
+    Simplex s;
+    std::array<double, 3> lo, hi;
+  };
+  auto place = [&](const std::vector<StaticPart>& parts, const Mat34E* m, bool first) {
+    std::vector<char> use(parts.size(), only ? 0 : 1);
+    if (only)
+      for (const auto& [i, j] : *only) use[first ? i : j] = 1;
+    std::vector<Placed> out;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      if (!use[i]) continue;
+      for (Simplex s : parts[i].simplices) {
+        if (m)
+          for (int k = 0; k < s.count; ++k) {
+            Vec3E r;
+            for (int c = 0; c < 3; ++c)
+              r[c] = (*m)[4 * c] * s.p[k][0] + (*m)[4 * c + 1] * s.p[k][1] + (*m)[4 * c + 2] * s.p[k][2] + (*m)[4 * c + 3];
+            s.p[k] = r;
+          }
+        Placed p{static_cast<int>(i), s, {}, {}};
+        for (int c = 0; c < 3; ++c) {
+          p.lo[c] = std::numeric_limits<double>::infinity();
+          p.hi[c] = -p.lo[c];
+          for (int k = 0; k < s.count; ++k) {
+            const Interval x = to_interval(s.p[k][c]);
+            p.lo[c] = std::min(p.lo[c], x.inf());
+            p.hi[c] = std::max(p.hi[c], x.sup());
+          }
+        }
+        out.push_back(std::move(p));
+      }
+    }
+    return out;
+  };
+  const std::vector<Placed> xs = place(a, ma, true), ys = place(b, mb, false);
+  std::optional<DistanceHit> best;
+  for (const Placed& x : xs)
+    for (const Placed& y : ys) {
+      if (only && !only->count({x.part, y.part})) continue;
+      // Boxes (enclosing the exact simplices) farther apart along an axis
+      // than the reach (rounded up) hold no pair within it.
+      bool far = false;
+      for (int c = 0; c < 3 && !far; ++c) far = x.lo[c] - y.hi[c] > reach || y.lo[c] - x.hi[c] > reach;
+      if (far) continue;
+      ++stats.static_tests;
+      ClosestPoints cp = closest_points(x.s, y.s);
+      if (cp.d2 <= bound2 && (!best || cp.d2 < best->points.d2)) best = DistanceHit{x.part, y.part, std::move(cp)};
+    }
+  return best;
+}
+
+// What a check adds to the plain contact search (src/verify/general.cpp):
+// a tube around the motion (tolerances, clearance), enclosed motions, and
+// the distance witnesses of tolerance and clearance.
+template <int B>
+struct CheckExtras {
+  double tube = 0;  // rational motions: every admissible pose is within this of the curve (product metric)
+  const EnclosedSource<B>* enclosed = nullptr;  // enclosed motions instead of `curve`
+  // Witnesses at a distance (exact configurations only): the clearance
+  // squared, and per side of the check (moving, other) the squared length
+  // of a translation within that body's tolerance (r^2 / sum of its mass
+  // weights: a translation by v has norm |v| sqrt(sum w)).
+  Exact clearance2 = 0;
+  std::array<Exact, 2> reach2{Exact(0), Exact(0)};
+  bool distance_witness() const { return clearance2 > 0 || reach2[0] > 0 || reach2[1] > 0; }
 };
 
 inline std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, const std::vector<StaticPart>& b,
@@ -130,6 +256,12 @@ struct Check {
   double rho2_sum;               // max rho1^2 (+ max rho2^2): the fat size per unit R^2
   const VerifyOptions& options;
   CheckResult& result;
+  CheckExtras<B> extras = {};
+
+  // The same check writing into `part`.
+  Check fork(CheckResult& part) const {
+    return Check{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, part, extras};
+  }
 
   Exact scene_t(const Exact& u) const { return motion.t0 + u * (motion.t1 - motion.t0); }
   Exact curve_u(const Exact& t) const { return (t - motion.t0) / (motion.t1 - motion.t0); }
@@ -138,16 +270,29 @@ struct Check {
     const std::string a = moving.body->name + " " + moving.parts[hit.part_moving].name;
     const std::string b = other.body->name + " " + other.parts[hit.part_other].name;
     Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, hit.point};
+    if (hit.box) {
+      std::array<std::array<Exact, 2>, 3> box;
+      for (int i = 0; i < 3; ++i) box[i] = {Exact((*hit.box)[i].inf()), Exact((*hit.box)[i].sup())};
+      w.point_box = box;
+    }
     result.witness = w;
     result.verdict = Verdict::Collision;
   }
 
   // The configuration at curve parameter u: interval maps first (cheap),
   // exact only for simplex pairs the interval filter cannot separate.
-  std::optional<StaticHit> static_test(const Exact& u, const std::set<std::pair<int, int>>* only) {
+  // With enclosed motions the poses are known exactly only where the
+  // motion is rational (keyframes with exact rotations); elsewhere a hit
+  // must be a certain transversal crossing (kernels/robust_crossing.h), and
+  // `uncertain` (when given) is set when a simplex pair could be neither
+  // separated nor proven to meet.
+  std::optional<StaticHit> static_test(const Exact& u, const std::set<std::pair<int, int>>* only,
+                                       bool* uncertain = nullptr) {
     ++result.stats.static_configurations;
     std::array<std::array<Interval, 12>, B> maps;
-    {
+    if (extras.enclosed) {
+      maps = extras.enclosed->poses(u);
+    } else {
       RoundingGuard guard;
       const Interval ui = to_interval(u), vi = Interval(1) - ui;
       HomogeneousCurve<Interval, B> work = root_interval;
@@ -201,8 +346,9 @@ struct Check {
     std::vector<char> use_a(moving.parts.size(), only ? 0 : 1), use_b(other.parts.size(), only ? 0 : 1);
     if (only)
       for (const auto& [i, j] : *only) use_a[i] = use_b[j] = 1;
-    struct Candidate { int pi, pj, si, sj; };
+    struct Candidate { int pi, pj, si, sj, placed; };
     std::vector<Candidate> candidates;
+    std::vector<std::pair<SimplexI, SimplexI>> placed_pairs;  // enclosed motions: the candidates' simplices
     {
       RoundingGuard guard;
       std::vector<Item> a_items = place_all(moving, use_a, &maps[0]);
@@ -223,7 +369,8 @@ struct Check {
         ++result.stats.static_filter_pairs;
         if (!overlap(x, y) || certainly_disjoint(x.s, y.s)) return;
         ++result.stats.static_filter_exact;
-        candidates.push_back({x.part, y.part, x.index, y.index});
+        candidates.push_back({x.part, y.part, x.index, y.index, static_cast<int>(placed_pairs.size())});
+        if (extras.enclosed) placed_pairs.emplace_back(x.s, y.s);
       };
       std::size_t first_b = 0;
       for (const Item& x : a_items) {
@@ -239,9 +386,32 @@ struct Check {
       return std::tie(x.pi, x.pj, x.si, x.sj) < std::tie(y.pi, y.pj, y.si, y.sj);
     });
     if (candidates.empty()) return std::nullopt;
-    const Mat34E m1 = evaluate<B>(curve, u, 0);
+    Mat34E m1;
     std::optional<Mat34E> m2;
-    if constexpr (B == 2) m2 = evaluate<B>(curve, u, 1);
+    if (extras.enclosed) {
+      const auto exact = extras.enclosed->exact_poses(u);
+      if (!exact) {
+        RoundingGuard guard;
+        for (const Candidate& c : candidates) {
+          const std::optional<std::array<Interval, 3>> box =
+              certain_crossing(placed_pairs[c.placed].first, placed_pairs[c.placed].second);
+          if (box) {
+            StaticHit hit;
+            hit.part_moving = c.pi;
+            hit.part_other = c.pj;
+            hit.box = box;
+            return hit;
+          }
+        }
+        if (uncertain) *uncertain = true;
+        return std::nullopt;
+      }
+      m1 = (*exact)[0];
+      if constexpr (B == 2) m2 = (*exact)[1];
+    } else {
+      m1 = evaluate<B>(curve, u, 0);
+      if constexpr (B == 2) m2 = evaluate<B>(curve, u, 1);
+    }
     auto exact_placed = [](Simplex s, const Mat34E* m) {
       if (m)
         for (int k = 0; k < s.count; ++k) {
@@ -263,7 +433,8 @@ struct Check {
 
   // Exact static test of the configuration at curve parameter u, restricted
   // to the parts that still have a live feature pair (all parts when a pair
-  // of hierarchy nodes is still alive).
+  // of hierarchy nodes is still alive); then, with a tolerance or a
+  // clearance, the distance witness.
   bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
     std::set<std::pair<int, int>> parts;
     bool all = false;
@@ -278,7 +449,53 @@ struct Check {
       set_witness(u, *hit);
       return true;
     }
-    return false;
+    return distance_witness(u, all ? nullptr : &parts);
+  }
+
+  // Tolerance and clearance (SCENE_FORMAT.md): at curve parameter u, where
+  // the poses are exact, the exact closest points of the two bodies; they
+  // prove a clearance violation when no farther apart than the clearance,
+  // and a toleranced contact when a translation within one body's tolerance
+  // brings them together (proofs/enclosures.md section 6).
+  bool distance_witness(const Exact& u, const std::set<std::pair<int, int>>* only) {
+    if (!extras.distance_witness()) return false;
+    Mat34E m1;
+    std::optional<Mat34E> m2;
+    if (extras.enclosed) {
+      const auto exact = extras.enclosed->exact_poses(u);
+      if (!exact) return false;
+      m1 = (*exact)[0];
+      if constexpr (B == 2) m2 = (*exact)[1];
+    } else {
+      m1 = evaluate<B>(curve, u, 0);
+      if constexpr (B == 2) m2 = evaluate<B>(curve, u, 1);
+    }
+    Exact bound2 = extras.clearance2;
+    for (const Exact& r : extras.reach2) bound2 = std::max(bound2, r);
+    const auto hit = closest_within(moving.parts, &m1, other.parts, m2 ? &*m2 : nullptr, bound2, only, result.stats);
+    if (!hit) return false;
+    const ClosestPoints* best = &hit->points;
+    const int best_i = hit->part_a, best_j = hit->part_b;
+    const std::string a = moving.body->name + " " + moving.parts[best_i].name;
+    const std::string b = other.body->name + " " + other.parts[best_j].name;
+    Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, best->a};
+    if (best->d2 > 0) {
+      if (extras.clearance2 > 0 && best->d2 <= extras.clearance2) {
+        w.points = swapped ? std::array{best->b, best->a} : std::array{best->a, best->b};
+        w.point = (*w.points)[0];
+      } else if (best->d2 <= extras.reach2[0]) {  // translate the moving body onto the other
+        w.displacement = Vec3E{best->b[0] - best->a[0], best->b[1] - best->a[1], best->b[2] - best->a[2]};
+        w.displaced = swapped ? 1 : 0;
+        w.point = best->b;
+      } else {
+        w.displacement = Vec3E{best->a[0] - best->b[0], best->a[1] - best->b[1], best->a[2] - best->b[2]};
+        w.displaced = swapped ? 0 : 1;
+        w.point = best->a;
+      }
+    }
+    result.witness = w;
+    result.verdict = Verdict::Collision;
+    return true;
   }
 
   // A piece cleared entirely (options.record_cover), for certificates.
@@ -659,39 +876,7 @@ struct Check {
 
   // Adds a task's result after everything before it in parameter order;
   // false once a witness ends the search.
-  bool merge(const CheckResult& part) {
-    CheckStats& s = result.stats;
-    const CheckStats& p = part.stats;
-    s.nodes += p.nodes;
-    s.stops += p.stops;
-    s.max_depth = std::max(s.max_depth, p.max_depth);
-    s.contact += p.contact;
-    for (int k = 0; k < 3; ++k) s.by_kind[k] += p.by_kind[k];
-    s.static_tests += p.static_tests;
-    s.static_configurations += p.static_configurations;
-    s.static_filter_pairs += p.static_filter_pairs;
-    s.static_filter_exact += p.static_filter_exact;
-    s.sphere_tests += p.sphere_tests;
-    s.slab_clears += p.slab_clears;
-    s.hull_clears += p.hull_clears;
-    s.axis_clears += p.axis_clears;
-    result.cleared.insert(result.cleared.end(), part.cleared.begin(), part.cleared.end());
-    for (const UndecidedInterval& u : part.undecided) {
-      if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)
-        result.undecided.back().t1 = u.t1;
-      else
-        result.undecided.push_back(u);
-    }
-    if (part.witness) {
-      result.witness = part.witness;
-      result.verdict = Verdict::Collision;
-      const Exact lo = result.first_contact ? result.first_contact->first : part.first_contact->first;
-      result.first_contact = std::pair{lo, part.first_contact->second};
-      return false;
-    }
-    if (!result.first_contact && part.first_contact) result.first_contact = part.first_contact;
-    return true;
-  }
+  bool merge(const CheckResult& part) { return merge_result(result, part); }
 
   // The search: the top of the subdivision tree sequentially, then the
   // pieces at depth kTaskDepth (and shallower stops) as independent tasks
@@ -734,7 +919,7 @@ struct Check {
           continue;
         }
         CheckResult part;
-        Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, part};
+        Check sub = fork(part);
         const Outcome outcome = sub.visit(policy, item, left, right, spheres);
         if (outcome == Outcome::Split || outcome == Outcome::Cleared) {
           merge(part);  // statistics only
@@ -775,7 +960,7 @@ struct Check {
         if (!e.task || i > first_witness.load()) continue;  // after a witness: not needed
         if (!own) own = &local.emplace(moving, other);
         try {
-          Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, e.part};
+          Check sub = fork(e.part);
           complete[i] = sub.dfs(policy, std::move(*e.task), remaining, stops_remaining, *own, &spent, remaining) ? 1 : 0;
           if (complete[i] && e.part.witness) {
             std::size_t w = first_witness.load();
@@ -811,7 +996,7 @@ struct Check {
         const bool stops_differ = stops_left < stops_remaining && e.part.stats.stops >= stops_left;
         if (!complete[i] || e.part.stats.nodes > left || stops_differ) {
           e.part = CheckResult{};
-          Check sub{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, e.part};
+          Check sub = fork(e.part);
           sub.dfs(policy, std::move(*originals[i]), left, stops_left, spheres);
         }
         cumulative += e.part.stats.nodes;
@@ -823,15 +1008,32 @@ struct Check {
   // The start check (DESIGN.md section 4: the contact tests are complete
   // only after a contact-free start), then the search.
   void run() {
-    if (auto hit = static_test(Exact(0), nullptr)) {
+    bool uncertain = false;
+    if (auto hit = static_test(Exact(0), nullptr, &uncertain)) {
       set_witness(Exact(0), *hit);
       result.first_contact = std::pair{motion.t0, motion.t0};
       return;
     }
+    if (uncertain) {
+      // An enclosed start configuration within rounding of contact: the
+      // contact tests are complete only after a start proven free, so
+      // nothing in this range can be cleared.
+      record(Node{0, 0, {}}, StopReason::Epsilon);
+      ++result.stats.stops;
+      return;
+    }
+    if (distance_witness(Exact(0), nullptr)) {
+      result.first_contact = std::pair{motion.t0, motion.t0};
+      return;
+    }
+    if (extras.enclosed) {
+      search(EnclosedPolicy<B>{FilteredPolicy<B>{moving, other, curve, 0}, *extras.enclosed});
+      return;
+    }
     switch (options.kernel) {
-      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve}); break;
-      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve}); break;
-      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve}); break;
+      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve, extras.tube}); break;
+      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve, extras.tube}); break;
+      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve, extras.tube}); break;
     }
   }
 };

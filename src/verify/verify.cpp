@@ -3,6 +3,7 @@
 #include "kernels/containment.h"
 #include "src/scene/parse.h"
 
+#include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/search.h"
 
@@ -71,7 +72,27 @@ Exact default_epsilon(const Scene& scene) {
   for (const Body& b : scene.bodies) {
     std::vector<Mat34E> maps;
     if (b.motion) maps = b.motion->control_points;
-    else maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+    else if (!b.trajectory) maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+    if (b.trajectory)
+      for (const MotionSegment& seg : b.trajectory->segments) {
+        if (seg.rational) {
+          maps.insert(maps.end(), seg.rational->control_points.begin(), seg.rational->control_points.end());
+          continue;
+        }
+        // The keyframe poses (a tolerance, not a bound: the approximate
+        // rotation of an rpy pose will do).
+        for (const Pose* pose : {&seg.from, &seg.to}) {
+          if (const auto m = exact_pose(*pose)) {
+            maps.push_back(*m);
+            continue;
+          }
+          RoundingGuard guard;
+          const PoseInterval m = interval_pose(*pose);
+          Mat34E approx;
+          for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
+          maps.push_back(approx);
+        }
+      }
     for (const Vec3E& v : body_vertices(b))
       for (const Mat34E& m : maps) {
         const Vec3E w = apply_map(m, v);
@@ -109,8 +130,7 @@ void require_supported(const Scene& scene) {
   for (const auto& [a, b] : scene.checks) {
     const Body& x = scene.bodies[a];
     const Body& y = scene.bodies[b];
-    const bool mx = x.motion && x.motion->degree() >= 1, my = y.motion && y.motion->degree() >= 1;
-    if (mx && my && (x.motion->t0 != y.motion->t0 || x.motion->t1 != y.motion->t1))
+    if (x.moves() && y.moves() && *x.interval() != *y.interval())
       throw InputError(scene.source + ": checks: [\"" + x.name + "\", \"" + y.name +
                        "\"]: two moving bodies must share their motion interval");
   }
@@ -176,8 +196,8 @@ Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
   std::map<std::pair<Exact, Exact>, int> intervals;
   for (const Body& b : scene.bodies) {
     boxes_.push_back(swept_box(b));
-    if (b.motion && b.motion->degree() >= 1)
-      interval_.push_back(intervals.emplace(std::pair{b.motion->t0, b.motion->t1}, static_cast<int>(intervals.size())).first->second);
+    if (b.moves())
+      interval_.push_back(intervals.emplace(*b.interval(), static_cast<int>(intervals.size())).first->second);
     else
       interval_.push_back(-1);
   }
@@ -190,13 +210,34 @@ const PreparedBody& Verifier::prepared(int body) const {
   return *prepared_[body];
 }
 
-CheckResult Verifier::check(int a, int b) const {
+namespace {
+
+// The pose at the start of the motion, exactly; nullopt when it is only
+// enclosed (a keyframe with an rpy rotation).
+std::optional<Mat34E> start_pose(const Body& b) {
+  if (b.motion) return b.motion->control_points[0];  // the curve's value at its start
+  if (b.trajectory) {
+    const MotionSegment& first = b.trajectory->segments.front();
+    if (first.rational) return first.rational->control_points[0];
+    return exact_pose(first.from);
+  }
+  return Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+}
+
+}  // namespace
+
+CheckResult Verifier::check(int a, int b) const { return check(a, b, Exact(0)); }
+
+CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   // The joint curve pairs the motions by curve parameter: that is the same
   // instant only when the scene intervals agree.
   if (interval_[a] >= 0 && interval_[b] >= 0 && interval_[a] != interval_[b])
     throw InputError(scene_.source + ": checks: [\"" + scene_.bodies[a].name + "\", \"" + scene_.bodies[b].name +
                      "\"]: two moving bodies must share their motion interval");
-  if (disjoint(boxes_[a], boxes_[b])) {
+  const Body& x = scene_.bodies[a];
+  const Body& y = scene_.bodies[b];
+  const bool general = x.trajectory || y.trajectory || x.tolerance > 0 || y.tolerance > 0 || clearance > 0;
+  if (!general && disjoint(boxes_[a], boxes_[b])) {
     // Certified prefilter: the boxes hold everything the bodies sweep.
     CheckResult result;
     result.bodies = {a, b};
@@ -204,8 +245,6 @@ CheckResult Verifier::check(int a, int b) const {
     result.stats.prefiltered = true;
     return result;
   }
-  const Body& x = scene_.bodies[a];
-  const Body& y = scene_.bodies[b];
   const bool mx = interval_[a] >= 0, my = interval_[b] >= 0;
   // A solid's inside counts as contact: at the start parameter, a vertex of
   // each connected component of one body inside the other (solid) body is a
@@ -216,7 +255,19 @@ CheckResult Verifier::check(int a, int b) const {
       if (const std::string problem = solid_problem(*body); !problem.empty())
         throw InputError(scene_.source + ": body \"" + body->name + "\": solid: " + problem);
   if (x.solid || y.solid) {
-    const Exact t0 = mx ? x.motion->t0 : my ? y.motion->t0 : x.motion ? x.motion->t0 : y.motion ? y.motion->t0 : Exact(0);
+    const Exact t0 = mx ? x.interval()->first : my ? y.interval()->first : x.motion ? x.motion->t0 : y.motion ? y.motion->t0 : Exact(0);
+    // The start containment needs both start poses exactly; an enclosed
+    // (rpy) start pose leaves it open, and with it the whole check.
+    if (!start_pose(x) || !start_pose(y)) {
+      CheckResult result;
+      result.bodies = {a, b};
+      result.clearance = clearance;
+      result.verdict = Verdict::Undecided;
+      const auto range = mx ? *x.interval() : my ? *y.interval() : std::pair{t0, t0};
+      result.undecided.push_back({range.first, range.second, StopReason::Epsilon});
+      result.first_contact = range;
+      return result;
+    }
     for (int side = 0; side < 2; ++side) {
       const int solid = side == 0 ? a : b, other = side == 0 ? b : a;
       if (!scene_.bodies[solid].solid) continue;
@@ -231,26 +282,20 @@ CheckResult Verifier::check(int a, int b) const {
         const std::string at = scene_.bodies[other].name + " " + part;
         result.witness = Witness{t0, side == 0 ? std::array{inside, at} : std::array{at, inside}, point};
         result.first_contact = std::pair{t0, t0};
+        result.clearance = clearance;
         return result;
       }
     }
   }
+  if (general) return check_general(a, b, clearance);
   return run_check(a, b, prepared(a), prepared(b), options_);
 }
 
-namespace {
-
-Mat34E start_pose(const Body& b) {
-  if (b.motion) return b.motion->control_points[0];  // the curve's value at its start
-  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-}
-
-}  // namespace
 
 const ClosedSurface* Verifier::start_surface(int body) const {
   std::call_once(surface_once_[body], [&] {
     const Body& b = scene_.bodies[body];
-    const Mat34E m = start_pose(b);
+    const Mat34E m = *start_pose(b);
     const Exact det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
                       m[2] * (m[4] * m[9] - m[5] * m[8]);
     if (det == 0) return;
@@ -293,7 +338,7 @@ std::vector<std::pair<std::string, Vec3E>> Verifier::start_representatives(const
       auto [it, fresh] = owner.emplace(v, i);
       if (!fresh) parent[find(i)] = find(it->second);
     }
-  const Mat34E m = start_pose(b);
+  const Mat34E m = *start_pose(b);
   std::vector<std::pair<std::string, Vec3E>> out;
   for (std::size_t i = 0; i < parts.size(); ++i)
     if (find(i) == i) out.emplace_back(names[i], apply_map(m, parts[i][0]));
@@ -329,7 +374,7 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
     try {
       for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
         const auto [a, b] = scene.checks[k];
-        out.checks[k] = verifier.check(a, b);
+        out.checks[k] = verifier.check(a, b, scene.clearance_of(k));
         const std::size_t f = ++finished;
         if (options.progress && checks > 1) {
           std::lock_guard<std::mutex> lock(progress_mutex);

@@ -56,7 +56,18 @@ struct VerifyOptions {
 struct Witness {
   Exact t;                                  // scene parameter
   std::array<std::string, 2> features;      // as the check names its bodies
-  Vec3E point;                              // world coordinates, shared by both
+  Vec3E point;                              // world coordinates, shared by both (when exact)
+  // An enclosed (transcendental) pose: a rational box [lo, hi] per
+  // coordinate holding the common point; `point` is then not used.
+  std::optional<std::array<std::array<Exact, 2>, 3>> point_box;
+  // Tolerance: the nominal poses do not touch, but translating body
+  // `displaced` (0 or 1, in the check's order) by `displacement`, within its
+  // tolerance, makes them touch at `point`.
+  std::optional<Vec3E> displacement;
+  int displaced = 0;
+  // Clearance: a point of each body (in the check's order) no farther apart
+  // than the clearance; `point` is the first of them.
+  std::optional<std::array<Vec3E, 2>> points;
 };
 
 struct UndecidedInterval {
@@ -95,6 +106,9 @@ struct CoverPiece {
 
 struct CheckResult {
   std::array<int, 2> bodies;  // indices into Scene::bodies, in the order of the check
+  // The check's clearance (0: plain contact).  With clearance > 0 a
+  // "collision" means the bodies come within it (clearance violated).
+  Exact clearance = 0;
   Verdict verdict = Verdict::Undecided;
   std::optional<std::pair<Exact, Exact>> first_contact;
   std::optional<Witness> witness;
@@ -141,9 +155,16 @@ class Verifier {
   Verifier& operator=(const Verifier&) = delete;
 
   CheckResult check(int body_a, int body_b) const;
+  // With a minimum separation: safe means the bodies stay farther apart
+  // than `clearance` (SCENE_FORMAT.md "Tolerance and clearance").
+  CheckResult check(int body_a, int body_b, const Exact& clearance) const;
 
  private:
   const PreparedBody& prepared(int body) const;
+  // Checks with a keyframe or piecewise motion, a tolerance or a clearance:
+  // the parameter interval cut at every segment join, each part searched in
+  // order (src/verify/general.cpp).
+  CheckResult check_general(int body_a, int body_b, const Exact& clearance) const;
   // A solid body's surface at the start parameter (null when its pose there
   // is singular), built once; the start vertices of a body's components.
   const ClosedSurface* start_surface(int body) const;

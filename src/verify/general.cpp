@@ -1,0 +1,217 @@
+// Checks beyond one rational Bezier motion per body: keyframe and piecewise
+// motions, tolerances and clearances (SCENE_FORMAT.md, final section).  The
+// check's parameter interval is cut at every join of either body's
+// segments; each part is searched in parameter order with its own start
+// check (a join is a start like any other: the contact tests are complete
+// after a configuration proven free, proofs/enclosures.md section 7), and
+// the parts' results are merged as the search merges its tasks.  A part
+// where every moving body is rational runs the rational search on the
+// exact restriction of the curves; a part with an enclosed (transcendental)
+// motion runs the Taylor-enclosure search.
+#include "src/verify/verify.h"
+
+#include "src/motion/segment.h"
+#include "src/verify/prepared.h"
+#include "src/verify/search.h"
+
+#include <chrono>
+
+namespace tmcert {
+
+namespace {
+
+using detail::Check;
+using detail::CheckExtras;
+using detail::EnclosedSource;
+
+const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+// One body's motion on a part [t0, t1] of the check's interval.
+struct PartMotion {
+  std::optional<Motion> rational;           // exact, over [t0, t1]
+  const MotionSegment* segment = nullptr;   // else: this enclosed segment ...
+  Exact s0, s1;                             // ... over these segment parameters
+};
+
+PartMotion part_motion(const Body& b, const Exact& t0, const Exact& t1) {
+  PartMotion out;
+  if (b.trajectory) {
+    for (const MotionSegment& seg : b.trajectory->segments) {
+      if (!(seg.t0 <= t0 && t1 <= seg.t1)) continue;
+      if (seg.rational) {
+        out.rational = restrict_motion(*seg.rational, t0, t1);
+      } else {
+        out.segment = &seg;
+        out.s0 = (t0 - seg.t0) / (seg.t1 - seg.t0);
+        out.s1 = (t1 - seg.t0) / (seg.t1 - seg.t0);
+      }
+      return out;
+    }
+  }
+  if (b.motion && b.motion->degree() >= 1) {
+    out.rational = restrict_motion(*b.motion, t0, t1);
+    return out;
+  }
+  Motion still;  // a body standing still (moved only within its tolerance)
+  still.t0 = t0;
+  still.t1 = t1;
+  still.control_points = {b.motion ? b.motion->control_points[0] : kIdentity};
+  still.weights = {Exact(1)};
+  out.rational = still;
+  return out;
+}
+
+Exact mass_sum(const Body& b) {
+  Exact w = 0;
+  for (const Exact& x : b.mass.weights) w += x;
+  return w;
+}
+
+// sqrt(x) rounded upward.
+double sqrt_up(const Exact& x) {
+  RoundingGuard guard;
+  return CGAL::sqrt(to_interval(x)).sup();
+}
+
+double add_up(double a, double b) {
+  RoundingGuard guard;
+  return (Interval(a) + Interval(b)).sup();
+}
+
+template <int B>
+void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const PartMotion& pm, const PartMotion& po,
+              const Exact& t0, const Exact& t1, const VerifyOptions& options, const std::array<double, 2>& tube,
+              const CheckExtras<B>& base, CheckResult& part) {
+  const double eps = CGAL::to_double(options.epsilon);
+  const double rho2 = m.max_rho2 + (B == 2 ? o.max_rho2 : 0.0);
+  CheckExtras<B> extras = base;
+  const bool rational = pm.rational && (B == 1 || po.rational);
+  if (rational) {
+    HomogeneousCurve<Exact, B> curve;
+    if constexpr (B == 1) curve = homogeneous_curve(*pm.rational);
+    else curve = joint_curve(*pm.rational, *po.rational);
+    {
+      RoundingGuard guard;
+      const Interval t = B == 1 ? Interval(tube[0]) : CGAL::sqrt(CGAL::square(Interval(tube[0])) + CGAL::square(Interval(tube[1])));
+      extras.tube = t.sup();
+    }
+    Check<B> check{m, o, swapped, curve, enclose(curve), *pm.rational, eps * eps, rho2, options, part, extras};
+    check.run();
+    return;
+  }
+  std::array<std::unique_ptr<SegmentModel>, B> models;
+  EnclosedSource<B> source;
+  const PartMotion* pms[2] = {&pm, &po};
+  const PreparedBody* bodies[2] = {&m, &o};
+  for (int b = 0; b < B; ++b) {
+    const PartMotion& p = *pms[b];
+    if (p.rational) {
+      models[b] = make_bezier_model(*p.rational);
+      source.s0[b] = 0;
+      source.s1[b] = 1;
+    } else {
+      models[b] = make_segment_model(*p.segment);
+      source.s0[b] = p.s0;
+      source.s1[b] = p.s1;
+    }
+    source.models[b] = models[b].get();
+    source.metrics[b] = &bodies[b]->metric_data;
+    source.tube[b] = tube[b];
+  }
+  extras.enclosed = &source;
+  Motion span;
+  span.t0 = t0;
+  span.t1 = t1;
+  const HomogeneousCurve<Exact, B> none;
+  Check<B> check{m, o, swapped, none, {}, span, eps * eps, rho2, options, part, extras};
+  check.run();
+}
+
+}  // namespace
+
+CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const {
+  const auto started = std::chrono::steady_clock::now();
+  CheckResult result;
+  result.bodies = {a, b};
+  result.clearance = clearance;
+  const PreparedBody& pa = prepared(a);
+  const PreparedBody& pb = prepared(b);
+  const bool swapped = !pa.moving && pb.moving;
+  const PreparedBody& m = swapped ? pb : pa;
+  const PreparedBody& o = swapped ? pa : pb;
+  const Body& mb = *m.body;
+  const Body& ob = *o.body;
+
+  auto finish = [&] {
+    for (const FilterCounters& c : result.stats.by_kind) result.stats.contact += c;
+    if (result.verdict != Verdict::Collision)
+      result.verdict = result.undecided.empty() ? Verdict::Safe : Verdict::Undecided;
+    if (result.verdict == Verdict::Safe) result.first_contact.reset();
+    result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+  };
+
+  if (!m.moving) {
+    // Two bodies standing still, only a clearance: one exact static test,
+    // then the exact distance.
+    const Exact t0 = mb.motion ? mb.motion->t0 : ob.motion ? ob.motion->t0 : Exact(0);
+    CheckStats& stats = result.stats;
+    std::optional<std::pair<std::string, std::string>> names;
+    if (auto hit = detail::first_hit(m.parts, o.parts, nullptr, stats)) {
+      Witness w{t0, {mb.name + " " + m.parts[hit->part_moving].name, ob.name + " " + o.parts[hit->part_other].name}, hit->point};
+      if (swapped) std::swap(w.features[0], w.features[1]);
+      result.witness = w;
+    } else if (auto near = detail::closest_within(m.parts, nullptr, o.parts, nullptr, clearance * clearance, nullptr, stats)) {
+      Witness w{t0, {mb.name + " " + m.parts[near->part_a].name, ob.name + " " + o.parts[near->part_b].name}, near->points.a};
+      w.points = std::array{near->points.a, near->points.b};
+      if (swapped) {
+        std::swap(w.features[0], w.features[1]);
+        std::swap((*w.points)[0], (*w.points)[1]);
+        w.point = (*w.points)[0];
+      }
+      result.witness = w;
+    }
+    if (result.witness) {
+      result.verdict = Verdict::Collision;
+      result.first_contact = std::pair{t0, t0};
+    }
+    return finish();
+  }
+
+  // The check's interval and its joins.
+  const auto interval = mb.moves() ? *mb.interval() : ob.moves() ? *ob.interval() : mb.motion ? *mb.interval()
+                                                                                             : std::pair{Exact(0), Exact(1)};
+  std::vector<Exact> cuts = {interval.first, interval.second};
+  for (const Body* body : {&mb, &ob})
+    if (body->trajectory)
+      for (const MotionSegment& seg : body->trajectory->segments)
+        for (const Exact& t : {seg.t0, seg.t1})
+          if (interval.first < t && t < interval.second) cuts.push_back(t);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+
+  // Tubes: each body's tolerance; the clearance as a tolerance of the
+  // searched body: a translation by v has norm |v| sqrt(sum w) in its
+  // metric, and displaces every point by |v| (proofs/enclosures.md section 6).
+  const Exact wm = mass_sum(mb), wo = mass_sum(ob);
+  std::array<double, 2> tube = {add_up(to_interval(mb.tolerance).sup(), clearance > 0 ? sqrt_up(clearance * clearance * wm) : 0.0),
+                                o.moving ? to_interval(ob.tolerance).sup() : 0.0};
+  const bool two = o.moving;
+  CheckExtras<1> e1;
+  CheckExtras<2> e2;
+  e1.clearance2 = e2.clearance2 = clearance * clearance;
+  e1.reach2 = e2.reach2 = {mb.tolerance * mb.tolerance / wm, ob.tolerance * ob.tolerance / wo};
+
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const Exact &t0 = cuts[k], &t1 = cuts[k + 1];
+    const PartMotion pm = part_motion(mb, t0, t1);
+    const PartMotion po = two ? part_motion(ob, t0, t1) : PartMotion{};
+    CheckResult part;
+    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options_, tube, e2, part);
+    else run_part<1>(m, o, swapped, pm, po, t0, t1, options_, tube, e1, part);
+    if (!detail::merge_result(result, part)) break;
+  }
+  return finish();
+}
+
+}  // namespace tmcert
