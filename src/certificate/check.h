@@ -66,6 +66,11 @@ std::vector<std::vector<Vec3E>> elements(const Body& body);
 // Otherwise the number of polygons whose relative interior the ray crosses.
 std::optional<int> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_polygons, const Vec3E& p,
                                  const Vec3E& d);
+// The same, counted per shell: `shell[i]` (>= 0) is the shell of polygon i
+// (SCENE_FORMAT.md "Solids": the inside of a solid is the union of its
+// shells' insides, so p is outside iff every count is even).
+std::optional<std::vector<int>> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_polygons,
+                                              const std::vector<int>& shell, const Vec3E& p, const Vec3E& d);
 
 // The exact pose of `body` at scene parameter t: its motion
 // sum B_k(u) w_k A_k / sum B_k(u) w_k at u = (t - t0) / (t1 - t0) of the

@@ -12,6 +12,7 @@
 
 #include "src/metric/metric.h"
 #include "src/scene/mesh.h"
+#include "src/scene/solid.h"
 
 #include <nlohmann/json.hpp>
 
@@ -956,7 +957,8 @@ class SceneReader {
   }
 
   void require_closed(const Body& b, const Path& path) const {
-    const std::string problem = solid_problem(b);
+    std::string problem = solid_problem(b);
+    if (problem.empty()) problem = shell_intersection_problem(b);
     if (!problem.empty()) fail(path, problem);
   }
 
@@ -1130,51 +1132,6 @@ std::string quote_text(const std::string& s) {
 
 // Mesh files are relative to the directory of `source` when it names an
 // existing file, otherwise to the current directory.
-// A solid needs a closed surface: every undirected edge of its polygons
-// (as stored, by exact endpoint coordinates) belongs to exactly two polygon
-// edges; and no segments or points, whose "inside" would mean nothing.
-std::string solid_problem(const Body& b) {
-  if (!b.segments.empty() || !b.points.empty())
-    return "a solid body cannot have segments or points (only polygons or a mesh forming a closed surface)";
-  if (b.polygons.empty()) return "a solid body needs polygons forming a closed surface";
-  std::map<Vec3E, std::size_t> ids;
-  std::vector<const Vec3E*> points_of;
-  auto id = [&](const Vec3E& v) {
-    const auto [it, fresh] = ids.emplace(v, ids.size());
-    if (fresh) points_of.push_back(&it->first);
-    return it->second;
-  };
-  struct Use {
-    std::size_t count = 0;
-    std::size_t polygon = 0;  // the first polygon with this edge
-  };
-  std::map<std::pair<std::size_t, std::size_t>, Use> edges;
-  std::vector<std::pair<std::size_t, std::size_t>> order;  // edges in first-seen order
-  for (std::size_t p = 0; p < b.polygons.size(); ++p) {
-    const std::vector<Vec3E>& poly = b.polygons[p];
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const std::size_t u = id(poly[i]), v = id(poly[(i + 1) % poly.size()]);
-      const auto key = std::minmax(u, v);
-      Use& use = edges[key];
-      if (use.count++ == 0) {
-        use.polygon = p;
-        order.push_back(key);
-      }
-    }
-  }
-  for (const auto& key : order) {
-    const Use& use = edges.at(key);
-    if (use.count == 2) continue;
-    auto text = [](const Vec3E& v) {
-      return "(" + to_string(v[0]) + ", " + to_string(v[1]) + ", " + to_string(v[2]) + ")";
-    };
-    return "not a closed surface: the edge " + text(*points_of[key.first]) + "-" + text(*points_of[key.second]) +
-           " (of polygon " + std::to_string(use.polygon) + ") belongs to " + std::to_string(use.count) +
-           (use.count == 1 ? " polygon" : " polygons") + " (every edge of a solid must belong to exactly 2)";
-  }
-  return {};
-}
-
 Scene parse_scene_text(const std::string& text, const std::string& source) {
   std::error_code ec;
   std::filesystem::path base;

@@ -166,7 +166,11 @@ if [ -d "$certs" ]; then
   expect_check 0 "tri x box: safe proven" "$certs/solid-outside.cert.json" "$certs/solid-outside.json"
   expect_check 1 "pieces[0] [0, 1/4]: proof (groups 0, 0): separation fails at control point 0" \
     "$certs/probe-safe-tampered.cert.json" "$certs/probe-safe.json"
-  expect_check 1 "the ray crosses 1 polygon, an odd number" "$certs/solid-inside-safe.cert.json" "$certs/solid-inside.json"
+  expect_check 1 "the ray crosses shell 0 of \"box\" 1 time, an odd number" "$certs/solid-inside-safe.cert.json" "$certs/solid-inside.json"
+  # A start point inside both shells of a two-shell solid: ray parity over
+  # all polygons counted it outside (the inside is the union of the shells).
+  expect_check 1 "an odd number: the vertex is inside \"solid\" at t0" \
+    "$certs/solid-two-shells-false-safe.cert.json" "$certs/solid-two-shells.json"
   expect_check 1 "belongs to another scene" "$certs/drop-collision.cert.json" "$certs/probe-safe.json"
   expect_check 3 "garbage.cert.json: not JSON" "$certs/garbage.cert.json" "$certs/probe-safe.json"
   expect_check 3 "format: unknown format" "$certs/probe-safe.json" "$certs/probe-safe.json"
