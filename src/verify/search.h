@@ -484,7 +484,15 @@ struct Check {
       }
       const BvNode& a = X.tree.nodes[p.i];
       const BvNode& b = Y.tree.nodes[p.j];
-      const double size_a = leaf_a ? -1 : n1 * a.r, size_b = leaf_b ? -1 : n2 * b.r;
+      // World sizes; a product that is not a number (inf * 0: an overflowed
+      // frame norm times a zero radius) counts as the largest, so the pair
+      // is descended rather than carried, and is never compared as NaN.
+      auto world_size = [](bool leaf, double n, double r) {
+        if (leaf) return -1.0;  // nothing to split
+        const double s = n * r;
+        return std::isnan(s) ? std::numeric_limits<double>::infinity() : s;
+      };
+      const double size_a = world_size(leaf_a, n1, a.r), size_b = world_size(leaf_b, n2, b.r);
       // Few feature pairs under the pair: test them now (cheaper than
       // carrying them down the pieces, and as tight as all pairs).
       const bool small = CellTree::pairs_below(X, p.i, Y, p.j) <= kExpandPairs;
@@ -492,13 +500,17 @@ struct Check {
         alive.push_back(p);
         continue;
       }
+      // Split the larger node, never a leaf (not both are leaves here).
       // Children pushed right first: the left one is tested first.
-      if (size_a >= size_b) {
-        work.push_back(node_pair(a.right, p.j));
-        work.push_back(node_pair(a.left, p.j));
+      const bool split_a = leaf_b || (!leaf_a && size_a >= size_b);
+      if (split_a) {
+        const auto [left, right] = X.tree.children(p.i);
+        work.push_back(node_pair(right, p.j));
+        work.push_back(node_pair(left, p.j));
       } else {
-        work.push_back(node_pair(p.i, b.right));
-        work.push_back(node_pair(p.i, b.left));
+        const auto [left, right] = Y.tree.children(p.j);
+        work.push_back(node_pair(p.i, right));
+        work.push_back(node_pair(p.i, left));
       }
     }
   }
