@@ -24,7 +24,7 @@ namespace tmcert::certificate {
 
 // Limits on hostile input (docs/certificate-format.md, "Limits").  A
 // certificate beyond them is bad input (InputError, exit 3).
-inline constexpr std::size_t kMaxNumberChars = 10'000;    // characters of one rational
+inline constexpr std::size_t kMaxNumberChars = 100'000;   // characters of one rational (above any scene number's p/q)
 inline constexpr long kMaxDecimalExponent = 10'000;       // |exponent| of a decimal, and its scale
 inline constexpr int kMaxProofDepth = 256;                // nested splits in one proof tree
 inline constexpr std::size_t kMaxJsonNesting = 2 * kMaxProofDepth + 32;  // JSON levels of a file

@@ -80,7 +80,14 @@ inline bool simplest_between_small(std::int64_t a, std::int64_t b, std::int64_t 
 }
 
 // The rational with the smallest denominator in the closed interval
-// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent).
+// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent), for
+// lo <= hi.  Iterative: one step per partial quotient, at most
+// kSimplestTerms of them; an expansion deeper than that (ends with tens of
+// thousands of digits, e.g. ratios of consecutive Fibonacci numbers) gives
+// the midpoint instead, which is in [lo, hi] as well (the callers only need
+// a point of the interval; the simplest one is a preference).
+inline constexpr std::size_t kSimplestTerms = 1024;
+
 inline Exact simplest_between(const Exact& lo, const Exact& hi) {
   if (lo > 0 && hi > lo && mpz_fits_slong_p(lo.numerator().mpz()) && mpz_fits_slong_p(lo.denominator().mpz()) &&
       mpz_fits_slong_p(hi.numerator().mpz()) && mpz_fits_slong_p(hi.denominator().mpz())) {
@@ -90,13 +97,42 @@ inline Exact simplest_between(const Exact& lo, const Exact& hi) {
       return out;
   }
   if (lo <= 0 && hi >= 0) return Exact(0);
-  if (hi < 0) return -simplest_between(-hi, -lo);
-  CGAL::Gmpz fl;
-  mpz_fdiv_q(fl.mpz(), lo.numerator().mpz(), lo.denominator().mpz());
-  if (Exact(fl) == lo) return lo;
-  if (Exact(fl + 1) <= hi) return Exact(fl + 1);
-  // Both in (fl, fl + 1): recurse on the reciprocals of the fractional parts.
-  return Exact(fl) + Exact(1) / simplest_between(Exact(1) / (hi - Exact(fl)), Exact(1) / (lo - Exact(fl)));
+  if (hi < 0) return -simplest_between(-hi, -lo);  // one level: then 0 < -hi
+  // 0 < lo = a/b <= hi = c/d: the same descent as simplest_between_small,
+  // on GMP integers.
+  // (CGAL::Gmpz values share their limbs when copied: only its operators,
+  // never writes through mpz(), so no copy changes with another.)
+  CGAL::Gmpz a = lo.numerator(), b = lo.denominator(), c = hi.numerator(), d = hi.denominator();
+  std::vector<CGAL::Gmpz> terms;
+  for (;;) {
+    if (terms.size() == kSimplestTerms) return (lo + hi) / 2;
+    const CGAL::Gmpz q = a / b;  // floor: both positive
+    const CGAL::Gmpz r = a - q * b;
+    if (r == 0) {  // lo is the integer q
+      terms.push_back(q);
+      break;
+    }
+    const CGAL::Gmpz c_minus_qd = c - q * d;
+    if (c_minus_qd >= d) {  // q + 1 <= hi
+      terms.push_back(q + 1);
+      break;
+    }
+    // Both in (q, q + 1): continue with 1 / (hi - q) <= 1 / (lo - q).
+    terms.push_back(q);
+    // (a, b, c, d) <- (d, c - q d, b, a - q b).
+    c = b;
+    a = d;
+    b = c_minus_qd;
+    d = r;
+  }
+  // Fold q0 + 1 / (q1 + 1 / (... + 1 / q_last)).
+  CGAL::Gmpz num = terms.back(), den(1);
+  for (std::size_t k = terms.size() - 1; k-- > 0;) {
+    CGAL::Gmpz next = terms[k] * num + den;
+    den = std::move(num);
+    num = std::move(next);
+  }
+  return Exact(num, den);
 }
 
 // The deepest subdivision level: a node's parameter interval is
