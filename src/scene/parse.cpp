@@ -157,6 +157,7 @@ const char* kind_name(Node::Kind kind) {
 // An open container waits on the stack, and its finished items and keys on
 // shared lists, until it closes; then they move into the tree, side by side.
 constexpr char kNumberMark = '\x01';
+constexpr char kStringMark = '\x02';
 
 class TreeBuilder {
  public:
@@ -193,12 +194,16 @@ class TreeBuilder {
     // quote_overflowing_numbers: still a number, with its exact text.
     if (value.size() > 1 && value[0] == kNumberMark)
       return add_text(Node::Kind::Number, std::string_view(value).substr(1));
+    // A string of the document that starts with either mark, carrying
+    // kStringMark in front (quote_overflowing_numbers): its own text.
+    if (!value.empty() && value[0] == kStringMark) value.erase(0, 1);
     return add_text(Node::Kind::String, value);
   }
   bool binary(json::binary_t&) { return fail(pending_path(), "binary values are not allowed"); }
   bool start_object(std::size_t) { return open(Node::Kind::Object); }
   bool start_array(std::size_t) { return open(Node::Kind::Array); }
   bool key(std::string& key) {
+    if (!key.empty() && key[0] == kStringMark) key.erase(0, 1);  // as for strings
     Frame& frame = stack_.back();
     if (is_duplicate(frame, key))
       return fail(member_path(container_path(), key), "duplicate key " + quote_text(key));
@@ -353,14 +358,27 @@ class TreeBuilder {
 // the way and stops at an overflow.  Such tokens are turned into strings
 // behind a control character (U+0001, kNumberMark) before reading, and the
 // tree builder turns them back into numbers with their exact text: so they
-// stay numbers (a name cannot be 1e400).  Returns false, leaving `out`
-// alone, when no token needs it: then the text is read as it is.
+// stay numbers (a name cannot be 1e400).  A string of the document whose
+// text starts with either mark (written \u0001 or \u0002: JSON allows no
+// raw control character in a string) gets the escape \u0002 (kStringMark)
+// in front, which the tree builder removes: so a document's own string is
+// never taken for a marked number.  Returns false, leaving `out` alone,
+// when nothing needs it: then the text is read as it is.
 bool quote_overflowing_numbers(const std::string& text, std::string& out) {
   std::size_t copied = 0;  // text[0, copied) is in `out`
+  bool changed = false;
   for (std::size_t i = 0; i < text.size();) {
     const char c = text[i];
     if (c == '"') {  // skip the string, with its escapes
       ++i;
+      const std::string_view head(text.data() + i, std::min<std::size_t>(6, text.size() - i));
+      if (head == "\\u0001" || head == "\\u0002") {
+        if (!changed) out.reserve(text.size() + 16);
+        out.append(text, copied, i - copied);
+        out += "\\u0002";
+        copied = i;
+        changed = true;
+      }
       while (i < text.size() && text[i] != '"') i += text[i] == '\\' ? 2 : 1;
       ++i;
       continue;
@@ -373,19 +391,20 @@ bool quote_overflowing_numbers(const std::string& text, std::string& out) {
       // double: only other tokens need the test.
       const bool may_overflow = token.size() > 300 || token.find_first_of("eE") != std::string_view::npos;
       if (may_overflow && std::isinf(std::strtod(std::string(token).c_str(), nullptr))) {
-        if (copied == 0) out.reserve(text.size() + 16);
+        if (!changed) out.reserve(text.size() + 16);
         out.append(text, copied, i - copied);
         out += "\"\\u0001";
         out += token;
         out += '"';
         copied = j;
+        changed = true;
       }
       i = j;
       continue;
     }
     ++i;
   }
-  if (copied == 0) return false;
+  if (!changed) return false;
   out.append(text, copied, std::string::npos);
   return true;
 }
@@ -869,6 +888,15 @@ class SceneReader {
     if (name->kind != Node::Kind::String || text(*name).empty())
       fail(path.member("name"), "a body name must be a non-empty string");
     b.name = text(*name);
+    // Names are printed in results and messages: no control characters
+    // (C0, DEL, or C1 as UTF-8 C2 80..9F), which would print raw.
+    for (std::size_t k = 0; k < b.name.size(); ++k) {
+      const auto c = static_cast<unsigned char>(b.name[k]);
+      const bool c1 = c == 0xC2 && k + 1 < b.name.size() && static_cast<unsigned char>(b.name[k + 1]) >= 0x80 &&
+                      static_cast<unsigned char>(b.name[k + 1]) <= 0x9F;
+      if (c < 0x20 || c == 0x7F || c1)
+        fail(path.member("name"), "a body name cannot contain control characters, got " + quote_text(b.name));
+    }
 
     if (const Node* polygons = find(obj, "polygons")) {
       const Path list_path = path.member("polygons");

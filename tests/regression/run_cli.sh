@@ -128,6 +128,7 @@ expect_refusal "--epsilon" verify "$good" --epsilon nan
 expect_refusal "--epsilon" verify "$good" --epsilon -1/3
 expect_refusal "--kernel" verify "$good" --kernel quadruple
 expect_refusal "--max-depth" verify "$good" --max-depth -2
+expect_refusal "--max-depth" verify "$good" --max-depth 0
 expect_refusal "--threads" verify "$good" --threads 0
 expect_refusal "frobnicate" verify "$good" --frobnicate
 expect_refusal "scene" verify
