@@ -12,6 +12,7 @@
 // otherwise.  No floating point is used anywhere.
 #include "src/certificate/check.h"
 #include "src/scene/parse.h"
+#include "src/scene/read_file.h"
 
 #include <gmp.h>
 
@@ -1508,14 +1509,8 @@ nlohmann::json parse_certificate_text(const std::string& text, const std::string
 }
 
 nlohmann::json read_certificate_file(const std::string& path) {
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path + ": cannot read the certificate: " + ec.message());
-  if (size > kMaxFileBytes) throw InputError(path + ": certificate file too large");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the certificate");
-  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) throw InputError(path + ": cannot read the certificate");
+  // Only a regular file, and at most kMaxFileBytes of it.
+  const std::string text = read_regular_file(path, kMaxFileBytes);
   return parse_certificate_text(text, path);
 }
 

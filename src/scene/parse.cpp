@@ -12,6 +12,7 @@
 
 #include "src/metric/metric.h"
 #include "src/scene/mesh.h"
+#include "src/scene/read_file.h"
 #include "src/scene/solid.h"
 
 #include <nlohmann/json.hpp>
@@ -1168,33 +1169,8 @@ Scene parse_scene_text(const std::string& text, const std::string& source) {
 }
 
 Scene parse_scene_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxFileBytes)
-    throw InputError(path + ": file too large (more than " + std::to_string(kMaxFileBytes) + " bytes)");
-  // Read at once into one string (a stream buffer and its copy would hold
-  // the file twice).
-  std::string text;
-  if (!ec) {
-    text.resize(static_cast<std::size_t>(size));
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    if (in.bad()) throw InputError(path + ": cannot read file");
-    // A file that grew meanwhile: read the rest as well.
-    std::ostringstream rest;
-    if (in.peek() != std::char_traits<char>::eof()) {
-      rest << in.rdbuf();
-      text += rest.str();
-    }
-  } else {
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
-  }
-  if (in.bad()) throw InputError(path + ": cannot read file");
+  // Only a regular file, and at most kMaxFileBytes of it (docs/scene-format.md).
+  std::string text = read_regular_file(path, kMaxFileBytes);
   // The text goes once it is parsed: for a large scene it is a good part of
   // the memory that reading the scene takes.
   const Tree tree = parse_json(text, path);

@@ -133,6 +133,19 @@ expect_refusal "--threads" verify "$good" --threads 0
 expect_refusal "frobnicate" verify "$good" --frobnicate
 expect_refusal "scene" verify
 
+# Only regular files are read: a device or a FIFO (as the scene, a mesh or
+# a certificate) is refused at once instead of being read forever or
+# blocking on open.
+expect_refusal "/dev/zero: not a regular file (it is a character device)" verify /dev/zero
+expect_refusal "/dev/zero: not a regular file (it is a character device)" check /dev/zero "$good"
+if command -v mkfifo >/dev/null 2>&1 && mkfifo "$work/pipe.json" "$work/pipe.off" 2>/dev/null; then
+  expect_refusal "pipe.json: not a regular file (it is a FIFO)" verify "$work/pipe.json"
+  printf '%s\n' '{"format": "tmcert-scene/1", "bodies": [{"name": "m", "mesh": "pipe.off"},' \
+    '{"name": "p", "points": [[0,0,0]], "motion": {"type": "rational_bezier",' \
+    '"control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,1],[0,1,0,0],[0,0,1,0]]]}}]}' >"$work/fifo-mesh.json"
+  expect_refusal "pipe.off: not a regular file (it is a FIFO)" verify "$work/fifo-mesh.json"
+fi
+
 for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED"; do
   if [ -f "$list" ]; then
     for_each_line "$list" expect_verdict
