@@ -154,7 +154,7 @@ class LineReader {
 // ".5"), read exactly.  No "p/q": none of the formats has it.
 bool read_number(std::string_view token, Exact& out) {
   if (token.find('/') != std::string_view::npos) return false;
-  return parse_exact(std::string(token), out);
+  return parse_exact(std::string(token), out) && within_input_limit(out);
 }
 
 // A non-negative decimal integer (an optional '+' allowed).

@@ -837,6 +837,9 @@ class SceneReader {
     } else {
       fail(path, std::string("expected a number, got ") + kind_name(node.kind));
     }
+    if (!within_input_limit(value))
+      fail(path, "number too large: more than " + std::to_string(kMaxInputDigits) +
+                     " digits in its numerator or denominator (docs/scene-format.md, \"Limits\")");
     return value;
   }
 
