@@ -10,7 +10,8 @@
 //     triangles whose box meets that tube are classified.  Each is a proper
 //     crossing, a miss, or degenerate (the ray touches an edge or vertex, or
 //     runs in its plane while meeting it); one degenerate triangle discards
-//     the direction.  Otherwise the parity of the crossings is the answer.
+//     the direction.  Otherwise p is inside iff the crossings of some shell
+//     are odd in number.
 // Every sign is taken from an interval evaluation when that is certain and
 // recomputed exactly otherwise.
 #include "kernels/containment.h"
@@ -93,8 +94,15 @@ Vec3E ClosedSurface::ray_direction(std::size_t k) {
   return {Exact(1), t, t * t};
 }
 
-ClosedSurface::ClosedSurface(std::vector<std::array<Vec3E, 3>> triangles) : triangles_(std::move(triangles)) {
+ClosedSurface::ClosedSurface(std::vector<std::array<Vec3E, 3>> triangles, std::vector<int> shell)
+    : triangles_(std::move(triangles)), shell_(std::move(shell)) {
   const std::size_t n = triangles_.size();
+  if (shell_.empty()) shell_.assign(n, 0);
+  if (shell_.size() != n) throw std::invalid_argument("ClosedSurface: one shell index per triangle is needed");
+  for (int s : shell_) {
+    if (s < 0) throw std::invalid_argument("ClosedSurface: negative shell index");
+    shells_ = std::max(shells_, s + 1);
+  }
   intervals_.resize(n);
   flat_.assign(n, false);
   xlo_.resize(n), xhi_.resize(n), ylo_.resize(n), yhi_.resize(n), zlo_.resize(n), zhi_.resize(n);
@@ -201,7 +209,7 @@ bool ClosedSurface::contains(const Vec3E& p, int& directions_tried) const {
   for (std::size_t k = 0; k < max_directions; ++k) {
     ++directions_tried;
     const Vec3E d = ray_direction(k);
-    std::size_t crossings = 0;
+    std::vector<char> odd(static_cast<std::size_t>(shells_), 0);  // crossings per shell, mod 2
     bool degenerate = false;
     exact.clear();
     {
@@ -240,17 +248,18 @@ bool ClosedSurface::contains(const Vec3E& p, int& directions_tried) const {
           continue;
         }
         if (o[0] != 0 && o[1] != 0 && o[2] != 0)
-          ++crossings;
+          odd[shell_[i]] ^= 1;
         else
           degenerate = true;
       }
     }
     for (std::size_t j = 0; j < exact.size() && !degenerate; ++j) {
       const Ray r = classify(exact[j], p, d);
-      if (r == Ray::Cross) ++crossings;
+      if (r == Ray::Cross) odd[shell_[exact[j]]] ^= 1;
       if (r == Ray::Degenerate) degenerate = true;
     }
-    if (!degenerate) return crossings % 2 == 1;
+    // Inside the union iff inside some shell.
+    if (!degenerate) return std::find(odd.begin(), odd.end(), 1) != odd.end();
   }
   // proofs/containment.md §3: at most 11 directions per triangle are spoilt.
   throw std::logic_error("ClosedSurface::contains: no ray direction in general position found");

@@ -1,9 +1,10 @@
-// Exact point-in-solid test for a closed triangulated surface
+// Exact point-in-solid test for a union of closed triangulated shells
 // (proofs/containment.md).
 //
-// contains(p) is true iff p lies on the surface or in the region it
-// encloses, i.e. a ray from p in general position crosses the surface an
-// odd number of times (the mod-2 winding number; nested shells alternate).
+// contains(p) is true iff p lies on the surface or in the region enclosed by
+// some shell, i.e. a ray from p in general position crosses some shell an
+// odd number of times (the mod-2 winding number of each shell; overlapping
+// and nested shells form a union, SCENE_FORMAT.md "Solids").
 // Every decision is exact: an interval filter decides only what it proves,
 // everything else is recomputed with rationals.  A ray that touches an edge
 // or a vertex, or runs in the plane of a triangle it meets, is discarded and
@@ -20,12 +21,13 @@ namespace tmcert {
 
 class ClosedSurface {
  public:
-  // `triangles` must form a closed surface: every undirected edge (pair of
-  // endpoints) belongs to an even number of triangles - two for a surface
-  // from the scene parser's closedness check.  Triangles with collinear or
-  // equal vertices are allowed.  The caller guarantees closedness; it is
-  // not re-checked.
-  explicit ClosedSurface(std::vector<std::array<Vec3E, 3>> triangles);
+  // `triangles` must form closed shells: `shell[i]` (>= 0) is the shell of
+  // triangle i, and within each shell every undirected edge (pair of
+  // endpoints) belongs to an even number of triangles - two for a solid
+  // accepted by the scene parser.  Triangles with collinear or equal
+  // vertices are allowed.  The caller guarantees closedness; it is not
+  // re-checked.  Without `shell`, all triangles form one shell.
+  explicit ClosedSurface(std::vector<std::array<Vec3E, 3>> triangles, std::vector<int> shell = {});
 
   // p inside the enclosed solid or on the surface; exact.  Thread-safe.
   bool contains(const Vec3E& p) const;
@@ -49,6 +51,8 @@ class ClosedSurface {
   std::vector<std::array<Vec3E, 3>> triangles_;
   std::vector<std::array<Interval, 9>> intervals_;  // enclosures of the coordinates
   std::vector<bool> flat_;                          // collinear (or equal) vertices
+  std::vector<int> shell_;                          // per triangle
+  int shells_ = 0;
   // Outward-rounded bounding boxes, one array per bound (for a fast scan).
   std::vector<double> xlo_, xhi_, ylo_, yhi_, zlo_, zhi_;
   double xmax_ = 0;  // >= every x coordinate of the surface

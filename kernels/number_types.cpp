@@ -129,4 +129,18 @@ bool parse_exact(const std::string& text, Exact& out) {
   return true;
 }
 
+bool within_input_limit(const Exact& q) {
+  // 10^10000 lies between 2^33219 and 2^33220: smaller sizes pass at once.
+  static const CGAL::Gmpz limit = [] {
+    CGAL::Gmpz z;
+    mpz_ui_pow_ui(z.mpz(), 10, kMaxInputDigits);
+    return z;
+  }();
+  for (mpz_srcptr z : {mpq_numref(q.mpq()), mpq_denref(q.mpq())}) {
+    if (mpz_sizeinbase(z, 2) < 33219) continue;
+    if (mpz_cmpabs(z, limit.mpz()) >= 0) return false;
+  }
+  return true;
+}
+
 }  // namespace tmcert

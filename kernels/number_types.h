@@ -113,4 +113,11 @@ std::string to_string(const Exact& q);
 // else (including "nan", "inf", empty strings and a zero denominator).
 bool parse_exact(const std::string& text, Exact& out);
 
+// The size limit on numbers of input scenes and meshes (docs/scene-format.md,
+// "Limits"): numerator and denominator of the value in lowest terms below
+// 10^kMaxInputDigits, i.e. at most that many decimal digits each.  Exact
+// tests on values far beyond it run for minutes.
+inline constexpr unsigned long kMaxInputDigits = 10'000;
+bool within_input_limit(const Exact& q);
+
 }  // namespace tmcert

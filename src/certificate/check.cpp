@@ -13,6 +13,7 @@
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/scene/parse.h"
+#include "src/scene/read_file.h"
 
 #include <gmp.h>
 
@@ -357,9 +358,17 @@ bool ray_meets_segment(const Vec3E& p, const Vec3E& d, const Vec3E& a, const Vec
 
 std::optional<int> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_polygons, const Vec3E& p,
                                  const Vec3E& d) {
-  if (is_zero(d)) return std::nullopt;
-  int count = 0;
-  for (const std::vector<Vec3E>& poly : placed_polygons) {
+  const std::optional<std::vector<int>> per = ray_crossings(placed_polygons, std::vector<int>(placed_polygons.size(), 0), p, d);
+  if (!per) return std::nullopt;
+  return per->empty() ? 0 : (*per)[0];
+}
+
+std::optional<std::vector<int>> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_polygons,
+                                              const std::vector<int>& shell, const Vec3E& p, const Vec3E& d) {
+  if (is_zero(d) || shell.size() != placed_polygons.size()) return std::nullopt;
+  std::vector<int> count(placed_polygons.empty() ? 0 : static_cast<std::size_t>(*std::max_element(shell.begin(), shell.end())) + 1, 0);
+  for (std::size_t index = 0; index < placed_polygons.size(); ++index) {
+    const std::vector<Vec3E>& poly = placed_polygons[index];
     const std::size_t k = poly.size();
     if (k == 0) continue;
     // Area vector: nonzero exactly when the convex polygon is not flat.
@@ -423,7 +432,7 @@ std::optional<int> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_p
     }
     if (miss) continue;
     if (boundary) return std::nullopt;  // through an edge or a vertex
-    ++count;
+    ++count[shell[index]];
   }
   return count;
 }
@@ -608,6 +617,23 @@ std::unique_ptr<BodyData> make_body_data(const Body& b) {
   for (std::size_t i = 0; i < ids.size(); ++i) d->vertices.push_back(ids.point(static_cast<std::uint32_t>(i)));
   d->coords = make_coords(d->vertices);
   return d;
+}
+
+// The shell of each convex piece of a solid body (SCENE_FORMAT.md "Solids":
+// polygons linked by shared edges; the scene reader found them closed).
+std::vector<int> piece_shells(const Body& body) {
+  const std::vector<int> polygon_shell = polygon_shells(body);
+  std::vector<int> out;
+  out.reserve(body.pieces.size());
+  for (const ConvexPiece& piece : body.pieces) out.push_back(polygon_shell[piece.polygon]);
+  return out;
+}
+
+std::string counts_text(const std::vector<int>& counts) {
+  std::string out;
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    out += (k ? ", " : "") + std::to_string(counts[k]);
+  return out;
 }
 
 // Components of a body: elements linked by shared (exactly equal) vertices.
@@ -1229,14 +1255,15 @@ class Checker {
         if (sgn(determinant(pose)) == 0)
           reject(L + "." + key + ": the pose of " + quote_text(body.name) + " at t = " + str(t) +
                  " is singular (no interior point can be proven)");
-        const std::optional<int> n = ray_crossings(placed(*ctx.data[s], pose), point, side.ray);
+        const std::optional<std::vector<int>> n =
+            ray_crossings(placed(*ctx.data[s], pose), piece_shells(body), point, side.ray);
         if (!n)
           reject(L + "." + key + ".interior: the ray from the point along " + str(side.ray) +
                  " is degenerate (through a vertex or an edge, in a polygon's plane, or the point on the surface)");
-        if (*n % 2 == 0)
-          reject(L + "." + key + ".interior: the ray crosses " + std::to_string(*n) +
-                 (*n == 1 ? " polygon of " : " polygons of ") + quote_text(body.name) +
-                 ", an even number: the point is not inside");
+        // Inside the union of the shells iff inside one of them.
+        if (std::none_of(n->begin(), n->end(), [](int c) { return c % 2 != 0; }))
+          reject(L + "." + key + ".interior: the ray crosses every shell of " + quote_text(body.name) +
+                 " an even number of times (" + counts_text(*n) + "): the point is not inside");
       } else {
         const std::vector<Vec3E>& verts = ctx.data[s]->elems[side.element];
         Exact sum(0);
@@ -1285,18 +1312,22 @@ class Checker {
       const std::string L = ctx.label + ": start[" + std::to_string(k) + "] (solid " + quote_text(solid.name) + ")";
       if (!solid.solid) reject(L + ": " + quote_text(solid.name) + " is not solid");
       const std::vector<std::vector<Vec3E>> polygons = placed(*ctx.data[s], pose[s]);
+      const std::vector<int> shells = piece_shells(solid);
       for (std::size_t i = 0; i < entry.points.size(); ++i) {
         const StartPoint& p = entry.points[i];
         const Vec3E x = place_point(pose[1 - s], other.elems[p.element][p.vertex]);
         const std::string LP = L + ".points[" + std::to_string(i) + "] (" + quote_text(other.body->name) + " element " +
                                std::to_string(p.element) + " vertex " + std::to_string(p.vertex) + ")";
-        const std::optional<int> n = ray_crossings(polygons, x, p.ray);
+        const std::optional<std::vector<int>> n = ray_crossings(polygons, shells, x, p.ray);
         if (!n)
           reject(LP + ": the ray along " + str(p.ray) +
                  " is degenerate (through a vertex or an edge, in a polygon's plane, or the vertex on the surface)");
-        if (*n % 2 != 0)
-          reject(LP + ": the ray crosses " + std::to_string(*n) + (*n == 1 ? " polygon" : " polygons") +
-                 ", an odd number: the vertex is inside " + quote_text(solid.name) + " at t0");
+        // Outside the union of the shells only if outside every one.
+        for (std::size_t k2 = 0; k2 < n->size(); ++k2)
+          if ((*n)[k2] % 2 != 0)
+            reject(LP + ": the ray crosses shell " + std::to_string(k2) + " of " + quote_text(solid.name) + " " +
+                   std::to_string((*n)[k2]) + (((*n)[k2] == 1) ? " time" : " times") +
+                   ", an odd number: the vertex is inside " + quote_text(solid.name) + " at t0");
         ++checked;
       }
       // One listed point per component of the other body.
@@ -1484,14 +1515,8 @@ nlohmann::json parse_certificate_text(const std::string& text, const std::string
 }
 
 nlohmann::json read_certificate_file(const std::string& path) {
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec) throw InputError(path + ": cannot read the certificate: " + ec.message());
-  if (size > kMaxFileBytes) throw InputError(path + ": certificate file too large");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the certificate");
-  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (file.bad()) throw InputError(path + ": cannot read the certificate");
+  // Only a regular file, and at most kMaxFileBytes of it.
+  const std::string text = read_regular_file(path, kMaxFileBytes);
   return parse_certificate_text(text, path);
 }
 

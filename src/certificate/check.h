@@ -24,7 +24,7 @@ namespace tmcert::certificate {
 
 // Limits on hostile input (docs/certificate-format.md, "Limits").  A
 // certificate beyond them is bad input (InputError, exit 3).
-inline constexpr std::size_t kMaxNumberChars = 10'000;    // characters of one rational
+inline constexpr std::size_t kMaxNumberChars = 100'000;   // characters of one rational (above any scene number's p/q)
 inline constexpr long kMaxDecimalExponent = 10'000;       // |exponent| of a decimal, and its scale
 inline constexpr int kMaxProofDepth = 256;                // nested splits in one proof tree
 inline constexpr std::size_t kMaxJsonNesting = 2 * kMaxProofDepth + 32;  // JSON levels of a file
@@ -66,6 +66,11 @@ std::vector<std::vector<Vec3E>> elements(const Body& body);
 // Otherwise the number of polygons whose relative interior the ray crosses.
 std::optional<int> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_polygons, const Vec3E& p,
                                  const Vec3E& d);
+// The same, counted per shell: `shell[i]` (>= 0) is the shell of polygon i
+// (SCENE_FORMAT.md "Solids": the inside of a solid is the union of its
+// shells' insides, so p is outside iff every count is even).
+std::optional<std::vector<int>> ray_crossings(const std::vector<std::vector<Vec3E>>& placed_polygons,
+                                              const std::vector<int>& shell, const Vec3E& p, const Vec3E& d);
 
 // The exact pose of `body` at scene parameter t: its motion
 // sum B_k(u) w_k A_k / sum B_k(u) w_k at u = (t - t0) / (t1 - t0) of the

@@ -1,6 +1,7 @@
 #include "src/certificate/writer.h"
 
 #include "src/certificate/check.h"
+#include "src/scene/solid.h"
 #include "kernels/separation.h"
 #include "src/motion/bezier.h"
 
@@ -488,9 +489,15 @@ std::vector<std::vector<Vec3E>> placed_pieces(const Body& solid, const Mat34E& m
   return out;
 }
 
-// A ray direction from p whose crossings with the placed polygons are
-// well defined, with their parity, from a fixed sequence of directions.
-std::optional<std::pair<Vec3E, int>> ray_from(const std::vector<std::vector<Vec3E>>& polygons, const Vec3E& p) {
+// A ray direction from p whose crossings with the placed pieces of `solid`
+// are well defined, from a fixed sequence of directions, and whether p is
+// inside (an odd count for some shell: the inside is the union of the
+// shells' insides).
+std::optional<std::pair<Vec3E, bool>> ray_from(const Body& solid, const std::vector<std::vector<Vec3E>>& polygons,
+                                               const Vec3E& p) {
+  const std::vector<int> polygon_shell = polygon_shells(solid);
+  std::vector<int> shell;
+  for (const ConvexPiece& piece : solid.pieces) shell.push_back(polygon_shell[piece.polygon]);
   std::mt19937 rng(12345);
   std::uniform_int_distribution<int> coordinate(-97, 97);
   for (int attempt = 0; attempt < 200; ++attempt) {
@@ -498,7 +505,8 @@ std::optional<std::pair<Vec3E, int>> ray_from(const std::vector<std::vector<Vec3
     if (attempt == 0) d = {Exact(1), Exact(1, 3), Exact(1, 7)};
     else d = {Exact(coordinate(rng), 89), Exact(coordinate(rng), 83), Exact(coordinate(rng), 79)};
     if (d[0] == 0 && d[1] == 0 && d[2] == 0) continue;
-    if (auto count = ray_crossings(polygons, p, d)) return std::pair{d, *count};
+    if (auto count = ray_crossings(polygons, shell, p, d))
+      return std::pair{d, std::any_of(count->begin(), count->end(), [](int c) { return c % 2 != 0; })};
   }
   return std::nullopt;
 }
@@ -595,8 +603,8 @@ struct CheckWriter {
       const std::string& feature = w.features[k];
       const Mat34E m = pose(body, w.t);
       if (feature == body.name + " interior") {
-        auto ray = ray_from(placed_pieces(body, m), w.point);
-        if (!ray || ray->second % 2 != 1) fail("the interior witness could not be confirmed by a ray");
+        auto ray = ray_from(body, placed_pieces(body, m), w.point);
+        if (!ray || !ray->second) fail("the interior witness could not be confirmed by a ray");
         out[keys[k]] = {{"interior", {{"ray", vec(ray->first)}}}};
         continue;
       }
@@ -647,8 +655,8 @@ struct CheckWriter {
       for (std::size_t e = 0; e < el.size(); ++e) {
         if (find(e) != e) continue;
         const Vec3E p = apply(mo, el[e][0]);
-        auto ray = ray_from(polygons, p);
-        if (!ray || ray->second % 2 != 0)
+        auto ray = ray_from(solid, polygons, p);
+        if (!ray || ray->second)
           fail("no outside ray for element " + std::to_string(e) + " of " + other.name + " against solid " + solid.name);
         points.push_back({{"element", e}, {"vertex", 0}, {"ray", vec(ray->first)}});
       }

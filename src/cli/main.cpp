@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
   verify->add_option("scene", args.scene, "scene file (tmcert-scene/1)")->required();
   verify->add_option("--epsilon", args.epsilon, "termination tolerance, a length (overrides the scene)");
   verify->add_option("--max-depth", args.max_depth, "subdivision depth limit (overrides the scene)")
-      ->check(CLI::Range(0, 200));
+      ->check(CLI::Range(1, 200));  // as the scene's max_depth
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");

@@ -4,6 +4,8 @@
 // double value.  Errors name the file and the line (or triangle).
 #include "src/scene/mesh.h"
 
+#include "src/scene/read_file.h"
+
 #include "src/scene/model.h"
 
 #include <algorithm>
@@ -152,7 +154,7 @@ class LineReader {
 // ".5"), read exactly.  No "p/q": none of the formats has it.
 bool read_number(std::string_view token, Exact& out) {
   if (token.find('/') != std::string_view::npos) return false;
-  return parse_exact(std::string(token), out);
+  return parse_exact(std::string(token), out) && within_input_limit(out);
 }
 
 // A non-negative decimal integer (an optional '+' allowed).
@@ -572,17 +574,8 @@ MeshData read_mesh(const std::string& file) {
   if (extension != ".off" && extension != ".obj" && extension != ".stl")
     r.fail("unknown mesh file extension " + (extension.empty() ? std::string("(none)") : shown(extension)) +
            " (supported: .off, .obj, .stl)");
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) r.fail("cannot open file (it is a directory)");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) r.fail("cannot open file");
-  const auto size = std::filesystem::file_size(file, ec);
-  if (!ec && size > kMaxMeshFileBytes)
-    r.fail("file too large (more than " + std::to_string(kMaxMeshFileBytes) + " bytes)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) r.fail("cannot read file");
-  const std::string data = std::move(buffer).str();
+  // Only a regular file, and at most kMaxMeshFileBytes of it.
+  const std::string data = read_regular_file(file, kMaxMeshFileBytes);
   if (extension == ".off") return read_off(data, r);
   if (extension == ".obj") return read_obj(data, r);
   return read_stl(data, r);

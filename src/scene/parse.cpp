@@ -14,6 +14,8 @@
 
 #include "src/metric/metric.h"
 #include "src/scene/mesh.h"
+#include "src/scene/read_file.h"
+#include "src/scene/solid.h"
 
 #include <nlohmann/json.hpp>
 
@@ -158,6 +160,7 @@ const char* kind_name(Node::Kind kind) {
 // An open container waits on the stack, and its finished items and keys on
 // shared lists, until it closes; then they move into the tree, side by side.
 constexpr char kNumberMark = '\x01';
+constexpr char kStringMark = '\x02';
 
 class TreeBuilder {
  public:
@@ -194,12 +197,16 @@ class TreeBuilder {
     // quote_overflowing_numbers: still a number, with its exact text.
     if (value.size() > 1 && value[0] == kNumberMark)
       return add_text(Node::Kind::Number, std::string_view(value).substr(1));
+    // A string of the document that starts with either mark, carrying
+    // kStringMark in front (quote_overflowing_numbers): its own text.
+    if (!value.empty() && value[0] == kStringMark) value.erase(0, 1);
     return add_text(Node::Kind::String, value);
   }
   bool binary(json::binary_t&) { return fail(pending_path(), "binary values are not allowed"); }
   bool start_object(std::size_t) { return open(Node::Kind::Object); }
   bool start_array(std::size_t) { return open(Node::Kind::Array); }
   bool key(std::string& key) {
+    if (!key.empty() && key[0] == kStringMark) key.erase(0, 1);  // as for strings
     Frame& frame = stack_.back();
     if (is_duplicate(frame, key))
       return fail(member_path(container_path(), key), "duplicate key " + quote_text(key));
@@ -354,14 +361,27 @@ class TreeBuilder {
 // the way and stops at an overflow.  Such tokens are turned into strings
 // behind a control character (U+0001, kNumberMark) before reading, and the
 // tree builder turns them back into numbers with their exact text: so they
-// stay numbers (a name cannot be 1e400).  Returns false, leaving `out`
-// alone, when no token needs it: then the text is read as it is.
+// stay numbers (a name cannot be 1e400).  A string of the document whose
+// text starts with either mark (written \u0001 or \u0002: JSON allows no
+// raw control character in a string) gets the escape \u0002 (kStringMark)
+// in front, which the tree builder removes: so a document's own string is
+// never taken for a marked number.  Returns false, leaving `out` alone,
+// when nothing needs it: then the text is read as it is.
 bool quote_overflowing_numbers(const std::string& text, std::string& out) {
   std::size_t copied = 0;  // text[0, copied) is in `out`
+  bool changed = false;
   for (std::size_t i = 0; i < text.size();) {
     const char c = text[i];
     if (c == '"') {  // skip the string, with its escapes
       ++i;
+      const std::string_view head(text.data() + i, std::min<std::size_t>(6, text.size() - i));
+      if (head == "\\u0001" || head == "\\u0002") {
+        if (!changed) out.reserve(text.size() + 16);
+        out.append(text, copied, i - copied);
+        out += "\\u0002";
+        copied = i;
+        changed = true;
+      }
       while (i < text.size() && text[i] != '"') i += text[i] == '\\' ? 2 : 1;
       ++i;
       continue;
@@ -374,19 +394,20 @@ bool quote_overflowing_numbers(const std::string& text, std::string& out) {
       // double: only other tokens need the test.
       const bool may_overflow = token.size() > 300 || token.find_first_of("eE") != std::string_view::npos;
       if (may_overflow && std::isinf(std::strtod(std::string(token).c_str(), nullptr))) {
-        if (copied == 0) out.reserve(text.size() + 16);
+        if (!changed) out.reserve(text.size() + 16);
         out.append(text, copied, i - copied);
         out += "\"\\u0001";
         out += token;
         out += '"';
         copied = j;
+        changed = true;
       }
       i = j;
       continue;
     }
     ++i;
   }
-  if (copied == 0) return false;
+  if (!changed) return false;
   out.append(text, copied, std::string::npos);
   return true;
 }
@@ -819,6 +840,9 @@ class SceneReader {
     } else {
       fail(path, std::string("expected a number, got ") + kind_name(node.kind));
     }
+    if (!within_input_limit(value))
+      fail(path, "number too large: more than " + std::to_string(kMaxInputDigits) +
+                     " digits in its numerator or denominator (docs/scene-format.md, \"Limits\")");
     return value;
   }
 
@@ -872,6 +896,15 @@ class SceneReader {
     if (name->kind != Node::Kind::String || text(*name).empty())
       fail(path.member("name"), "a body name must be a non-empty string");
     b.name = text(*name);
+    // Names are printed in results and messages: no control characters
+    // (C0, DEL, or C1 as UTF-8 C2 80..9F), which would print raw.
+    for (std::size_t k = 0; k < b.name.size(); ++k) {
+      const auto c = static_cast<unsigned char>(b.name[k]);
+      const bool c1 = c == 0xC2 && k + 1 < b.name.size() && static_cast<unsigned char>(b.name[k + 1]) >= 0x80 &&
+                      static_cast<unsigned char>(b.name[k + 1]) <= 0x9F;
+      if (c < 0x20 || c == 0x7F || c1)
+        fail(path.member("name"), "a body name cannot contain control characters, got " + quote_text(b.name));
+    }
 
     if (const Node* polygons = find(obj, "polygons")) {
       const Path list_path = path.member("polygons");
@@ -967,7 +1000,8 @@ class SceneReader {
   }
 
   void require_closed(const Body& b, const Path& path) const {
-    const std::string problem = solid_problem(b);
+    std::string problem = solid_problem(b);
+    if (problem.empty()) problem = shell_intersection_problem(b);
     if (!problem.empty()) fail(path, problem);
   }
 
@@ -1346,51 +1380,6 @@ std::string quote_text(const std::string& s) {
 
 // Mesh files are relative to the directory of `source` when it names an
 // existing file, otherwise to the current directory.
-// A solid needs a closed surface: every undirected edge of its polygons
-// (as stored, by exact endpoint coordinates) belongs to exactly two polygon
-// edges; and no segments or points, whose "inside" would mean nothing.
-std::string solid_problem(const Body& b) {
-  if (!b.segments.empty() || !b.points.empty())
-    return "a solid body cannot have segments or points (only polygons or a mesh forming a closed surface)";
-  if (b.polygons.empty()) return "a solid body needs polygons forming a closed surface";
-  std::map<Vec3E, std::size_t> ids;
-  std::vector<const Vec3E*> points_of;
-  auto id = [&](const Vec3E& v) {
-    const auto [it, fresh] = ids.emplace(v, ids.size());
-    if (fresh) points_of.push_back(&it->first);
-    return it->second;
-  };
-  struct Use {
-    std::size_t count = 0;
-    std::size_t polygon = 0;  // the first polygon with this edge
-  };
-  std::map<std::pair<std::size_t, std::size_t>, Use> edges;
-  std::vector<std::pair<std::size_t, std::size_t>> order;  // edges in first-seen order
-  for (std::size_t p = 0; p < b.polygons.size(); ++p) {
-    const std::vector<Vec3E>& poly = b.polygons[p];
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      const std::size_t u = id(poly[i]), v = id(poly[(i + 1) % poly.size()]);
-      const auto key = std::minmax(u, v);
-      Use& use = edges[key];
-      if (use.count++ == 0) {
-        use.polygon = p;
-        order.push_back(key);
-      }
-    }
-  }
-  for (const auto& key : order) {
-    const Use& use = edges.at(key);
-    if (use.count == 2) continue;
-    auto text = [](const Vec3E& v) {
-      return "(" + to_string(v[0]) + ", " + to_string(v[1]) + ", " + to_string(v[2]) + ")";
-    };
-    return "not a closed surface: the edge " + text(*points_of[key.first]) + "-" + text(*points_of[key.second]) +
-           " (of polygon " + std::to_string(use.polygon) + ") belongs to " + std::to_string(use.count) +
-           (use.count == 1 ? " polygon" : " polygons") + " (every edge of a solid must belong to exactly 2)";
-  }
-  return {};
-}
-
 Scene parse_scene_text(const std::string& text, const std::string& source) {
   std::error_code ec;
   std::filesystem::path base;
@@ -1399,33 +1388,8 @@ Scene parse_scene_text(const std::string& text, const std::string& source) {
 }
 
 Scene parse_scene_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open file (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxFileBytes)
-    throw InputError(path + ": file too large (more than " + std::to_string(kMaxFileBytes) + " bytes)");
-  // Read at once into one string (a stream buffer and its copy would hold
-  // the file twice).
-  std::string text;
-  if (!ec) {
-    text.resize(static_cast<std::size_t>(size));
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    if (in.bad()) throw InputError(path + ": cannot read file");
-    // A file that grew meanwhile: read the rest as well.
-    std::ostringstream rest;
-    if (in.peek() != std::char_traits<char>::eof()) {
-      rest << in.rdbuf();
-      text += rest.str();
-    }
-  } else {
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
-  }
-  if (in.bad()) throw InputError(path + ": cannot read file");
+  // Only a regular file, and at most kMaxFileBytes of it (docs/scene-format.md).
+  std::string text = read_regular_file(path, kMaxFileBytes);
   // The text goes once it is parsed: for a large scene it is a good part of
   // the memory that reading the scene takes.
   const Tree tree = parse_json(text, path);

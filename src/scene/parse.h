@@ -2,6 +2,7 @@
 #pragma once
 
 #include "src/scene/model.h"
+#include "src/scene/solid.h"
 
 #include <string>
 
@@ -12,10 +13,6 @@ namespace tmcert {
 // the JSON path (e.g. "scene.json: bodies[1].motion.weights[2]: weight must
 // be positive") on any malformed input.
 Scene parse_scene_file(const std::string& path);
-
-// Why `b` cannot be a solid (its polygons do not form a closed surface, or
-// it has segments or points); empty when it can.
-std::string solid_problem(const Body& b);
 
 // A user string made safe for a one-line message: quoted, control
 // characters escaped, strings longer than 60 characters shortened.

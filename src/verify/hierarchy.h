@@ -27,6 +27,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -54,6 +56,13 @@ struct BvTree {
   std::vector<BvNode> nodes;   // [0, leaves): items; internal nodes after; root last
   std::uint32_t leaves = 0;
   bool leaf(std::uint32_t i) const { return i < leaves; }
+  // The two children of internal node i.  A leaf has none (its `left` and
+  // `right` are unused zeros, which would name node 0): asking for them is
+  // an internal error, never a silent step back to node 0.
+  std::array<std::uint32_t, 2> children(std::uint32_t i) const {
+    if (leaf(i) || i >= nodes.size()) throw std::logic_error("BvTree::children: node " + std::to_string(i) + " is a leaf");
+    return {nodes[i].left, nodes[i].right};
+  }
   bool empty() const { return nodes.empty(); }
   std::uint32_t root() const { return static_cast<std::uint32_t>(nodes.size() - 1); }
 };

@@ -206,7 +206,14 @@ inline bool simplest_between_small(std::int64_t a, std::int64_t b, std::int64_t 
 }
 
 // The rational with the smallest denominator in the closed interval
-// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent).
+// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent), for
+// lo <= hi.  Iterative: one step per partial quotient, at most
+// kSimplestTerms of them; an expansion deeper than that (ends with tens of
+// thousands of digits, e.g. ratios of consecutive Fibonacci numbers) gives
+// the midpoint instead, which is in [lo, hi] as well (the callers only need
+// a point of the interval; the simplest one is a preference).
+inline constexpr std::size_t kSimplestTerms = 1024;
+
 inline Exact simplest_between(const Exact& lo, const Exact& hi) {
   if (lo > 0 && hi > lo && mpz_fits_slong_p(lo.numerator().mpz()) && mpz_fits_slong_p(lo.denominator().mpz()) &&
       mpz_fits_slong_p(hi.numerator().mpz()) && mpz_fits_slong_p(hi.denominator().mpz())) {
@@ -216,13 +223,42 @@ inline Exact simplest_between(const Exact& lo, const Exact& hi) {
       return out;
   }
   if (lo <= 0 && hi >= 0) return Exact(0);
-  if (hi < 0) return -simplest_between(-hi, -lo);
-  CGAL::Gmpz fl;
-  mpz_fdiv_q(fl.mpz(), lo.numerator().mpz(), lo.denominator().mpz());
-  if (Exact(fl) == lo) return lo;
-  if (Exact(fl + 1) <= hi) return Exact(fl + 1);
-  // Both in (fl, fl + 1): recurse on the reciprocals of the fractional parts.
-  return Exact(fl) + Exact(1) / simplest_between(Exact(1) / (hi - Exact(fl)), Exact(1) / (lo - Exact(fl)));
+  if (hi < 0) return -simplest_between(-hi, -lo);  // one level: then 0 < -hi
+  // 0 < lo = a/b <= hi = c/d: the same descent as simplest_between_small,
+  // on GMP integers.
+  // (CGAL::Gmpz values share their limbs when copied: only its operators,
+  // never writes through mpz(), so no copy changes with another.)
+  CGAL::Gmpz a = lo.numerator(), b = lo.denominator(), c = hi.numerator(), d = hi.denominator();
+  std::vector<CGAL::Gmpz> terms;
+  for (;;) {
+    if (terms.size() == kSimplestTerms) return (lo + hi) / 2;
+    const CGAL::Gmpz q = a / b;  // floor: both positive
+    const CGAL::Gmpz r = a - q * b;
+    if (r == 0) {  // lo is the integer q
+      terms.push_back(q);
+      break;
+    }
+    const CGAL::Gmpz c_minus_qd = c - q * d;
+    if (c_minus_qd >= d) {  // q + 1 <= hi
+      terms.push_back(q + 1);
+      break;
+    }
+    // Both in (q, q + 1): continue with 1 / (hi - q) <= 1 / (lo - q).
+    terms.push_back(q);
+    // (a, b, c, d) <- (d, c - q d, b, a - q b).
+    c = b;
+    a = d;
+    b = c_minus_qd;
+    d = r;
+  }
+  // Fold q0 + 1 / (q1 + 1 / (... + 1 / q_last)).
+  CGAL::Gmpz num = terms.back(), den(1);
+  for (std::size_t k = terms.size() - 1; k-- > 0;) {
+    CGAL::Gmpz next = terms[k] * num + den;
+    den = std::move(num);
+    num = std::move(next);
+  }
+  return Exact(num, den);
 }
 
 // The deepest subdivision level: a node's parameter interval is
@@ -701,7 +737,15 @@ struct Check {
       }
       const BvNode& a = X.tree.nodes[p.i];
       const BvNode& b = Y.tree.nodes[p.j];
-      const double size_a = leaf_a ? -1 : n1 * a.r, size_b = leaf_b ? -1 : n2 * b.r;
+      // World sizes; a product that is not a number (inf * 0: an overflowed
+      // frame norm times a zero radius) counts as the largest, so the pair
+      // is descended rather than carried, and is never compared as NaN.
+      auto world_size = [](bool leaf, double n, double r) {
+        if (leaf) return -1.0;  // nothing to split
+        const double s = n * r;
+        return std::isnan(s) ? std::numeric_limits<double>::infinity() : s;
+      };
+      const double size_a = world_size(leaf_a, n1, a.r), size_b = world_size(leaf_b, n2, b.r);
       // Few feature pairs under the pair: test them now (cheaper than
       // carrying them down the pieces, and as tight as all pairs).
       const bool small = CellTree::pairs_below(X, p.i, Y, p.j) <= kExpandPairs;
@@ -709,13 +753,17 @@ struct Check {
         alive.push_back(p);
         continue;
       }
+      // Split the larger node, never a leaf (not both are leaves here).
       // Children pushed right first: the left one is tested first.
-      if (size_a >= size_b) {
-        work.push_back(node_pair(a.right, p.j));
-        work.push_back(node_pair(a.left, p.j));
+      const bool split_a = leaf_b || (!leaf_a && size_a >= size_b);
+      if (split_a) {
+        const auto [left, right] = X.tree.children(p.i);
+        work.push_back(node_pair(right, p.j));
+        work.push_back(node_pair(left, p.j));
       } else {
-        work.push_back(node_pair(p.i, b.right));
-        work.push_back(node_pair(p.i, b.left));
+        const auto [left, right] = Y.tree.children(p.j);
+        work.push_back(node_pair(p.i, right));
+        work.push_back(node_pair(p.i, left));
       }
     }
   }

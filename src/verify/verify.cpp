@@ -119,9 +119,11 @@ void require_supported(const Scene& scene) {
   // The parser checks this; a scene built in code must hold it too, since
   // containment needs a closed surface.
   for (const Body& b : scene.bodies)
-    if (b.solid)
-      if (const std::string problem = solid_problem(b); !problem.empty())
-        throw InputError(scene.source + ": body \"" + b.name + "\": solid: " + problem);
+    if (b.solid) {
+      std::string problem = solid_problem(b);
+      if (problem.empty()) problem = shell_intersection_problem(b);
+      if (!problem.empty()) throw InputError(scene.source + ": body \"" + b.name + "\": solid: " + problem);
+    }
   // Nothing to check would be reported "safe" vacuously: a user who forgot
   // the motion or the checks must hear about it instead.
   if (scene.checks.empty())
@@ -299,12 +301,17 @@ const ClosedSurface* Verifier::start_surface(int body) const {
     const Exact det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
                       m[2] * (m[4] * m[9] - m[5] * m[8]);
     if (det == 0) return;
+    // The inside is the union of the shells' insides: parity per shell.
+    const std::vector<int> polygon_shell = polygon_shells(b);
     std::vector<std::array<Vec3E, 3>> triangles;
+    std::vector<int> shell;
     for (const ConvexPiece& piece : b.pieces)
-      for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k)
+      for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k) {
         triangles.push_back({apply_map(m, piece.vertices[0]), apply_map(m, piece.vertices[k]),
                              apply_map(m, piece.vertices[k + 1])});
-    surfaces_[body] = std::make_unique<ClosedSurface>(std::move(triangles));
+        shell.push_back(polygon_shell[piece.polygon]);
+      }
+    surfaces_[body] = std::make_unique<ClosedSurface>(std::move(triangles), std::move(shell));
   });
   return surfaces_[body].get();
 }

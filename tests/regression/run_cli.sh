@@ -128,9 +128,23 @@ expect_refusal "--epsilon" verify "$good" --epsilon nan
 expect_refusal "--epsilon" verify "$good" --epsilon -1/3
 expect_refusal "--kernel" verify "$good" --kernel quadruple
 expect_refusal "--max-depth" verify "$good" --max-depth -2
+expect_refusal "--max-depth" verify "$good" --max-depth 0
 expect_refusal "--threads" verify "$good" --threads 0
 expect_refusal "frobnicate" verify "$good" --frobnicate
 expect_refusal "scene" verify
+
+# Only regular files are read: a device or a FIFO (as the scene, a mesh or
+# a certificate) is refused at once instead of being read forever or
+# blocking on open.
+expect_refusal "/dev/zero: not a regular file (it is a character device)" verify /dev/zero
+expect_refusal "/dev/zero: not a regular file (it is a character device)" check /dev/zero "$good"
+if command -v mkfifo >/dev/null 2>&1 && mkfifo "$work/pipe.json" "$work/pipe.off" 2>/dev/null; then
+  expect_refusal "pipe.json: not a regular file (it is a FIFO)" verify "$work/pipe.json"
+  printf '%s\n' '{"format": "tmcert-scene/1", "bodies": [{"name": "m", "mesh": "pipe.off"},' \
+    '{"name": "p", "points": [[0,0,0]], "motion": {"type": "rational_bezier",' \
+    '"control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,1],[0,1,0,0],[0,0,1,0]]]}}]}' >"$work/fifo-mesh.json"
+  expect_refusal "pipe.off: not a regular file (it is a FIFO)" verify "$work/fifo-mesh.json"
+fi
 
 for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED"; do
   if [ -f "$list" ]; then
@@ -166,7 +180,11 @@ if [ -d "$certs" ]; then
   expect_check 0 "tri x box: safe proven" "$certs/solid-outside.cert.json" "$certs/solid-outside.json"
   expect_check 1 "pieces[0] [0, 1/4]: proof (groups 0, 0): separation fails at control point 0" \
     "$certs/probe-safe-tampered.cert.json" "$certs/probe-safe.json"
-  expect_check 1 "the ray crosses 1 polygon, an odd number" "$certs/solid-inside-safe.cert.json" "$certs/solid-inside.json"
+  expect_check 1 "the ray crosses shell 0 of \"box\" 1 time, an odd number" "$certs/solid-inside-safe.cert.json" "$certs/solid-inside.json"
+  # A start point inside both shells of a two-shell solid: ray parity over
+  # all polygons counted it outside (the inside is the union of the shells).
+  expect_check 1 "an odd number: the vertex is inside \"solid\" at t0" \
+    "$certs/solid-two-shells-false-safe.cert.json" "$certs/solid-two-shells.json"
   expect_check 1 "belongs to another scene" "$certs/drop-collision.cert.json" "$certs/probe-safe.json"
   expect_check 3 "garbage.cert.json: not JSON" "$certs/garbage.cert.json" "$certs/probe-safe.json"
   expect_check 3 "format: unknown format" "$certs/probe-safe.json" "$certs/probe-safe.json"

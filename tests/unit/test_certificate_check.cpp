@@ -115,7 +115,7 @@ BOOST_AUTO_TEST_CASE(a_triangle_inside_a_solid_is_not_safe) {
   // Every face is separated from the triangle, but it starts inside the
   // cube: the start claim's ray crosses one face (odd).
   Case c = load("solid-inside", "solid-inside-safe");
-  expect_rejected(c, "start[0] (solid \"box\").points[0] (\"tri\" element 0 vertex 0): the ray crosses 1 polygon, an odd number");
+  expect_rejected(c, "start[0] (solid \"box\").points[0] (\"tri\" element 0 vertex 0): the ray crosses shell 0 of \"box\" 1 time, an odd number");
   // Without the start claim it is rejected as missing.
   check0(c)["start"] = json::array();
   expect_rejected(c, "start: no claim for the solid \"box\"");
@@ -348,9 +348,9 @@ BOOST_AUTO_TEST_CASE(tampered_witnesses_are_rejected) {
     check0(c)["first_contact"] = json::array({"0", "0"});
     check0(c)["witness"] = {{"t", "0"}, {"point", {"2", "0", "0"}}, {"a", {{"element", 0}, {"weights", {"1", "0", "0"}}}},
                             {"b", {{"interior", {{"ray", {"1", "1/3", "1/5"}}}}}}};
-    expect_rejected(c, "witness.b.interior: the ray crosses 0 polygons of \"box\", an even number: the point is not inside");
+    expect_rejected(c, "witness.b.interior: the ray crosses every shell of \"box\" an even number of times (0): the point is not inside");
     check0(c)["witness"]["b"]["interior"]["ray"] = json::array({"-1", "1/3", "1/5"});  // starts in the face plane y = 0, crosses twice
-    expect_rejected(c, "the ray crosses 2 polygons of \"box\", an even number");
+    expect_rejected(c, "the ray crosses every shell of \"box\" an even number of times (2)");
   }
   {
     Case c = load("solid-inside", "solid-inside-collision");
@@ -442,8 +442,8 @@ BOOST_AUTO_TEST_CASE(malformed_certificates_are_input_errors) {
        "checks[0].pieces[0].proof.sep[0]: expected a rational"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = "1e99999"; }, "decimal exponent beyond 10000"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = "1e10001"; }, "decimal exponent beyond 10000"},
-      {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = std::string(10001, '7'); },
-       "number of 10001 characters (at most 10000)"},
+      {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = std::string(100001, '7'); },
+       "number of 100001 characters (at most 100000)"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = "1/0"; }, "not a rational: \"1/0\""},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = "nan"; }, "not a rational"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = nullptr; }, "expected a rational"},

@@ -293,8 +293,9 @@ BOOST_AUTO_TEST_CASE(coordinates_beyond_double_range) {
   BOOST_TEST(tiny.contains(v("3e-400", "2e-400", "3e-400")));
 }
 
-BOOST_AUTO_TEST_CASE(nested_shells_alternate) {
-  // Parity: a box inside a box encloses the space between them.
+BOOST_AUTO_TEST_CASE(nested_shells_alternate_within_one_shell_index) {
+  // Parity within one shell index: a box inside a box, given as one shell,
+  // encloses the space between them.
   std::vector<Tri> shells = box(v(0, 0, 0), v(3, 3, 3));
   const std::vector<Tri> inner = box(v(1, 1, 1), v(2, 2, 2));
   shells.insert(shells.end(), inner.begin(), inner.end());
@@ -302,6 +303,40 @@ BOOST_AUTO_TEST_CASE(nested_shells_alternate) {
   BOOST_TEST(s.contains(v("1/2", "1/2", "1/2")));
   BOOST_TEST(!s.contains(v("3/2", "3/2", "3/2")));
   BOOST_TEST(s.contains(v(2, "3/2", "3/2")));  // on the inner shell
+}
+
+// Several shells: the inside is the union of their insides (SCENE_FORMAT.md
+// "Solids"), however they overlap or nest.
+std::vector<int> shell_ids(std::size_t first, std::size_t second) {
+  std::vector<int> out(first, 0);
+  out.insert(out.end(), second, 1);
+  return out;
+}
+
+BOOST_AUTO_TEST_CASE(nested_shells_form_a_union) {
+  std::vector<Tri> tris = box(v(0, 0, 0), v(3, 3, 3));
+  const std::vector<Tri> inner = box(v(1, 1, 1), v(2, 2, 2));
+  const std::vector<int> ids = shell_ids(tris.size(), inner.size());
+  tris.insert(tris.end(), inner.begin(), inner.end());
+  const ClosedSurface s(tris, ids);
+  BOOST_TEST(s.contains(v("1/2", "1/2", "1/2")));
+  BOOST_TEST(s.contains(v("3/2", "3/2", "3/2")));  // inside both
+  BOOST_TEST(s.contains(v(2, "3/2", "3/2")));      // on the inner shell
+  BOOST_TEST(!s.contains(v(4, "3/2", "3/2")));
+}
+
+BOOST_AUTO_TEST_CASE(overlapping_shells_form_a_union) {
+  std::vector<Tri> tris = box(v(0, 0, 0), v(2, 2, 2));
+  const std::vector<Tri> other = box(v(1, 1, 1), v(3, 3, 3));
+  const std::vector<int> ids = shell_ids(tris.size(), other.size());
+  tris.insert(tris.end(), other.begin(), other.end());
+  const ClosedSurface s(tris, ids);
+  BOOST_TEST(s.contains(v("3/2", "3/2", "3/2")));  // inside both: even in total
+  BOOST_TEST(s.contains(v("1/2", "1/2", "1/2")));  // inside the first only
+  BOOST_TEST(s.contains(v("5/2", "5/2", "5/2")));  // inside the second only
+  BOOST_TEST(s.contains(v("1/2", "1/2", 2)));      // on the first, inside neither other
+  BOOST_TEST(!s.contains(v("1/2", "5/2", "1/2")));
+  BOOST_TEST(!s.contains(v(-1, -1, -1)));
 }
 
 BOOST_AUTO_TEST_CASE(convex_polytopes_against_brute_force) {

@@ -5,6 +5,7 @@
 // field).
 #include "src/scene/mesh.h"
 #include "src/scene/parse.h"
+#include "src/scene/solid.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>
@@ -459,6 +460,59 @@ BOOST_AUTO_TEST_CASE(solid_needs_a_closed_surface) {
   matched.replace(matched.find(R"([[1,1,0],[0,1,0],[0,1,1],[1,1,1]])"), 33,
                   R"([[1,1,0],["1/2",1,0],["1/2",1,1],[1,1,1]], [["1/2",1,0],[0,1,0],[0,1,1],["1/2",1,1]])");
   BOOST_TEST(tmcert::parse_scene_text(scene_with(R"("solid": true, "polygons": )" + matched), "t.json").bodies[0].solid);
+}
+
+BOOST_AUTO_TEST_CASE(shells_must_not_intersect_themselves) {
+  // SCENE_FORMAT.md "Solids": one or more closed shells, none intersecting
+  // itself; shells may overlap one another.
+  auto cube_at = [](int o, int s) {
+    std::string text = cube_polygons(std::to_string(s));
+    // Shift every coordinate by o: cube_polygons writes "0" and the size.
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const bool number_start = (text[i] == '0' || std::isdigit(static_cast<unsigned char>(text[i]))) &&
+                                (i == 0 || text[i - 1] == '[' || text[i - 1] == ',');
+      if (!number_start) {
+        out += text[i];
+        continue;
+      }
+      std::size_t j = i;
+      while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
+      out += std::to_string(std::stoi(text.substr(i, j - i)) + o);
+      i = j - 1;
+    }
+    return out.substr(1, out.size() - 2);  // without the outer brackets
+  };
+  auto solid = [&](const std::string& polygons) {
+    return tmcert::parse_scene_text(scene_with(R"("solid": true, "polygons": [)" + polygons + "]"), "t.json");
+  };
+  // Overlapping, nested and corner-touching cubes: separate shells, accepted.
+  for (const std::string& two : {cube_at(0, 2) + "," + cube_at(1, 2), cube_at(0, 3) + "," + cube_at(1, 1),
+                                 cube_at(0, 1) + "," + cube_at(1, 1)}) {
+    const Scene scene = solid(two);
+    const std::vector<int> shells = tmcert::polygon_shells(scene.bodies[0]);
+    BOOST_TEST(shells == (std::vector<int>{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1}), boost::test_tools::per_element());
+  }
+  // One triangle listed twice: every edge has two uses, but it is no shell.
+  expect_scene_error(scene_with(R"("solid": true, "polygons": [[[0,0,0],[1,0,0],[0,1,0]], [[0,1,0],[0,0,0],[1,0,0]]])"),
+                     "bodies[0].solid", "shell 0 intersects itself: polygon 1 repeats polygon 0");
+  // A bipyramid over (0,0,0), (4,0,0), (0,4,0) with apexes (1,1,2) and
+  // (-5,1,1): the lower faces cut through the upper ones.
+  const std::string a = "[0,0,0]", b = "[4,0,0]", c = "[0,4,0]", p = "[1,1,2]";
+  auto bipyramid = [&](const std::string& q) {
+    return "[" + p + "," + a + "," + b + "],[" + p + "," + b + "," + c + "],[" + p + "," + c + "," + a + "],[" + q +
+           "," + b + "," + a + "],[" + q + "," + c + "," + b + "],[" + q + "," + a + "," + c + "]";
+  };
+  BOOST_TEST(solid(bipyramid("[1,1,-2]")).bodies[0].solid);
+  expect_scene_error(scene_with(R"("solid": true, "polygons": [)" + bipyramid("[-5,1,1]") + "]"), "bodies[0].solid",
+                     "shell 0 intersects itself: polygons");
+  // A tetrahedron whose apex is pushed into its base's plane, inside the
+  // base: every edge still has two faces, but the side faces lie on the
+  // base (coplanar, on the same side of each shared edge).
+  const std::string t0 = "[0,0,0]", t1 = "[2,0,0]", t2 = "[0,2,0]", t3 = R"(["1/2","1/2",0])";
+  expect_scene_error(scene_with(R"("solid": true, "polygons": [[)" + t0 + "," + t2 + "," + t1 + "],[" + t0 + "," + t1 +
+                                "," + t3 + "],[" + t1 + "," + t2 + "," + t3 + "],[" + t2 + "," + t0 + "," + t3 + "]]"),
+                     "bodies[0].solid", "shell 0 intersects itself: polygons 0 and 1");
 }
 
 BOOST_AUTO_TEST_CASE(mesh_bodies_are_verified_as_surfaces) {
