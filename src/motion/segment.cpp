@@ -207,13 +207,17 @@ std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, In
 }
 
 void require_interpolable(const Pose& a, const Pose& b, Interpolation how) {
-  if (how == Interpolation::Nlerp || same_rotation(a.rotation, b.rotation)) return;
+  if (same_rotation(a.rotation, b.rotation)) return;
   const auto qa = exact_quaternion(a.rotation), qb = exact_quaternion(b.rotation);
   if (qa && qb) {
-    if (qdot(*qa, *qb) == 0)
+    // nlerp's sign rule (negate when the dot product is negative) is
+    // decided exactly; a zero dot product leaves nlerp well defined.
+    if (how != Interpolation::Nlerp && qdot(*qa, *qb) == 0)
       throw InputError("the two rotations are exactly 180 degrees apart: the interpolation has no shorter arc");
     return;
   }
+  // An enclosed (rpy) end: the sign of the dot product, which picks the arc
+  // for every interpolation (nlerp's negation rule too), must be certain.
   RoundingGuard guard;
   const Interval d = qdot(unit_quaternion(a.rotation), unit_quaternion(b.rotation));
   if (!(d.inf() > 0) && !(d.sup() < 0))
