@@ -143,18 +143,18 @@ std::shared_ptr<Model> build_model(const Mesh& m) {
 
 // ------------------------------------------------------------------ the path (double)
 
-struct Pose {
+struct SE3Pose {
   fcl::Vector3d t;
   Eigen::Quaterniond q;  // unit
 };
 
-std::vector<Pose> read_keyframes(const std::string& scene_path) {
+std::vector<SE3Pose> read_keyframes(const std::string& scene_path) {
   const nlohmann::json doc = nlohmann::json::parse(read_text(scene_path));
-  std::vector<Pose> out;
+  std::vector<SE3Pose> out;
   for (const auto& body : doc.at("bodies")) {
     if (!body.contains("motion")) continue;
     for (const auto& p : body.at("motion").at("poses")) {
-      Pose pose;
+      SE3Pose pose;
       for (int k = 0; k < 3; ++k) pose.t[k] = p.at("translation").at(k).get<double>();
       const auto& q = p.at("rotation").at("quaternion");
       pose.q = Eigen::Quaterniond(q.at(0).get<double>(), q.at(1).get<double>(), q.at(2).get<double>(),
@@ -175,8 +175,8 @@ double so3_distance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return dq > 1.0 - kMaxQuaternionNormError ? 0.0 : std::acos(dq);
 }
 
-Pose ompl_interpolate(const Pose& a, const Pose& b, double s) {
-  Pose out;
+SE3Pose ompl_interpolate(const SE3Pose& a, const SE3Pose& b, double s) {
+  SE3Pose out;
   out.t = a.t + s * (b.t - a.t);
   const double theta = so3_distance(a.q, b.q);
   if (theta > std::numeric_limits<double>::epsilon()) {
@@ -199,7 +199,7 @@ struct Discretisation {
   int poses = 0;                   // 1 + sum of counts
 };
 
-Discretisation discretise(const std::vector<Pose>& path, const Mesh& fixture) {
+Discretisation discretise(const std::vector<SE3Pose>& path, const Mesh& fixture) {
   Discretisation d;
   fcl::Vector3d lo = fixture.verts[0], hi = fixture.verts[0];
   for (const auto& v : fixture.verts) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
@@ -234,7 +234,7 @@ struct FclScene {
     g = std::make_unique<fcl::CollisionObjectd>(gripper, fcl::Transform3d::Identity());
     f = std::make_unique<fcl::CollisionObjectd>(fixture, fcl::Transform3d::Identity());
   }
-  bool collides(const Pose& p) {
+  bool collides(const SE3Pose& p) {
     fcl::Transform3d tf = fcl::Transform3d::Identity();
     tf.linear() = p.q.toRotationMatrix();
     tf.translation() = p.t;
@@ -245,7 +245,7 @@ struct FclScene {
     fcl::collide(g.get(), f.get(), request, result);
     return result.isCollision();
   }
-  double distance(const Pose& p) {
+  double distance(const SE3Pose& p) {
     fcl::Transform3d tf = fcl::Transform3d::Identity();
     tf.linear() = p.q.toRotationMatrix();
     tf.translation() = p.t;
@@ -260,11 +260,11 @@ struct FclScene {
 
 // OMPL's DiscreteMotionValidator::checkMotion along the path, edge by edge;
 // stops at the first pose in collision unless `all`.
-FclRun fcl_discrete(FclScene& fcl, const std::vector<Pose>& path, const Discretisation& d, bool all) {
+FclRun fcl_discrete(FclScene& fcl, const std::vector<SE3Pose>& path, const Discretisation& d, bool all) {
   FclRun run;
   auto hit = [&](int edge, double s) {
     ++run.checked;
-    const Pose p = s == 0 ? path[edge] : s == 1 ? path[edge + 1] : ompl_interpolate(path[edge], path[edge + 1], s);
+    const SE3Pose p = s == 0 ? path[edge] : s == 1 ? path[edge + 1] : ompl_interpolate(path[edge], path[edge + 1], s);
     if (!fcl.collides(p)) return false;
     if (!run.collision) run.edge = edge, run.s = s;
     run.collision = true;
@@ -295,11 +295,12 @@ struct TmRun {
   Verdict verdict = Verdict::Undecided;
   std::uint64_t nodes = 0;
   int depth = 0;
-  double seconds = 0;
+  double seconds = 0;        // fresh Verifier: preparing both bodies and the check
+  double warm_seconds = 0;   // the same check again, bodies prepared (cf. FCL's models built once)
   std::string detail;
 };
 
-TmRun certify(const Scene& scene) {
+TmRun certify(const Scene& scene, bool warm) {
   VerifyOptions options;
   options.kernel = KernelKind::Filtered;
   options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
@@ -309,10 +310,16 @@ TmRun certify(const Scene& scene) {
   const CheckResult r = verifier.check(scene.checks[0].first, scene.checks[0].second);
   TmRun out;
   out.seconds = since(start);
+  if (warm) {
+    const auto again = Clock::now();
+    const CheckResult r2 = verifier.check(scene.checks[0].first, scene.checks[0].second);
+    out.warm_seconds = since(again);
+    if (r2.verdict != r.verdict) out.detail = "SECOND RUN DIFFERS; ";
+  }
   out.verdict = r.verdict;
   out.nodes = r.stats.nodes;
   out.depth = r.stats.max_depth;
-  if (r.witness) out.detail = "witness t = " + to_string(r.witness->t);
+  if (r.witness) out.detail += "witness t = " + to_string(r.witness->t);
   if (r.first_contact)
     out.detail += (out.detail.empty() ? "" : ", ") + std::string("first contact in [") +
                   to_string(r.first_contact->first) + ", " + to_string(r.first_contact->second) + "]";
@@ -329,7 +336,7 @@ struct Variant {
 
 int main(int argc, char** argv) {
   int reps = 5;
-  std::string root = TMCERT_SOURCE_DIR, only;
+  std::string root = TMCERT_SOURCE_DIR, only, method;
   bool distances = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -337,8 +344,10 @@ int main(int argc, char** argv) {
     else if (a == "--root" && i + 1 < argc) root = argv[++i];
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--distance") distances = true;
+    else if (a == "--method" && i + 1 < argc) method = argv[++i];
     else {
-      std::fprintf(stderr, "usage: tmcert_planner_bench [--reps N] [--root DIR] [--only safe|collision] [--distance]\n");
+      std::fprintf(stderr, "usage: tmcert_planner_bench [--reps N] [--root DIR] [--only safe|collision] [--distance]\n"
+                   "       [--method slerp|screw|nlerp|fcl]   (one method only, no table: for profiling)\n");
       return 3;
     }
   }
@@ -376,7 +385,7 @@ int main(int argc, char** argv) {
       scenes[k] = parse_scene_file(var.files[k]);
       parse_s[k] = since(p0);
     }
-    const std::vector<Pose> path = read_keyframes(var.files[0]);
+    const std::vector<SE3Pose> path = read_keyframes(var.files[0]);
     const Discretisation d = discretise(path, fixture);
     if (distances) {
       std::printf("%s variant: FCL distance, 200 slerp samples per segment (floating point)\n", var.name.c_str());
@@ -392,15 +401,32 @@ int main(int argc, char** argv) {
       }
     }
 
-    std::array<std::vector<double>, 4> times;
+    if (!method.empty()) {  // profiling: one method, reps runs, no table
+      for (int r = 0; r < reps; ++r) {
+        if (method == "fcl") {
+          const auto f0 = Clock::now();
+          const FclRun run = fcl_discrete(fcl, path, d, false);
+          std::printf("%s FCL (%d poses): %.2f ms\n", var.name.c_str(), run.checked, 1e3 * since(f0));
+        }
+        for (int k = 0; k < 3; ++k)
+          if (method == interps[k]) {
+            const TmRun t = certify(scenes[k], false);
+            std::printf("%s %s: %s, %llu nodes, %.1f ms\n", var.name.c_str(), interps[k], to_string(t.verdict),
+                        static_cast<unsigned long long>(t.nodes), 1e3 * t.seconds);
+          }
+      }
+      continue;
+    }
+    std::array<std::vector<double>, 4> times, warm;
     std::array<TmRun, 3> tm;
     FclRun fr;
     for (int r = 0; r < reps; ++r) {
       for (int m = 0; m < 4; ++m) {
         const int k = (m + r) % 4;  // rotate the order from run to run
         if (k < 3) {
-          tm[k] = certify(scenes[k]);
+          tm[k] = certify(scenes[k], true);
           times[k].push_back(tm[k].seconds);
+          warm[k].push_back(tm[k].warm_seconds);
         } else {
           const auto f0 = Clock::now();
           fr = fcl_discrete(fcl, path, d, false);
@@ -428,16 +454,19 @@ int main(int argc, char** argv) {
                 "(step %.2f deg of rotation), %d poses\n\n",
                 var.name.c_str(), to_string(var.expected), d.r3_extent, 1e3 * d.fraction * d.r3_extent,
                 2 * d.fraction * d.so3_extent * 180 / M_PI, d.poses);
-    std::printf("| method | verdict | nodes / poses | time [ms] | / nlerp | / FCL |\n");
-    std::printf("|---|---|--:|--:|--:|--:|\n");
+    const double nlerp_w = median(warm[2]);
+    std::printf("| method | verdict | nodes / poses | time [ms] | / nlerp | / FCL | prepared [ms] | / nlerp | / FCL |\n");
+    std::printf("|---|---|--:|--:|--:|--:|--:|--:|--:|\n");
     for (int k = 0; k < 3; ++k) {
-      const double t = median(times[k]);
-      std::printf("| tmcert %s | %s | %llu | %.1f | %.2f | %.1f |\n", interps[k], to_string(tm[k].verdict),
-                  static_cast<unsigned long long>(tm[k].nodes), 1e3 * t, t / nlerp_t, t / fcl_t);
+      const double t = median(times[k]), w = median(warm[k]);
+      std::printf("| tmcert %s | %s | %llu | %.1f | %.2f | %.1f | %.1f | %.2f | %.1f |\n", interps[k],
+                  to_string(tm[k].verdict), static_cast<unsigned long long>(tm[k].nodes), 1e3 * t, t / nlerp_t,
+                  t / fcl_t, 1e3 * w, w / nlerp_w, w / fcl_t);
       if (tm[k].verdict != var.expected) ok = false;
     }
-    std::printf("| FCL-discrete (slerp, OMPL resolution) | %s | %d | %.1f | %.2f | 1.0 |\n\n",
-                fr.collision ? "collision (pose)" : "no pose collides", fr.checked, 1e3 * fcl_t, fcl_t / nlerp_t);
+    std::printf("| FCL-discrete (slerp, OMPL resolution) | %s | %d | %.1f | %.2f | 1.0 | %.1f | %.2f | 1.0 |\n\n",
+                fr.collision ? "collision (pose)" : "no pose collides", fr.checked, 1e3 * fcl_t, fcl_t / nlerp_t,
+                1e3 * fcl_t, fcl_t / nlerp_w);
     for (int k = 0; k < 3; ++k)
       std::printf("  tmcert %s: depth %d, parse %.0f ms (not timed)%s%s\n", interps[k], tm[k].depth,
                   1e3 * parse_s[k], tm[k].detail.empty() ? "" : "; ", tm[k].detail.c_str());

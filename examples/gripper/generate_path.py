@@ -101,7 +101,7 @@ def scene_text(ks, interpolation):
     ]
     text = "\n".join(lines) + "\n"
     doc = json.loads(text)
-    assert len(doc["bodies"][1]["motion"]["poses"]) == 20
+    assert len(doc["bodies"][1]["motion"]["poses"]) == len(ks)
     return text
 
 
