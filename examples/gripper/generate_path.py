@@ -3,7 +3,7 @@
 The gripper (gripper.off) moves through its fixture (fixture.off) along a
 20-keyframe SE(3) path, as a sampling-based planner would return it: it
 comes in from behind and above turned by about 90 degrees, untwists and
-levels out on the way down (up to about 25 degrees of rotation between
+levels out on the way down (16 to 22 degrees of rotation between
 consecutive keyframes), passes over the back tower, drops past the tower's
 far top edge into the slot (the palm's back edge clears it by about 1 mm),
 descends between the posts and slides along the slot to the pick pose with a
@@ -22,8 +22,10 @@ Files, one per interpolation of the same keyframes:
   gripper-path-nlerp.json            gripper-path-collision-nlerp.json
 
 The collision variant differs in one keyframe only (keyframe 10, 2 mm
-further back in y): the palm's back edge then cuts through the back tower's
-far top edge for about 3 mm of travel between keyframes 9 and 10.
+further back in y): the palm's back edge then cuts about 1 mm deep through
+the back tower's far top edge, for about 2 mm of travel between keyframes 9
+and 10 -- less than the step of OMPL's default resolution there (7.3 mm), so
+that a discrete check of OMPL's poses misses it (bench/planner_path.cpp).
 
 Only the standard library is used; the output is deterministic:
 
