@@ -414,6 +414,7 @@ int main(int argc, char** argv) {
         for (int k = 0; k < 3; ++k)
           if (method == interps[k]) {
             const TmRun t = certify(scenes[k], false);
+            if (t.verdict != var.expected) ok = false;
             std::printf("%s %s: %s, %llu nodes, %.1f ms\n", var.name.c_str(), interps[k], to_string(t.verdict),
                         static_cast<unsigned long long>(t.nodes), 1e3 * t.seconds);
           }
