@@ -9,6 +9,7 @@ packages=(
   libboost-test-dev librapidcheck-dev
   nlohmann-json3-dev libcli11-dev
   libflint-arb-dev
+  libfcl-dev            # only for bench/planner_path.cpp (FCL, the planners' checker)
 )
 
 missing=()
