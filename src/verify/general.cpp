@@ -3,7 +3,8 @@
 // check's parameter interval is cut at every join of either body's
 // segments; each part is searched in parameter order with its own start
 // check (a join is a start like any other: the contact tests are complete
-// after a configuration proven free, proofs/enclosures.md section 7), and
+// after a configuration proven free, proofs/enclosures.md section 7; a join
+// that the part before cleared needs none), and
 // the parts' results are merged as the search merges its tasks.  A part
 // where every moving body is rational runs the rational search on the
 // exact restriction of the curves; a part with an enclosed (transcendental)
@@ -209,6 +210,9 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
     CheckResult part;
     if (two) run_part<2>(m, o, false, pm, po, t0, t1, options_, tube, e2, part);
     else run_part<1>(m, o, swapped, pm, po, t0, t1, options_, tube, e1, part);
+    // A part cleared entirely proves the join after it free: the next part
+    // needs no start check there.
+    e1.start_proven_free = e2.start_proven_free = part.undecided.empty() && !part.witness;
     if (!detail::merge_result(result, part)) break;
   }
   return finish();

@@ -1,5 +1,7 @@
 #include "src/verify/prepared.h"
 
+#include "src/motion/segment.h"
+
 #include <CGAL/number_utils.h>
 
 #include <cmath>
@@ -398,18 +400,39 @@ const ExactFeatures& PreparedBody::exact() const {
 }
 
 SweptBox swept_box(const Body& body) {
-  // Keyframe and piecewise motions and tolerances: no box (a check with
-  // such a body is never cleared by the prefilter).
-  if (body.trajectory || body.tolerance > 0) return SweptBox{};
+  // A tolerance: no box (such a check is never cleared by the prefilter).
+  if (body.tolerance > 0) return SweptBox{};
   std::vector<Mat34E> maps;
   if (body.motion) maps = body.motion->control_points;
-  else maps.push_back(kIdentity);
+  else if (!body.trajectory) maps.push_back(kIdentity);
   std::vector<std::array<Interval, 12>> imaps;
   for (const Mat34E& m : maps) {
     std::array<Interval, 12> im;
     for (int e = 0; e < 12; ++e) im[e] = to_interval(m[e]);
     imaps.push_back(im);
   }
+  if (body.trajectory)
+    for (const MotionSegment& seg : body.trajectory->segments) {
+      if (seg.rational) {  // the convex hull property, segment by segment
+        for (const Mat34E& m : seg.rational->control_points) {
+          std::array<Interval, 12> im;
+          for (int e = 0; e < 12; ++e) im[e] = to_interval(m[e]);
+          imaps.push_back(im);
+        }
+        continue;
+      }
+      // An enclosed segment: interval maps holding every pose of each
+      // eighth of it (every vertex image then lies in its interval box).
+      const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
+      constexpr int kSlices = 8;
+      RoundingGuard guard;
+      for (int k = 0; k < kSlices; ++k) {
+        const PoseJet j = model->pose(Jet(Interval(static_cast<double>(k) / kSlices, static_cast<double>(k + 1) / kSlices)));
+        std::array<Interval, 12> im;
+        for (int e = 0; e < 12; ++e) im[e] = j[e].v;
+        imaps.push_back(im);
+      }
+    }
   SweptBox box;
   bool nan = false;
   box.lo.fill(std::numeric_limits<double>::infinity());

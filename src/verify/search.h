@@ -152,6 +152,10 @@ struct CheckExtras {
   Exact clearance2 = 0;
   std::array<Exact, 2> reach2{Exact(0), Exact(0)};
   bool distance_witness() const { return clearance2 > 0 || reach2[0] > 0 || reach2[1] > 0; }
+  // The configuration at the start is already proven free: the part before
+  // (a closed parameter range ending here) was cleared entirely, which
+  // proves no contact (and, with a tube, no admissible contact) at its end.
+  bool start_proven_free = false;
 };
 
 inline std::optional<StaticHit> first_hit(const std::vector<StaticPart>& a, const std::vector<StaticPart>& b,
@@ -1057,7 +1061,9 @@ struct Check {
   // only after a contact-free start), then the search.
   void run() {
     bool uncertain = false;
-    if (auto hit = static_test(Exact(0), nullptr, &uncertain)) {
+    if (extras.start_proven_free) {
+      // nothing to test at the start
+    } else if (auto hit = static_test(Exact(0), nullptr, &uncertain)) {
       set_witness(Exact(0), *hit);
       result.first_contact = std::pair{motion.t0, motion.t0};
       return;
@@ -1070,7 +1076,7 @@ struct Check {
       ++result.stats.stops;
       return;
     }
-    if (distance_witness(Exact(0), nullptr)) {
+    if (!extras.start_proven_free && distance_witness(Exact(0), nullptr)) {
       result.first_contact = std::pair{motion.t0, motion.t0};
       return;
     }

@@ -239,12 +239,15 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   const Body& x = scene_.bodies[a];
   const Body& y = scene_.bodies[b];
   const bool general = x.trajectory || y.trajectory || x.tolerance > 0 || y.tolerance > 0 || clearance > 0;
-  if (!general && disjoint(boxes_[a], boxes_[b])) {
+  // The boxes hold everything the bodies sweep (keyframe motions included);
+  // tolerances have none, and a clearance needs more than disjointness.
+  if (clearance == 0 && disjoint(boxes_[a], boxes_[b])) {
     // Certified prefilter: the boxes hold everything the bodies sweep.
     CheckResult result;
     result.bodies = {a, b};
     result.verdict = Verdict::Safe;
     result.stats.prefiltered = true;
+    result.clearance = clearance;
     return result;
   }
   const bool mx = interval_[a] >= 0, my = interval_[b] >= 0;
