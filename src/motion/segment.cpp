@@ -332,7 +332,7 @@ class KeyframeModel final : public SegmentModel {
     // The angle between the unit quaternions, well conditioned for small
     // angles: |p0 - p1| = 2 sin(theta/2), |p0 + p1| = 2 cos(theta/2).
     theta_ = Interval(2) * validated::atan2(isqrt(qdot(diff, diff)), isqrt(qdot(sum, sum)));
-    sin_theta_ = validated::sin(theta_);
+    sinc_theta_ = sinc(Jet(theta_)).v;
     if (how_ == Interpolation::Screw) {
       // Relative rotation d = conj(p0) p1 (w >= 0: the shorter arc), its
       // angle phi and unit axis k; the relative translation in the frame
@@ -385,9 +385,13 @@ class KeyframeModel final : public SegmentModel {
       for (int i = 0; i < 4; ++i) q[i] = Jet(p0_[i]);
       unit = false;  // nlerp's quaternions are as written
     } else if (how_ == Interpolation::Slerp || how_ == Interpolation::Screw) {
-      // q(s) = (sin((1 - s) theta) p0 + sin(s theta) p1) / sin(theta).
-      const Jet a = sin(theta_ * (one - s)), b = sin(theta_ * s);
-      const Interval inv = Interval(1) / sin_theta_;
+      // q(s) = (sin((1 - s) theta) p0 + sin(s theta) p1) / sin(theta), written
+      // with sinc so that it stays enclosed when theta is tiny (keyframes
+      // whose rotations differ by rounding noise):
+      // sin(u theta) / sin(theta) = u sinc(u theta) / sinc(theta).
+      const Jet r = one - s;
+      const Jet a = r * sinc(theta_ * r), b = s * sinc(theta_ * s);
+      const Interval inv = Interval(1) / sinc_theta_;
       for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
     } else {  // nlerp: R(q) / |q|^2
       for (int i = 0; i < 4; ++i) q[i] = Jet(p0_[i]) + (p1_[i] - p0_[i]) * s;
@@ -421,7 +425,7 @@ class KeyframeModel final : public SegmentModel {
   bool constant_ = false;
   Quat<Interval> p0_, p1_;
   std::array<Interval, 3> t0_, t1_;
-  Interval theta_, sin_theta_;
+  Interval theta_, sinc_theta_;
   // Screw only.
   Interval phi_, along_;
   std::array<Interval, 3> k_, kc_, kkc_;
