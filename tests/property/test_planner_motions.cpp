@@ -20,6 +20,9 @@
 //              crossing of the named edge with the named triangle, found in
 //              MPFR, inside the box up to 1e-30); t lies in first_contact.
 //  (undecided) has a bracket, undecided intervals, no witness.
+//  (bracket)   for `collision` and `undecided`, no sample time before
+//              first_contact's lower end shows a certain crossing (that
+//              prefix is certified contact-free).
 //  (translation) keyframes whose rotations are all equal (pure
 //              translation): slerp, screw and nlerp give the same verdict.
 //
@@ -278,25 +281,38 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
   return "no common point of the placed features inside point_box (" + std::to_string(candidates.size()) + " crossings found)";
 }
 
+// The first sample time before `limit` (exclusive; none: the whole motion)
+// at which the configuration shows a certain crossing.
+std::optional<Exact> sampled_crossing(const KeyScene& k, int samples, const std::optional<Exact>& limit) {
+  const std::array<P3, 3> o = {pw(k.obstacle[0]), pw(k.obstacle[1]), pw(k.obstacle[2])};
+  for (std::size_t i = 0; i + 1 < k.times.size(); ++i)
+    for (int j = 0; j <= samples; ++j) {
+      const Exact t = k.times[i] + (k.times[i + 1] - k.times[i]) * Exact(j, samples);
+      if (limit && t >= *limit) return std::nullopt;
+      const auto pose = pose_at(k, t);
+      if (pose && certainly_colliding(placed_moving(k, *pose), o)) return t;
+    }
+  return std::nullopt;
+}
+
 std::string result_problem(const KeyScene& k, const CheckResult& r, int samples) {
+  if (r.verdict != Verdict::Safe) {
+    // The bracket's lower end is a certified contact-free prefix.
+    if (!r.first_contact) return "non-safe verdict without first_contact";
+    if (const auto t = sampled_crossing(k, samples, r.first_contact->first))
+      return "a certain crossing at t = " + to_string(*t) + " before first_contact";
+  }
   if (r.verdict == Verdict::Collision) {
     if (!r.witness) return "collision without a witness";
     return witness_problem(k, r);
   }
   if (r.verdict == Verdict::Undecided) {
     if (r.witness) return "undecided with a witness";
-    if (!r.first_contact || r.undecided.empty()) return "undecided without bracket or intervals";
+    if (r.undecided.empty()) return "undecided without undecided intervals";
     return "";
   }
   if (r.witness || r.first_contact || !r.undecided.empty()) return "safe with a witness, bracket or undecided interval";
-  const std::array<P3, 3> o = {pw(k.obstacle[0]), pw(k.obstacle[1]), pw(k.obstacle[2])};
-  for (std::size_t i = 0; i + 1 < k.times.size(); ++i)
-    for (int j = 0; j <= samples; ++j) {
-      const Exact t = k.times[i] + (k.times[i + 1] - k.times[i]) * Exact(j, samples);
-      const auto pose = pose_at(k, t);
-      if (pose && certainly_colliding(placed_moving(k, *pose), o))
-        return "false safe: a certain crossing at t = " + to_string(t);
-    }
+  if (const auto t = sampled_crossing(k, samples, std::nullopt)) return "false safe: a certain crossing at t = " + to_string(*t);
   return "";
 }
 

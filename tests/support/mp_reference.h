@@ -69,8 +69,10 @@ inline bool operator<(const Mp& a, const Mp& b) { return mpfr_less_p(a.get(), b.
 inline Mp mp_pi() { Mp r; mpfr_const_pi(r.get(), MPFR_RNDN); return r; }
 
 // Is the reference value inside [lo, hi] (up to kMpSlack)?
+// The slack is applied in MPFR (lo - 1e-60 would round back to lo in double).
 inline bool mp_inside(const Mp& v, double lo, double hi) {
-  return mpfr_cmp_d(v.get(), lo - kMpSlack) >= 0 && mpfr_cmp_d(v.get(), hi + kMpSlack) <= 0;
+  const Mp slack(kMpSlack);
+  return !(slack < Mp(lo) - v) && !(slack < v - Mp(hi));
 }
 inline bool mp_inside(const Mp& v, const Interval& x) { return mp_inside(v, x.inf(), x.sup()); }
 

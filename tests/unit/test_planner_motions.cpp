@@ -167,8 +167,12 @@ BOOST_AUTO_TEST_CASE(validated_functions_enclose_every_point_of_an_interval) {
       const Mp ref = atan2(Mp(yp), Mp(xp));
       BOOST_TEST(mp_inside(ref, at));
     }
-    // Narrow: the width of sin over [a, a + w] is at most w (|sin'| <= 1) plus rounding.
-    BOOST_TEST(s.sup() - s.inf() <= w + 1e-15);
+    // Narrow: the width of sin over [a, a + w] is at most w (|sin'| <= 1),
+    // plus rounding and Arb's ball radii (stored with 30-bit magnitudes,
+    // and Arb's error terms for a wide ball: Arb lowers its working
+    // precision to the accuracy of the input, observed up to 1.3 % of w).
+    BOOST_TEST(s.sup() - s.inf() <= w * 1.05 + 1e-15);
+    BOOST_TEST(c.sup() - c.inf() <= w * 1.05 + 1e-15);
   }
 }
 
@@ -543,7 +547,9 @@ BOOST_AUTO_TEST_CASE(piece_enclosures_hold_dense_samples_and_shrink_quadraticall
     double tube_whole = 0, tube_half = 0, tube_quarter = 0;
     const double worst = check_piece(c, Exact(1, 4), Exact(3, 4), mass, tube_whole);
     check_piece(c, Exact(1, 4), Exact(1, 2), mass, tube_half);
-    check_piece(c, Exact(1, 4), Exact(3, 8), mass, tube_quarter);
+    const double worst_quarter = check_piece(c, Exact(1, 4), Exact(3, 8), mass, tube_quarter);
+    BOOST_TEST_MESSAGE(c.name << ": tube [1/4,3/4] " << tube_whole << " (samples up to " << worst << "), [1/4,3/8] "
+                              << tube_quarter << " (samples up to " << worst_quarter << ")");
     check_piece(c, Exact(0), Exact(1), mass, tube_whole);  // the whole segment, ends included
     double tube_mid = 0;
     check_piece(c, Exact(1, 4), Exact(3, 4), mass, tube_mid);
@@ -551,9 +557,10 @@ BOOST_AUTO_TEST_CASE(piece_enclosures_hold_dense_samples_and_shrink_quadraticall
       // Halving the piece divides the bound by about 4 (h^2; sup |M''| over a sub-piece is no larger).
       BOOST_TEST(tube_half <= 0.26 * tube_mid + 1e-14);
       BOOST_TEST(tube_quarter <= 0.26 * tube_half + 1e-14);
-      // Not vacuous: the samples come within a sizeable fraction of the bound
-      // for motions that actually curve (the rotation's second derivative).
-      if (c.name.find("small angle") == std::string::npos) BOOST_TEST(worst >= tube_mid / 50);
+      // Not vacuous: on the small piece the samples come within a sizeable
+      // fraction of the bound (on [1/4, 3/4] nlerp's interval quotient
+      // overestimates sup |M''| up to 120 times; slerp and screw 2-3 times).
+      BOOST_TEST(worst_quarter >= tube_quarter / 10);
     }
   }
 }
