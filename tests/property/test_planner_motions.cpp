@@ -23,6 +23,9 @@
 //  (bracket)   for `collision` and `undecided`, no sample time before
 //              first_contact's lower end shows a certain crossing (that
 //              prefix is certified contact-free).
+//  (two bodies) the same with the triangle moving too, by its own 2-3
+//              keyframes whose interior time differs from the bar's (the
+//              check is cut at both bodies' breaks).
 //  (translation) keyframes whose rotations are all equal (pure
 //              translation): slerp, screw and nlerp give the same verdict.
 //
@@ -39,6 +42,7 @@
 
 #include <rapidcheck.h>
 
+#include <algorithm>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -56,7 +60,13 @@ struct KeyScene {
   std::vector<Pose> poses;
   std::vector<Exact> times;
   std::vector<Vec3E> moving;             // 2 points: a bar; 3: a triangle (body frame)
-  std::array<Vec3E, 3> obstacle;         // fixed triangle (world)
+  std::array<Vec3E, 3> obstacle;         // triangle (its own frame; the world when fixed)
+  // The obstacle's own keyframes (empty: fixed), over the same interval
+  // with other interior times, so the two bodies' pieces break at
+  // different parameters.
+  std::string obstacle_how;
+  std::vector<Pose> obstacle_poses;
+  std::vector<Exact> obstacle_times;
   std::string json;
 };
 
@@ -73,18 +83,26 @@ std::string pose_json(const Pose& p) {
   return s + "}";
 }
 
+std::string keyframes_json(const std::string& how, const std::vector<Exact>& times, const std::vector<Pose>& poses) {
+  std::ostringstream o;
+  o << "{\"type\": \"keyframes\", \"interpolation\": \"" << how << "\", \"times\": [";
+  for (std::size_t i = 0; i < times.size(); ++i) o << (i ? ", " : "") << q(times[i]);
+  o << "],\n     \"poses\": [";
+  for (std::size_t i = 0; i < poses.size(); ++i) o << (i ? ",\n       " : "") << pose_json(poses[i]);
+  o << "]}";
+  return o.str();
+}
+
 void build_json(KeyScene& k) {
   std::ostringstream o;
   o << "{\"format\": \"tmcert-scene/1\", \"epsilon\": \"1/200\", \"bodies\": [\n"
     << "  {\"name\": \"tri\", \"polygons\": [[" << vec(k.obstacle[0]) << ", " << vec(k.obstacle[1]) << ", "
-    << vec(k.obstacle[2]) << "]]},\n  {\"name\": \"mover\", ";
+    << vec(k.obstacle[2]) << "]]";
+  if (!k.obstacle_poses.empty()) o << ",\n   \"motion\": " << keyframes_json(k.obstacle_how, k.obstacle_times, k.obstacle_poses);
+  o << "},\n  {\"name\": \"mover\", ";
   if (k.moving.size() == 2) o << "\"segments\": [[" << vec(k.moving[0]) << ", " << vec(k.moving[1]) << "]]";
   else o << "\"polygons\": [[" << vec(k.moving[0]) << ", " << vec(k.moving[1]) << ", " << vec(k.moving[2]) << "]]";
-  o << ",\n   \"motion\": {\"type\": \"keyframes\", \"interpolation\": \"" << k.how << "\", \"times\": [";
-  for (std::size_t i = 0; i < k.times.size(); ++i) o << (i ? ", " : "") << q(k.times[i]);
-  o << "],\n     \"poses\": [";
-  for (std::size_t i = 0; i < k.poses.size(); ++i) o << (i ? ",\n       " : "") << pose_json(k.poses[i]);
-  o << "]}}]}";
+  o << ",\n   \"motion\": " << keyframes_json(k.how, k.times, k.poses) << "}]}";
   k.json = o.str();
 }
 
@@ -101,7 +119,7 @@ Rotation pick_rotation(bool rpy) {
   return r;
 }
 
-KeyScene pick_scene(const std::string& how, bool pure_translation) {
+KeyScene pick_scene(const std::string& how, bool pure_translation, bool moving_obstacle = false) {
   KeyScene k;
   k.how = how;
   const int n = uniform(2, 4);
@@ -127,6 +145,24 @@ KeyScene pick_scene(const std::string& how, bool pure_translation) {
   }
   const std::vector<Vec3E> obstacle = pick_triangle(-1, 1);
   k.obstacle = {obstacle[0], obstacle[1], obstacle[2]};
+  if (moving_obstacle) {
+    // 2-3 keyframes over [first, last] of the mover's times, interior time
+    // strictly between and different from the mover's.
+    k.obstacle_how = *rc::gen::element<std::string>("slerp", "screw", "nlerp");
+    k.obstacle_times = {k.times.front()};
+    if (uniform(0, 1) == 0) {
+      const Exact mid = k.times.front() + (k.times.back() - k.times.front()) * pick(0.1, 0.9);
+      RC_PRE(std::find(k.times.begin(), k.times.end(), mid) == k.times.end());
+      k.obstacle_times.push_back(mid);
+    }
+    k.obstacle_times.push_back(k.times.back());
+    for (std::size_t i = 0; i < k.obstacle_times.size(); ++i) {
+      Pose p;
+      p.translation = pick_point(-0.5, 0.5);
+      p.rotation = pick_rotation(uniform(0, 2) == 0);
+      k.obstacle_poses.push_back(p);
+    }
+  }
   build_json(k);
   return k;
 }
@@ -146,12 +182,13 @@ P3 pw(const Vec3E& v) { return {Mp(v[0]), Mp(v[1]), Mp(v[2])}; }
 // The pose at scene parameter t, independently (MPFR), or nullopt outside
 // the motion.  Screw between equal rotations is the translation (slerp's
 // formula then reduces to it too).
-std::optional<MpPose> pose_at(const KeyScene& k, const Exact& t) {
-  for (std::size_t i = 0; i + 1 < k.poses.size(); ++i) {
-    if (t < k.times[i] || t > k.times[i + 1]) continue;
-    const Exact s = (t - k.times[i]) / (k.times[i + 1] - k.times[i]);
-    const Pose &a = k.poses[i], &b = k.poses[i + 1];
-    Interpolation how = k.how == "slerp" ? Interpolation::Slerp : k.how == "screw" ? Interpolation::Screw : Interpolation::Nlerp;
+std::optional<MpPose> pose_at(const std::string& name, const std::vector<Pose>& poses, const std::vector<Exact>& times,
+                              const Exact& t) {
+  for (std::size_t i = 0; i + 1 < poses.size(); ++i) {
+    if (t < times[i] || t > times[i + 1]) continue;
+    const Exact s = (t - times[i]) / (times[i + 1] - times[i]);
+    const Pose &a = poses[i], &b = poses[i + 1];
+    Interpolation how = name == "slerp" ? Interpolation::Slerp : name == "screw" ? Interpolation::Screw : Interpolation::Nlerp;
     // The relative rotation's angle: a screw with (almost) no rotation is a translation.
     if (how == Interpolation::Screw) {
       const MpMat3 rd = mat_mul(transpose(rotation_matrix(a.rotation)), rotation_matrix(b.rotation));
@@ -162,10 +199,20 @@ std::optional<MpPose> pose_at(const KeyScene& k, const Exact& t) {
   return std::nullopt;
 }
 
+std::optional<MpPose> pose_at(const KeyScene& k, const Exact& t) { return pose_at(k.how, k.poses, k.times, t); }
+
 std::vector<P3> placed_moving(const KeyScene& k, const MpPose& pose) {
   std::vector<P3> out;
   for (const Vec3E& v : k.moving) out.push_back(apply_pose(pose, v));
   return out;
+}
+
+// The obstacle at t (fixed: as written).
+std::array<P3, 3> placed_obstacle(const KeyScene& k, const Exact& t) {
+  if (k.obstacle_poses.empty()) return {pw(k.obstacle[0]), pw(k.obstacle[1]), pw(k.obstacle[2])};
+  const auto pose = pose_at(k.obstacle_how, k.obstacle_poses, k.obstacle_times, t);
+  RC_ASSERT(pose.has_value());
+  return {apply_pose(*pose, k.obstacle[0]), apply_pose(*pose, k.obstacle[1]), apply_pose(*pose, k.obstacle[2])};
 }
 
 const Mp kSign(1e-40);
@@ -250,7 +297,8 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
   const std::string want_mover = k.moving.size() == 2 ? "mover segment 0" : "mover polygon 0";
   if (w.features[1 - tri_side] != want_mover) return "unexpected moving feature " + w.features[1 - tri_side];
   const std::vector<P3> m = placed_moving(k, *pose);
-  const std::vector<P3> o = {pw(k.obstacle[0]), pw(k.obstacle[1]), pw(k.obstacle[2])};
+  const std::array<P3, 3> oa = placed_obstacle(k, w.t);
+  const std::vector<P3> o(oa.begin(), oa.end());
   if (!w.point_box) {
     const P3 x = pw(w.point);
     if (kOn < dist_feature(x, m)) return "witness point not on the moving feature at t (distance " + std::to_string(dist_feature(x, m).to_double()) + ")";
@@ -284,13 +332,12 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
 // The first sample time before `limit` (exclusive; none: the whole motion)
 // at which the configuration shows a certain crossing.
 std::optional<Exact> sampled_crossing(const KeyScene& k, int samples, const std::optional<Exact>& limit) {
-  const std::array<P3, 3> o = {pw(k.obstacle[0]), pw(k.obstacle[1]), pw(k.obstacle[2])};
   for (std::size_t i = 0; i + 1 < k.times.size(); ++i)
     for (int j = 0; j <= samples; ++j) {
       const Exact t = k.times[i] + (k.times[i + 1] - k.times[i]) * Exact(j, samples);
       if (limit && t >= *limit) return std::nullopt;
       const auto pose = pose_at(k, t);
-      if (pose && certainly_colliding(placed_moving(k, *pose), o)) return t;
+      if (pose && certainly_colliding(placed_moving(k, *pose), placed_obstacle(k, t))) return t;
     }
   return std::nullopt;
 }
@@ -355,6 +402,23 @@ BOOST_AUTO_TEST_CASE(keyframe_verdicts_agree_with_independent_sampling) {
         RC_TAG(how, stop_label(r));
       },
       200);
+}
+
+BOOST_AUTO_TEST_CASE(two_moving_bodies_with_different_breaks_agree_with_independent_sampling) {
+  check_cases(
+      [] {
+        const std::string how = *rc::gen::element<std::string>("slerp", "screw", "nlerp");
+        const KeyScene k = pick_scene(how, false, true);
+        const auto scene = parse_or_discard(k);
+        RC_PRE(scene.has_value());
+        const SceneResult result = verify_scene(*scene, planner_options());
+        RC_ASSERT(result.checks.size() == 1u);
+        const CheckResult& r = result.checks[0];
+        const std::string problem = result_problem(k, r, 200);
+        if (!problem.empty()) RC_FAIL(fail_text(k, r, problem));
+        RC_TAG(how + "/" + k.obstacle_how, stop_label(r));
+      },
+      100);
 }
 
 BOOST_AUTO_TEST_CASE(pure_translations_give_the_same_verdict_for_every_interpolation) {
