@@ -55,14 +55,14 @@ inline Jet cos(const Jet& a) {
 
 // sinc(x) = sin(x)/x (1 at 0), well defined and enclosed near 0 where
 // sin(x)/x on intervals would divide by an interval holding 0.  For
-// |x| <= 1/2 (every point of x.v) the alternating series
+// |x| <= 2^-9 (every point of x.v) the alternating series
 // 1 - x^2/6 + x^4/120 - ... is used with its first omitted term as the
 // bound of the rest, for the value and for the first two derivatives (the
 // derived series alternate with decreasing terms there too:
 // proofs/enclosures.md section 2); elsewhere sin(x)/x.
 inline Jet sinc(const Jet& x) {
   const double m = std::max(std::abs(x.v.inf()), std::abs(x.v.sup()));
-  if (!(m <= 0.5)) return sin(x) / x;
+  if (!(m <= 0x1p-9)) return sin(x) / x;
   const Interval v = x.v, v2 = CGAL::square(v), v3 = v2 * v, v4 = CGAL::square(v2), v5 = v4 * v;
   // p(v) = 1 - v^2/6 + v^4/120, p' = -v/3 + v^3/30, p'' = -1/3 + v^2/10, and
   // remainders bounded by v^6/5040, 6|v|^5/5040, 30 v^4/5040.

@@ -389,10 +389,19 @@ class KeyframeModel final : public SegmentModel {
       // with sinc so that it stays enclosed when theta is tiny (keyframes
       // whose rotations differ by rounding noise):
       // sin(u theta) / sin(theta) = u sinc(u theta) / sinc(theta).
+      // The sinc form only for small angles (below 2^-10, where the
+      // series is accurate to about 1e-22); the sine form elsewhere, whose
+      // divisor sin(theta) is a constant away from 0.
       const Jet r = one - s;
-      const Jet a = r * sinc(theta_ * r), b = s * sinc(theta_ * s);
-      const Interval inv = Interval(1) / sinc_theta_;
-      for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
+      if (theta_.inf() > 0x1p-10) {
+        const Jet a = sin(theta_ * r), b = sin(theta_ * s);
+        const Interval inv = Interval(1) / validated::sin(theta_);
+        for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
+      } else {
+        const Jet a = r * sinc(theta_ * r), b = s * sinc(theta_ * s);
+        const Interval inv = Interval(1) / sinc_theta_;
+        for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
+      }
     } else {  // nlerp: R(q) / |q|^2
       for (int i = 0; i < 4; ++i) q[i] = Jet(p0_[i]) + (p1_[i] - p0_[i]) * s;
       unit = false;
