@@ -451,7 +451,7 @@ std::string result_problem(const KeyScene& k, const CheckResult& r, int samples)
     // The bracket's lower end is a certified contact-free prefix.
     if (!r.first_contact) return "non-safe verdict without first_contact";
     if (const auto t = sampled_crossing(k, samples, r.first_contact->first))
-      return "a certain crossing at t = " + to_string(*t) + " before first_contact";
+      return "a certain contact (crossing, or distance within the clearance or reach) at t = " + to_string(*t) + " before first_contact";
   }
   if (r.verdict == Verdict::Collision) {
     if (!r.witness) return "collision without a witness";
@@ -463,7 +463,7 @@ std::string result_problem(const KeyScene& k, const CheckResult& r, int samples)
     return "";
   }
   if (r.witness || r.first_contact || !r.undecided.empty()) return "safe with a witness, bracket or undecided interval";
-  if (const auto t = sampled_crossing(k, samples, std::nullopt)) return "false safe: a certain crossing at t = " + to_string(*t);
+  if (const auto t = sampled_crossing(k, samples, std::nullopt)) return "false safe: a certain contact (crossing, or distance within the clearance or reach) at t = " + to_string(*t);
   return "";
 }
 
