@@ -26,12 +26,21 @@
 //  (two bodies) the same with the triangle moving too, by its own 2-3
 //              keyframes whose interior time differs from the bar's (the
 //              check is cut at both bodies' breaks).
+//  (clearance, tolerance) the same scenes with a scene clearance d or a
+//              tolerance r of the mover: `safe` (and the prefix before
+//              first_contact) must show no sample at a distance below d, or
+//              below r / sqrt(W) (a translation by v, |v| sqrt(W) <= r, is
+//              admissible; W the mover's mass sum); a clearance witness's
+//              two points lie on the named features at t, at most d apart
+//              (exactly); a toleranced witness's displacement has
+//              |v|^2 W <= r^2 (exactly) and its point lies on the displaced
+//              mover and on the obstacle.
 //  (translation) keyframes whose rotations are all equal (pure
 //              translation): slerp, screw and nlerp give the same verdict.
 //
-// Run: `tmcert_property --run_test=planner_motions` (about 30-60 s with the
+// Run: `tmcert_property --run_test=planner_motions` (about 20-40 s with the
 // default 100 cases: the MPFR sampling dominates).  Larger run:
-//   RC_PARAMS="max_success=1000 seed=N" tmcert_property --run_test=planner_motions
+//   RC_PARAMS="max_success=500 seed=N" tmcert_property --run_test=planner_motions  (2250 cases, ~280 s)
 // The seed is printed at the start of the run; a failure prints the scene
 // as tmcert-scene/1 JSON (run `tmcert verify` on it) and the reproduce line.
 
@@ -67,6 +76,9 @@ struct KeyScene {
   std::string obstacle_how;
   std::vector<Pose> obstacle_poses;
   std::vector<Exact> obstacle_times;
+  // Scene clearance and the mover's tolerance (0: none); W = the sum of the
+  // mover's default mass weights, read back from the parsed scene.
+  Exact clearance = 0, tolerance = 0, weight_sum = 1;
   std::string json;
 };
 
@@ -95,13 +107,16 @@ std::string keyframes_json(const std::string& how, const std::vector<Exact>& tim
 
 void build_json(KeyScene& k) {
   std::ostringstream o;
-  o << "{\"format\": \"tmcert-scene/1\", \"epsilon\": \"1/200\", \"bodies\": [\n"
+  o << "{\"format\": \"tmcert-scene/1\", \"epsilon\": \"1/200\", ";
+  if (k.clearance > 0) o << "\"clearance\": " << q(k.clearance) << ", ";
+  o << "\"bodies\": [\n"
     << "  {\"name\": \"tri\", \"polygons\": [[" << vec(k.obstacle[0]) << ", " << vec(k.obstacle[1]) << ", "
     << vec(k.obstacle[2]) << "]]";
   if (!k.obstacle_poses.empty()) o << ",\n   \"motion\": " << keyframes_json(k.obstacle_how, k.obstacle_times, k.obstacle_poses);
   o << "},\n  {\"name\": \"mover\", ";
   if (k.moving.size() == 2) o << "\"segments\": [[" << vec(k.moving[0]) << ", " << vec(k.moving[1]) << "]]";
   else o << "\"polygons\": [[" << vec(k.moving[0]) << ", " << vec(k.moving[1]) << ", " << vec(k.moving[2]) << "]]";
+  if (k.tolerance > 0) o << ", \"tolerance\": " << q(k.tolerance);
   o << ",\n   \"motion\": " << keyframes_json(k.how, k.times, k.poses) << "}]}";
   k.json = o.str();
 }
@@ -240,7 +255,9 @@ bool certainly_colliding(const std::vector<P3>& m, const std::array<P3, 3>& o) {
 }
 
 // Distance from x to the closed segment ab or triangle abc (MPFR; brute
-// force over the projection and the edges).
+// force over the projection and the edges).  Every distance computed here is
+// between two actual points of the features, so it is an upper bound of the
+// true distance (up to MPFR's 2^-240).
 Mp dist_segment(const P3& x, const P3& a, const P3& b) {
   const P3 d = psub(b, a);
   Mp t = pdot(psub(x, a), d) / pdot(d, d);
@@ -261,6 +278,53 @@ Mp dist_feature(const P3& x, const std::vector<P3>& f) {
   Mp best = dist_segment(x, f[0], f[1]);
   for (const Mp& d : {dist_segment(x, f[1], f[2]), dist_segment(x, f[2], f[0])})
     if (d < best) best = d;
+  return best;
+}
+
+// An upper bound of the distance between two segments: the clamped
+// closest-point parameters of the lines, then each end against the other.
+Mp dist_seg_seg(const P3& p0, const P3& p1, const P3& q0, const P3& q1) {
+  Mp best = dist_segment(p0, q0, q1);
+  for (const Mp& d : {dist_segment(p1, q0, q1), dist_segment(q0, p0, p1), dist_segment(q1, p0, p1)})
+    if (d < best) best = d;
+  const P3 d1 = psub(p1, p0), d2 = psub(q1, q0), r = psub(p0, q0);
+  const Mp a = pdot(d1, d1), b = pdot(d1, d2), c = pdot(d2, d2), d = pdot(d1, r), e = pdot(d2, r);
+  const Mp den = a * c - b * b;
+  if (Mp(1e-40) < den) {
+    const Mp s = (b * e - c * d) / den, t = (a * e - b * d) / den;
+    if (!(s < Mp(0)) && !(Mp(1) < s) && !(t < Mp(0)) && !(Mp(1) < t)) {
+      const P3 x = {p0[0] + s * d1[0], p0[1] + s * d1[1], p0[2] + s * d1[2]};
+      const P3 y = {q0[0] + t * d2[0], q0[1] + t * d2[1], q0[2] + t * d2[2]};
+      const P3 g = psub(x, y);
+      const Mp dd = sqrt(pdot(g, g));
+      if (dd < best) best = dd;
+    }
+  }
+  return best;
+}
+
+// An upper bound of the distance between the placed mover and obstacle
+// (0 when an edge certainly crosses the other's triangle; otherwise the
+// least of the vertex-feature and edge-edge distances, where the minimum
+// of two disjoint polytopes is attained).
+Mp upper_distance(const std::vector<P3>& m, const std::array<P3, 3>& o) {
+  if (certainly_colliding(m, o)) return Mp(0);
+  const std::vector<P3> ov(o.begin(), o.end());
+  Mp best = dist_feature(m[0], ov);
+  for (const P3& x : m) {
+    const Mp d = dist_feature(x, ov);
+    if (d < best) best = d;
+  }
+  for (const P3& x : ov) {
+    const Mp d = dist_feature(x, m);
+    if (d < best) best = d;
+  }
+  const std::size_t me = m.size() == 2 ? 1 : 3;
+  for (std::size_t i = 0; i < me; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Mp d = dist_seg_seg(m[i], m[(i + 1) % m.size()], ov[j], ov[(j + 1) % 3]);
+      if (d < best) best = d;
+    }
   return best;
 }
 
@@ -299,6 +363,34 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
   const std::vector<P3> m = placed_moving(k, *pose);
   const std::array<P3, 3> oa = placed_obstacle(k, w.t);
   const std::vector<P3> o(oa.begin(), oa.end());
+  if (w.points) {
+    // Clearance: one exact point on each body, in the check's order, no
+    // farther apart than the clearance.
+    if (k.clearance == 0) return "points without a clearance";
+    const Vec3E d = testing::sub((*w.points)[0], (*w.points)[1]);
+    if (testing::dot(d, d) > k.clearance * k.clearance) return "clearance witness points farther apart than the clearance";
+    const std::vector<P3>& f0 = tri_side == 0 ? o : m;
+    const std::vector<P3>& f1 = tri_side == 0 ? m : o;
+    if (kOn < dist_feature(pw((*w.points)[0]), f0)) return "clearance witness point 0 not on its feature";
+    if (kOn < dist_feature(pw((*w.points)[1]), f1)) return "clearance witness point 1 not on its feature";
+    return "";
+  }
+  if (w.displacement) {
+    // Tolerance: the mover translated by the displacement (within its
+    // tolerance: |v|^2 W <= r^2) touches the obstacle at `point`.
+    if (k.tolerance == 0) return "displacement without a tolerance";
+    const int mover_side = 1 - tri_side;
+    if (w.displaced != mover_side) return "displaced body is not the mover (the only one with a tolerance)";
+    const Vec3E& v = *w.displacement;
+    if (testing::dot(v, v) * k.weight_sum > k.tolerance * k.tolerance) return "displacement beyond the tolerance";
+    std::vector<P3> moved = m;
+    for (P3& x : moved)
+      for (int c = 0; c < 3; ++c) x[c] = x[c] + Mp(v[c]);
+    const P3 x = pw(w.point);
+    if (kOn < dist_feature(x, moved)) return "toleranced witness point not on the displaced mover";
+    if (kOn < dist_feature(x, o)) return "toleranced witness point not on the obstacle";
+    return "";
+  }
   if (!w.point_box) {
     const P3 x = pw(w.point);
     if (kOn < dist_feature(x, m)) return "witness point not on the moving feature at t (distance " + std::to_string(dist_feature(x, m).to_double()) + ")";
@@ -330,14 +422,26 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
 }
 
 // The first sample time before `limit` (exclusive; none: the whole motion)
-// at which the configuration shows a certain crossing.
+// at which the configuration shows a certain crossing (with a clearance or
+// a tolerance: a distance certainly within reach of a contact).
 std::optional<Exact> sampled_crossing(const KeyScene& k, int samples, const std::optional<Exact>& limit) {
   for (std::size_t i = 0; i + 1 < k.times.size(); ++i)
     for (int j = 0; j <= samples; ++j) {
       const Exact t = k.times[i] + (k.times[i + 1] - k.times[i]) * Exact(j, samples);
       if (limit && t >= *limit) return std::nullopt;
       const auto pose = pose_at(k, t);
-      if (pose && certainly_colliding(placed_moving(k, *pose), placed_obstacle(k, t))) return t;
+      if (!pose) continue;
+      const std::vector<P3> m = placed_moving(k, *pose);
+      const std::array<P3, 3> o = placed_obstacle(k, t);
+      if (k.clearance == 0 && k.tolerance == 0) {
+        if (certainly_colliding(m, o)) return t;
+        continue;
+      }
+      // Clearance d: a distance below d violates it.  Tolerance r: a
+      // translation by v with |v| sqrt(W) <= r is admissible, so a distance
+      // below r / sqrt(W) is reached by an admissible motion.
+      const Mp threshold = k.clearance > 0 ? Mp(k.clearance) : Mp(k.tolerance) / sqrt(Mp(k.weight_sum));
+      if (upper_distance(m, o) < threshold - Mp(1e-20)) return t;
     }
   return std::nullopt;
 }
@@ -347,7 +451,7 @@ std::string result_problem(const KeyScene& k, const CheckResult& r, int samples)
     // The bracket's lower end is a certified contact-free prefix.
     if (!r.first_contact) return "non-safe verdict without first_contact";
     if (const auto t = sampled_crossing(k, samples, r.first_contact->first))
-      return "a certain crossing at t = " + to_string(*t) + " before first_contact";
+      return "a certain contact (crossing, or distance within the clearance or reach) at t = " + to_string(*t) + " before first_contact";
   }
   if (r.verdict == Verdict::Collision) {
     if (!r.witness) return "collision without a witness";
@@ -359,7 +463,7 @@ std::string result_problem(const KeyScene& k, const CheckResult& r, int samples)
     return "";
   }
   if (r.witness || r.first_contact || !r.undecided.empty()) return "safe with a witness, bracket or undecided interval";
-  if (const auto t = sampled_crossing(k, samples, std::nullopt)) return "false safe: a certain crossing at t = " + to_string(*t);
+  if (const auto t = sampled_crossing(k, samples, std::nullopt)) return "false safe: a certain contact (crossing, or distance within the clearance or reach) at t = " + to_string(*t);
   return "";
 }
 
@@ -417,6 +521,29 @@ BOOST_AUTO_TEST_CASE(two_moving_bodies_with_different_breaks_agree_with_independ
         const std::string problem = result_problem(k, r, 200);
         if (!problem.empty()) RC_FAIL(fail_text(k, r, problem));
         RC_TAG(how + "/" + k.obstacle_how, stop_label(r));
+      },
+      100);
+}
+
+BOOST_AUTO_TEST_CASE(clearance_and_tolerance_agree_with_independent_sampling) {
+  check_cases(
+      [] {
+        const std::string how = *rc::gen::element<std::string>("slerp", "screw", "nlerp");
+        KeyScene k = pick_scene(how, false);
+        const Exact amount = *rc::gen::element(Exact(1, 20), Exact(1, 10), Exact(1, 4));
+        const bool clearance = uniform(0, 1) == 0;
+        (clearance ? k.clearance : k.tolerance) = amount;
+        build_json(k);
+        const auto scene = parse_or_discard(k);
+        RC_PRE(scene.has_value());
+        k.weight_sum = 0;
+        for (const Exact& w : scene->bodies[1].mass.weights) k.weight_sum += w;
+        RC_ASSERT(scene->bodies[1].name == std::string("mover"));
+        const SceneResult result = verify_scene(*scene, planner_options());
+        const CheckResult& r = result.checks[0];
+        const std::string problem = result_problem(k, r, 100);
+        if (!problem.empty()) RC_FAIL(fail_text(k, r, problem));
+        RC_TAG(clearance ? "clearance" : "tolerance", stop_label(r));
       },
       100);
 }

@@ -565,6 +565,40 @@ BOOST_AUTO_TEST_CASE(piece_enclosures_hold_dense_samples_and_shrink_quadraticall
   }
 }
 
+BOOST_AUTO_TEST_CASE(metric_norm_upper_bounds_the_exact_norm_tightly) {
+  Rng r(21);
+  const MassDistribution mass = tetra_mass();
+  const Metric metric = Metric::from_mass(mass);
+  const std::array<Interval, 16> g = moment_interval(mass);
+  for (int k = 0; k < 200; ++k) {
+    Mat34E x;
+    for (Exact& e : x) e = r.q(-50, 50, 7);
+    PoseInterval xi;
+    for (int e = 0; e < 12; ++e) xi[e] = to_interval(x[e]);
+    double up;
+    {
+      RoundingGuard guard;
+      up = metric_norm_upper(xi, g);
+    }
+    const Mp exact = sqrt(Mp(metric.norm2(x)));
+    BOOST_TEST(mpfr_cmp_d(exact.get(), up) <= 0);               // an upper bound ...
+    BOOST_TEST(up <= exact.to_double() * (1 + 1e-12) + 1e-300);  // ... and a tight one
+  }
+  // Intervals: the bound covers every matrix inside.
+  PoseInterval wide;
+  for (int e = 0; e < 12; ++e) wide[e] = Interval(-0.5, 1.0);
+  double up;
+  {
+    RoundingGuard guard;
+    up = metric_norm_upper(wide, g);
+  }
+  Mat34E corner;
+  for (int e = 0; e < 12; ++e) corner[e] = e % 2 ? Exact(1) : Exact(-1, 2);
+  BOOST_TEST(mpfr_cmp_d(sqrt(Mp(metric.norm2(corner))).get(), up) <= 0);
+  for (int e = 0; e < 12; ++e) corner[e] = 1;
+  BOOST_TEST(mpfr_cmp_d(sqrt(Mp(metric.norm2(corner))).get(), up) <= 0);
+}
+
 // ------------------------------------------------------------------ certain crossings
 
 namespace {
