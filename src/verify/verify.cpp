@@ -226,6 +226,49 @@ std::optional<Mat34E> start_pose(const Body& b) {
   return Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 }
 
+// The start pose enclosed (exact poses as point intervals).
+PoseInterval start_pose_enclosed(const Body& b) {
+  if (const auto m = start_pose(b)) {
+    PoseInterval out;
+    for (int e = 0; e < 12; ++e) out[e] = to_interval((*m)[e]);
+    return out;
+  }
+  const MotionSegment& first = b.trajectory->segments.front();
+  RoundingGuard guard;
+  return interval_pose(first.from);
+}
+
+// The boxes of the two bodies at their start poses (enclosures of every
+// vertex image) are disjoint: neither body holds a point of the other there.
+bool start_boxes_disjoint(const Body& x, const Body& y) {
+  std::array<std::array<double, 3>, 2> lo, hi;
+  int k = 0;
+  for (const Body* b : {&x, &y}) {
+    const PoseInterval m = start_pose_enclosed(*b);
+    lo[k].fill(std::numeric_limits<double>::infinity());
+    hi[k].fill(-std::numeric_limits<double>::infinity());
+    RoundingGuard guard;
+    auto add = [&](const Vec3E& v) {
+      const Interval p[3] = {to_interval(v[0]), to_interval(v[1]), to_interval(v[2])};
+      for (int i = 0; i < 3; ++i) {
+        const Interval c = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+        lo[k][i] = std::min(lo[k][i], c.inf());
+        hi[k][i] = std::max(hi[k][i], c.sup());
+      }
+    };
+    for (const auto& poly : b->polygons) for (const Vec3E& v : poly) add(v);
+    for (const auto& seg : b->segments) for (const Vec3E& v : seg) add(v);
+    for (const Vec3E& v : b->points) add(v);
+    ++k;
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(lo[0][i]) || !std::isfinite(hi[0][i]) || !std::isfinite(lo[1][i]) || !std::isfinite(hi[1][i]))
+      return false;
+    if (hi[0][i] < lo[1][i] || hi[1][i] < lo[0][i]) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 CheckResult Verifier::check(int a, int b) const { return check(a, b, Exact(0)); }
@@ -261,9 +304,12 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
         throw InputError(scene_.source + ": body \"" + body->name + "\": solid: " + problem);
   if (x.solid || y.solid) {
     const Exact t0 = mx ? x.interval()->first : my ? y.interval()->first : x.motion ? x.motion->t0 : y.motion ? y.motion->t0 : Exact(0);
-    // The start containment needs both start poses exactly; an enclosed
-    // (rpy) start pose leaves it open, and with it the whole check.
-    if (!start_pose(x) || !start_pose(y)) {
+    // The start containment needs both start poses exactly; with an
+    // enclosed (rpy) start pose it is settled only when the bodies' boxes
+    // at the start are disjoint (then neither holds a point of the other),
+    // else it is left open, and with it the whole check.
+    const bool exact_start = start_pose(x) && start_pose(y);
+    if (!exact_start && !start_boxes_disjoint(x, y)) {
       CheckResult result;
       result.bodies = {a, b};
       result.clearance = clearance;
@@ -273,7 +319,7 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
       result.first_contact = range;
       return result;
     }
-    for (int side = 0; side < 2; ++side) {
+    for (int side = 0; side < 2 && exact_start; ++side) {
       const int solid = side == 0 ? a : b, other = side == 0 ? b : a;
       if (!scene_.bodies[solid].solid) continue;
       const ClosedSurface* surface = start_surface(solid);
