@@ -1,7 +1,9 @@
 // Valid inputs that used to take minutes: two motionless 5 000-triangle
 // surfaces (the fixed-fixed start test ran an exact test on each of the 25
 // million simplex pairs, 160-320 s; now the interval filter and sweep of the
-// moving start test).  The time bounds are generous (a loaded 2-core
+// moving start test), and a non-convex polygon of 10 000 vertices (ear
+// clipping and the pairwise simplicity test, 52 s; now a constrained
+// Delaunay triangulation).  The time bounds are generous (a loaded 2-core
 // machine); the old code exceeded them many times over.
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
@@ -72,6 +74,46 @@ BOOST_AUTO_TEST_CASE(two_motionless_5000_triangle_surfaces) {
   BOOST_REQUIRE(touch.checks[0].witness);
   const Vec3E expected{Exact(20), Exact(30), Exact(2 * ((7 * 20 + 13 * 30) % 11), 20)};
   BOOST_TEST((touch.checks[0].witness->point == expected));
+}
+
+BOOST_AUTO_TEST_CASE(a_star_polygon_of_10000_vertices) {
+  // Radii 1 and 1/2 alternating, coordinates rounded to 1e-7 (rational).
+  const int n = 10000;
+  std::string polygon = "[";
+  std::vector<std::array<long, 2>> xy;
+  for (int k = 0; k < n; ++k) {
+    const double angle = 2 * M_PI * k / n, r = k % 2 ? 0.5 : 1.0;
+    xy.push_back({std::lround(r * std::cos(angle) * 1e7), std::lround(r * std::sin(angle) * 1e7)});
+    polygon += (k ? ",[\"" : "[\"") + std::to_string(xy.back()[0]) + "/10000000\",\"" + std::to_string(xy.back()[1]) +
+               "/10000000\",0]";
+  }
+  polygon += "]";
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = tmcert::parse_scene_text(
+      R"({"format": "tmcert-scene/1", "bodies": [{"name": "star", "polygons": [)" + polygon +
+          R"(]}, {"name": "p", "points": [[0, 0, 5]], "motion": {"type": "rational_bezier", "control_points": )"
+          R"([[[1,0,0,-3],[0,1,0,0],[0,0,1,0]], [[1,0,0,3],[0,1,0,0],[0,0,1,0]]]}}]})",
+      "star.json");
+  const double took = seconds_since(start);
+  BOOST_TEST(took < 10.0, "reading a 10000-vertex polygon took " << took << " s");
+  // n - 2 triangles of polygon vertices whose areas add up to the polygon's.
+  const auto& pieces = scene.bodies[0].pieces;
+  BOOST_TEST(pieces.size() == static_cast<std::size_t>(n - 2));
+  std::set<Vec3E> vertices(scene.bodies[0].polygons[0].begin(), scene.bodies[0].polygons[0].end());
+  Exact polygon_area2 = 0, pieces_area2 = 0;
+  const auto& poly = scene.bodies[0].polygons[0];
+  for (std::size_t i = 0; i < poly.size(); ++i)
+    polygon_area2 += poly[i][0] * poly[(i + 1) % poly.size()][1] - poly[i][1] * poly[(i + 1) % poly.size()][0];
+  for (const auto& piece : pieces) {
+    BOOST_REQUIRE(piece.vertices.size() == 3u);
+    for (const Vec3E& v : piece.vertices) BOOST_TEST(vertices.count(v) == 1u);
+    const Vec3E &a = piece.vertices[0], &b = piece.vertices[1], &c = piece.vertices[2];
+    const Exact area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    BOOST_TEST(CGAL::sign(area2) == CGAL::sign(polygon_area2));  // the polygon's orientation
+    pieces_area2 += area2;
+  }
+  BOOST_TEST(pieces_area2 == polygon_area2);
+  BOOST_TEST(verify(scene).verdict == tmcert::Verdict::Safe);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
