@@ -4,6 +4,7 @@
 #pragma once
 
 #include "src/verify/kernel_policies.h"
+#include "src/verify/solid_contact.h"
 
 #include <algorithm>
 #include <atomic>
@@ -330,6 +331,34 @@ struct Check {
     if (auto hit = static_test(u, all ? nullptr : &parts)) {
       set_witness(u, *hit);
       return true;
+    }
+    return interior_witness(u);
+  }
+
+  // A solid's inside counts as contact: a vertex of one body inside a
+  // solid body at u, exactly, is a collision there, so an interpenetration
+  // lasting a moment is proven even when the surfaces meet only at
+  // irrational times.  One vertex per connected component suffices when
+  // the surfaces do not meet at u (proofs/containment.md §5); any vertex
+  // found inside is a witness whatever the surfaces do.
+  bool interior_witness(const Exact& u) {
+    if (!moving.body->solid && !other.body->solid) return false;
+    const Mat34E pose[2] = {evaluate<B>(curve, u, 0), B == 2 ? evaluate<B>(curve, u, B - 1) : fixed_pose(*other.body)};
+    const Body* body[2] = {moving.body, other.body};
+    for (int s = 0; s < 2; ++s) {
+      if (!body[s]->solid) continue;
+      const std::unique_ptr<ClosedSurface> surface = placed_surface(*body[s], pose[s]);
+      if (!surface) continue;  // singular: the solid is its surface, tested above
+      for (const auto& [part, point] : component_representatives(*body[1 - s], pose[1 - s])) {
+        ++result.stats.static_tests;
+        if (!surface->contains(point)) continue;
+        std::array<std::string, 2> names;
+        names[s] = body[s]->name + " interior";
+        names[1 - s] = body[1 - s]->name + " " + part;
+        result.witness = Witness{scene_t(u), swapped ? std::array{names[1], names[0]} : names, point};
+        result.verdict = Verdict::Collision;
+        return true;
+      }
     }
     return false;
   }
