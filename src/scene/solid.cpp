@@ -8,6 +8,8 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -50,8 +52,9 @@ std::string text(const Vec3E& v) {
 
 }  // namespace
 
-std::vector<int> polygon_shells(const Body& b) {
-  const Edges edges(b);
+namespace {
+
+std::vector<int> shells_of(const Body& b, const Edges& edges) {
   std::vector<std::size_t> parent(b.polygons.size());
   std::iota(parent.begin(), parent.end(), std::size_t{0});
   auto find = [&](std::size_t i) {
@@ -69,6 +72,10 @@ std::vector<int> polygon_shells(const Body& b) {
   }
   return shell;
 }
+
+}  // namespace
+
+std::vector<int> polygon_shells(const Body& b) { return shells_of(b, Edges(b)); }
 
 // Every edge in exactly two polygons: each shell (the polygons linked by
 // their edges) is closed.  No segments or points, whose "inside" would mean
@@ -106,23 +113,106 @@ SimplexI enclose(const Simplex& s) {
   return out;
 }
 
-// Do the closed simplices meet?  Exact; the interval filter only skips
-// pairs it proves disjoint.
+// In-plane separating axes for triangles in (nearly) one plane, where the
+// axes of certainly_disjoint (normals, edge cross products) all point out
+// of the plane: n x e for each edge e of each triangle (a fixed axis needs
+// no rigour; the interval projections decide).  Call under RoundingGuard.
+bool separated_in_plane(const SimplexI& a, const SimplexI& b) {
+  using V = std::array<double, 3>;
+  auto mid = [](const std::array<Interval, 3>& x) {
+    return V{CGAL::to_double(x[0]), CGAL::to_double(x[1]), CGAL::to_double(x[2])};
+  };
+  auto cross = [](const V& x, const V& y) {
+    return V{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+  };
+  auto diff = [](const V& x, const V& y) { return V{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+  auto range = [](const SimplexI& s, const V& n, double& lo, double& hi) {
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    for (int i = 0; i < s.count; ++i) {
+      const Interval d = s.p[i][0] * n[0] + s.p[i][1] * n[1] + s.p[i][2] * n[2];
+      if (std::isnan(d.inf()) || std::isnan(d.sup())) return false;
+      lo = std::min(lo, d.inf());
+      hi = std::max(hi, d.sup());
+    }
+    return true;
+  };
+  for (const SimplexI* t : {&a, &b}) {
+    if (t->count != 3) continue;
+    const V p[3] = {mid(t->p[0]), mid(t->p[1]), mid(t->p[2])};
+    const V normal = cross(diff(p[1], p[0]), diff(p[2], p[0]));
+    for (int k = 0; k < 3; ++k) {
+      const V axis = cross(normal, diff(p[(k + 1) % 3], p[k]));
+      if (!std::isfinite(axis[0]) || !std::isfinite(axis[1]) || !std::isfinite(axis[2])) continue;
+      double alo, ahi, blo, bhi;
+      if (!range(a, axis, alo, ahi) || !range(b, axis, blo, bhi)) continue;
+      if (ahi < blo || bhi < alo) return true;
+    }
+  }
+  return false;
+}
+
+// Do the closed simplices meet?  Exact; the interval filters only skip
+// pairs they prove disjoint.
 bool meet(const Simplex& a, const Simplex& b) {
   {
     RoundingGuard guard;
-    if (certainly_disjoint(enclose(a), enclose(b))) return false;
+    const SimplexI ia = enclose(a), ib = enclose(b);
+    if (certainly_disjoint(ia, ib) || separated_in_plane(ia, ib)) return false;
   }
   return common_point(a, b).has_value();
 }
 
-bool polygon_has_edge(const std::vector<Vec3E>& poly, const Vec3E& a, const Vec3E& b) {
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Vec3E& u = poly[i];
-    const Vec3E& w = poly[(i + 1) % poly.size()];
-    if ((u == a && w == b) || (u == b && w == a)) return true;
+// The sign of det(b - a, c - a, d - a) (coplanarity of four points), or of
+// the orientation of d relative to the edge ab seen against c in their
+// common plane: an interval filter, exact when unsure.
+int orientation3(const Vec3E& a, const Vec3E& b, const Vec3E& c, const Vec3E& d) {
+  {
+    RoundingGuard guard;
+    std::array<Interval, 3> u, v, w;
+    for (int k = 0; k < 3; ++k) {
+      const Interval ak = to_interval(a[k]);
+      u[k] = to_interval(b[k]) - ak, v[k] = to_interval(c[k]) - ak, w[k] = to_interval(d[k]) - ak;
+    }
+    const Interval det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                         u[2] * (v[0] * w[1] - v[1] * w[0]);
+    if (det.inf() > 0) return 1;
+    if (det.sup() < 0) return -1;
+    if (det.inf() == 0 && det.sup() == 0) return 0;
   }
-  return false;
+  const K::Point_3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]), pc(c[0], c[1], c[2]), pd(d[0], d[1], d[2]);
+  return static_cast<int>(CGAL::orientation(pa, pb, pc, pd));
+}
+
+// For coplanar a, e, c, d with c and d off the line ae: are c and d on the
+// same side of it?  ((e - a) x (c - a)) . ((e - a) x (d - a)) > 0; an
+// interval filter, CGAL's exact coplanar_orientation when unsure.
+bool same_side(const Vec3E& a, const Vec3E& e, const Vec3E& c, const Vec3E& d) {
+  {
+    RoundingGuard guard;
+    std::array<Interval, 3> u, v, w;
+    for (int k = 0; k < 3; ++k) {
+      const Interval ak = to_interval(a[k]);
+      u[k] = to_interval(e[k]) - ak, v[k] = to_interval(c[k]) - ak, w[k] = to_interval(d[k]) - ak;
+    }
+    auto cross = [](const std::array<Interval, 3>& x, const std::array<Interval, 3>& y) {
+      return std::array<Interval, 3>{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    };
+    const std::array<Interval, 3> n1 = cross(u, v), n2 = cross(u, w);
+    const Interval dot = n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2];
+    if (dot.inf() > 0) return true;
+    if (dot.sup() < 0) return false;
+  }
+  const K::Point_3 pa(a[0], a[1], a[2]), pe(e[0], e[1], e[2]), pc(c[0], c[1], c[2]), pd(d[0], d[1], d[2]);
+  return CGAL::coplanar_orientation(pa, pe, pc, pd) == CGAL::POSITIVE;
+}
+
+// Is ae an edge of polygon p?  By the edge table (exact vertex ids).
+bool polygon_has_edge(const Edges& edges, const Vec3E& a, const Vec3E& e, int p) {
+  const auto ia = edges.ids.find(a), ie = edges.ids.find(e);
+  if (ia == edges.ids.end() || ie == edges.ids.end()) return false;
+  const auto it = edges.users.find({std::min(ia->second, ie->second), std::max(ia->second, ie->second)});
+  return it != edges.users.end() && std::find(it->second.begin(), it->second.end(), p) != it->second.end();
 }
 
 // Do triangles s and t, of different polygons P and Q of one shell, meet
@@ -132,7 +222,7 @@ bool polygon_has_edge(const std::vector<Vec3E>& poly, const Vec3E& a, const Vec3
 // allowed common point is a vertex common to s and t, or lies on an edge
 // common to s and t that is an edge of both P and Q (proofs/containment.md
 // §4).
-bool improper(const Body& b, const Triangle& s, const Triangle& t) {
+bool improper(const Edges& edges, const Triangle& s, const Triangle& t) {
   int in_t[3] = {-1, -1, -1};  // index in t of each vertex of s
   int shared = 0;
   for (int i = 0; i < 3; ++i)
@@ -160,13 +250,11 @@ bool improper(const Body& b, const Triangle& s, const Triangle& t) {
       while (t.v[d] == a || t.v[d] == e) ++d;
       // The common edge must be an edge of both polygons (a diagonal's
       // inside is inside its polygon).
-      if (!polygon_has_edge(b.polygons[s.polygon], a, e) || !polygon_has_edge(b.polygons[t.polygon], a, e))
-        return true;
+      if (!polygon_has_edge(edges, a, e, s.polygon) || !polygon_has_edge(edges, a, e, t.polygon)) return true;
       // In different planes they meet in the line ae, i.e. the edge; in one
       // plane, only when the far vertices lie on opposite sides of it.
-      const K::Point_3 pa(a[0], a[1], a[2]), pe(e[0], e[1], e[2]);
-      const K::Point_3 pc(s.v[c][0], s.v[c][1], s.v[c][2]), pd(t.v[d][0], t.v[d][1], t.v[d][2]);
-      return CGAL::coplanar(pa, pe, pc, pd) && CGAL::coplanar_orientation(pa, pe, pc, pd) == CGAL::POSITIVE;
+      if (orientation3(a, e, s.v[c], t.v[d]) != 0) return false;
+      return same_side(a, e, s.v[c], t.v[d]);
     }
     default:
       return true;  // the same triangle twice
@@ -176,7 +264,8 @@ bool improper(const Body& b, const Triangle& s, const Triangle& t) {
 }  // namespace
 
 std::string shell_intersection_problem(const Body& b) {
-  const std::vector<int> shell = polygon_shells(b);
+  const Edges edges(b);
+  const std::vector<int> shell = shells_of(b, edges);
   std::vector<Triangle> triangles;
   for (const ConvexPiece& piece : b.pieces)
     for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k)
@@ -203,7 +292,7 @@ std::string shell_intersection_problem(const Body& b) {
     const Triangle& s = triangles[key.first];
     const Triangle& t = triangles[key.second];
     if (s.polygon == t.polygon || shell[s.polygon] != shell[t.polygon]) return;
-    if (improper(b, s, t)) worst = key;
+    if (improper(edges, s, t)) worst = key;
   });
   if (worst.first == triangles.size()) return {};
   const int p = std::min(triangles[worst.first].polygon, triangles[worst.second].polygon);

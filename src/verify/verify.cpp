@@ -6,6 +6,7 @@
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/search.h"
+#include "src/verify/solid_contact.h"
 
 #include <CGAL/number_utils.h>
 
@@ -344,61 +345,12 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
 
 
 const ClosedSurface* Verifier::start_surface(int body) const {
-  std::call_once(surface_once_[body], [&] {
-    const Body& b = scene_.bodies[body];
-    const Mat34E m = *start_pose(b);
-    const Exact det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
-                      m[2] * (m[4] * m[9] - m[5] * m[8]);
-    if (det == 0) return;
-    // The inside is the union of the shells' insides: parity per shell.
-    const std::vector<int> polygon_shell = polygon_shells(b);
-    std::vector<std::array<Vec3E, 3>> triangles;
-    std::vector<int> shell;
-    for (const ConvexPiece& piece : b.pieces)
-      for (std::size_t k = 1; k + 1 < piece.vertices.size(); ++k) {
-        triangles.push_back({apply_map(m, piece.vertices[0]), apply_map(m, piece.vertices[k]),
-                             apply_map(m, piece.vertices[k + 1])});
-        shell.push_back(polygon_shell[piece.polygon]);
-      }
-    surfaces_[body] = std::make_unique<ClosedSurface>(std::move(triangles), std::move(shell));
-  });
+  std::call_once(surface_once_[body], [&] { surfaces_[body] = placed_surface(scene_.bodies[body], *start_pose(scene_.bodies[body])); });
   return surfaces_[body].get();
 }
 
-// One vertex per connected component of the body's polygons, segments and
-// points (features sharing a vertex are connected), placed at the start.
 std::vector<std::pair<std::string, Vec3E>> Verifier::start_representatives(const Body& b) const {
-  std::vector<std::vector<Vec3E>> parts;
-  std::vector<std::string> names;
-  for (std::size_t i = 0; i < b.polygons.size(); ++i) {
-    parts.push_back(b.polygons[i]);
-    names.push_back("polygon " + std::to_string(i) + " vertex 0");
-  }
-  for (std::size_t i = 0; i < b.segments.size(); ++i) {
-    parts.push_back({b.segments[i][0], b.segments[i][1]});
-    names.push_back("segment " + std::to_string(i) + " end 0");
-  }
-  for (std::size_t i = 0; i < b.points.size(); ++i) {
-    parts.push_back({b.points[i]});
-    names.push_back("point " + std::to_string(i));
-  }
-  std::vector<std::size_t> parent(parts.size());
-  for (std::size_t i = 0; i < parts.size(); ++i) parent[i] = i;
-  auto find = [&](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  std::map<Vec3E, std::size_t> owner;
-  for (std::size_t i = 0; i < parts.size(); ++i)
-    for (const Vec3E& v : parts[i]) {
-      auto [it, fresh] = owner.emplace(v, i);
-      if (!fresh) parent[find(i)] = find(it->second);
-    }
-  const Mat34E m = *start_pose(b);
-  std::vector<std::pair<std::string, Vec3E>> out;
-  for (std::size_t i = 0; i < parts.size(); ++i)
-    if (find(i) == i) out.emplace_back(names[i], apply_map(m, parts[i][0]));
-  return out;
+  return component_representatives(b, *start_pose(b));
 }
 
 CheckResult verify_check(const Scene& scene, int body_a, int body_b, const VerifyOptions& options) {
