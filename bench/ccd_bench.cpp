@@ -54,6 +54,7 @@ double mean(const std::vector<double>& v) {
 // Queries are generated in [-1, 1]^3 (scene size 2 per axis); epsilon is a
 // fraction of that.
 std::uint64_t g_max_stops = VerifyOptions{}.max_stops;
+std::size_t g_slowest = 0;  // --slowest K: list the K slowest checks on stderr
 
 Row run(const QuerySet& set, double fraction, std::map<std::string, Row>* by_kind, double* setup_us) {
   Row row;
@@ -136,10 +137,12 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
   const double setup_us =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - setup_start).count();
   std::map<std::string, Row> groups;
+  std::vector<std::pair<double, std::size_t>> times;
   for (std::size_t i = 0; i < scene.checks.size(); ++i) {
     const auto start = std::chrono::steady_clock::now();
     const CheckResult r = verifier.check(scene.checks[i].first, scene.checks[i].second);
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    times.emplace_back(us, i);
     const std::string group = truth[i] == 1 ? "~colliding" : truth[i] == 0 ? "~free" : "~no truth";
     for (Row* t : {&groups["all"], &groups[group]}) {
       ++t->queries;
@@ -161,6 +164,16 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
               scene_file.c_str(), scene.checks.size(), to_string(options.epsilon).c_str());
   header("checks");
   for (const auto& [name, r] : groups) print_row(name.c_str(), r, setup_us / scene.checks.size());
+  std::sort(times.rbegin(), times.rend());
+  for (std::size_t k = 0; k < std::min(g_slowest, times.size()); ++k) {
+    const std::size_t i = times[k].second;
+    const CheckResult r = verifier.check(scene.checks[i].first, scene.checks[i].second);
+    std::fprintf(stderr, "slow: check %zu (%s x %s) %.1f us: %s, truth %d, nodes %llu, exact pieces %llu, %s\n", i,
+                 scene.bodies[scene.checks[i].first].name.c_str(), scene.bodies[scene.checks[i].second].name.c_str(),
+                 times[k].first, to_string(r.verdict), truth[i], static_cast<unsigned long long>(r.stats.nodes),
+                 static_cast<unsigned long long>(r.stats.exact_pieces),
+                 r.witness ? (r.witness->root ? "irrational witness" : "rational witness") : "no witness");
+  }
   return groups["all"].false_safe == 0 && groups["all"].false_collision == 0 ? 0 : 1;
 }
 
@@ -174,6 +187,7 @@ int main(int argc, char** argv) {
       if (i + 1 >= argc) ok = false;
       else if (flag == "--truth") truth = argv[i + 1];
       else if (flag == "--max-stops") g_max_stops = std::strtoull(argv[i + 1], nullptr, 10);
+      else if (flag == "--slowest") g_slowest = std::strtoull(argv[i + 1], nullptr, 10);
       else ok = false;
     }
     if (!ok) {

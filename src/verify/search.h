@@ -3,6 +3,7 @@
 // proofs/search-and-pruning.md, proofs/witness.md).
 #pragma once
 
+#include "src/verify/exact_resolution.h"
 #include "src/verify/kernel_policies.h"
 
 #include <algorithm>
@@ -550,6 +551,25 @@ struct Check {
   // What a node's tests decided.
   enum class Outcome { Cleared, Split, Stopped, Witness };
 
+  // Exact resolution of a piece's feature pairs (src/verify/exact_resolution.h):
+  // the outcome, or nothing when it could not decide.  Early, before the
+  // stop, for the certified kernels when the few pairs left are cheaper to
+  // decide than to subdivide (continuous-collision queries at the root).
+  static constexpr std::size_t kExactEarlyWork = 16;  // alive pairs times the curve's degree
+  bool exact_early(const Node& node) const {
+    if (options.kernel == KernelKind::Fast || !options.exact_resolution) return false;
+    const std::size_t degree = curve.size() - 1;
+    if (node.alive.size() * std::max<std::size_t>(degree, 1) > kExactEarlyWork) return false;
+    return std::none_of(node.alive.begin(), node.alive.end(), [](const PairRef& p) { return p.nodes; });
+  }
+  std::optional<Outcome> decide_exactly(const Node& node) {
+    switch (decide_piece<B>(*this, node)) {
+      case ExactOutcome::Cleared: cleared(node); return Outcome::Cleared;
+      case ExactOutcome::Witness: return Outcome::Witness;
+      default: return std::nullopt;
+    }
+  }
+
   // Tests one node: prunes its pairs; on a stop, descends to feature pairs
   // and tries the witness candidates (setting the witness, or recording the
   // undecided piece); else splits it into `left` and `right`.
@@ -570,6 +590,9 @@ struct Check {
       cleared(node);
       return Outcome::Cleared;
     }
+    if (exact_early(node)) {  // few feature pairs left: decide them exactly now
+      if (const auto outcome = decide_exactly(node)) return *outcome;
+    }
     typename Policy::Ball& ball = get_ball();
     std::optional<StopReason> stop;
     if (node.depth >= std::min(options.max_depth, kDepthCap)) stop = StopReason::Depth;
@@ -583,6 +606,9 @@ struct Check {
       if (node.alive.empty()) {
         cleared(node);
         return Outcome::Cleared;
+      }
+      if (options.kernel != KernelKind::Fast && options.exact_resolution) {  // rational motions
+        if (const auto outcome = decide_exactly(node)) return *outcome;
       }
       // Witness candidates: the scene time with the smallest denominator in
       // the piece (a contact at a "round" rational time, such as 1/3 or
@@ -675,6 +701,8 @@ struct Check {
     s.slab_clears += p.slab_clears;
     s.hull_clears += p.hull_clears;
     s.axis_clears += p.axis_clears;
+    s.exact_pieces += p.exact_pieces;
+    s.exact_unknown += p.exact_unknown;
     result.cleared.insert(result.cleared.end(), part.cleared.begin(), part.cleared.end());
     for (const UndecidedInterval& u : part.undecided) {
       if (!result.undecided.empty() && result.undecided.back().t1 == u.t0 && result.undecided.back().reason == u.reason)
@@ -685,6 +713,7 @@ struct Check {
     if (part.witness) {
       result.witness = part.witness;
       result.verdict = Verdict::Collision;
+      result.first_contact_exact = part.first_contact_exact && !result.first_contact;
       const Exact lo = result.first_contact ? result.first_contact->first : part.first_contact->first;
       result.first_contact = std::pair{lo, part.first_contact->second};
       return false;
@@ -826,6 +855,7 @@ struct Check {
     if (auto hit = static_test(Exact(0), nullptr)) {
       set_witness(Exact(0), *hit);
       result.first_contact = std::pair{motion.t0, motion.t0};
+      result.first_contact_exact = true;
       return;
     }
     switch (options.kernel) {
