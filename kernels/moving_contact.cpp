@@ -7,23 +7,64 @@ namespace tmcert {
 
 namespace {
 
-using V3 = std::array<PolyQ, 3>;
+// Internally every point of one call is scaled by one positive integer to
+// integer coefficients (the predicates are homogeneous in the points, so
+// their signs do not change): GMP integers instead of rationals.
+struct ZPoint {
+  std::array<PolyZ, 3> x;
+};
+using V3 = std::array<PolyZ, 3>;
+using Points = std::vector<ZPoint>;
 
-V3 diff(const MovingPoint& a, const MovingPoint& b) { return {sub(a.x[0], b.x[0]), sub(a.x[1], b.x[1]), sub(a.x[2], b.x[2])}; }
+// The integer images of points under one common scale, and that scale.
+struct Scaled {
+  Points points;
+  Integer scale;
+};
+
+Scaled scaled(std::initializer_list<const std::vector<MovingPoint>*> groups) {
+  Integer den(1);
+  for (const auto* g : groups)
+    for (const MovingPoint& m : *g)
+      for (const PolyQ& p : m.x)
+        for (const Exact& c : p) mpz_lcm(den.mpz(), den.mpz(), c.denominator().mpz());
+  Scaled out{{}, den};
+  for (const auto* g : groups)
+    for (const MovingPoint& m : *g) {
+      ZPoint z;
+      for (int i = 0; i < 3; ++i)
+        for (const Exact& c : m.x[i]) {
+          Integer q;
+          mpz_divexact(q.mpz(), den.mpz(), c.denominator().mpz());
+          z.x[i].push_back(q * c.numerator());
+        }
+      out.points.push_back(std::move(z));
+    }
+  return out;
+}
+
+MovingPoint unscaled(const ZPoint& z) {
+  MovingPoint m;
+  for (int i = 0; i < 3; ++i)
+    for (const Integer& c : z.x[i]) m.x[i].push_back(Exact(c));
+  return m;
+}
+
+V3 diff(const ZPoint& a, const ZPoint& b) { return {sub(a.x[0], b.x[0]), sub(a.x[1], b.x[1]), sub(a.x[2], b.x[2])}; }
 
 V3 cross(const V3& a, const V3& b) {
   return {sub(mul(a[1], b[2]), mul(a[2], b[1])), sub(mul(a[2], b[0]), mul(a[0], b[2])),
           sub(mul(a[0], b[1]), mul(a[1], b[0]))};
 }
 
-PolyQ dot(const V3& a, const V3& b) { return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2])); }
+PolyZ dot(const V3& a, const V3& b) { return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2])); }
 
 bool is_zero(const V3& a) { return a[0].empty() && a[1].empty() && a[2].empty(); }
 
-CGAL::Sign sign(const PolyQ& p, RealRoot& r) { return p.empty() ? CGAL::ZERO : sign_at(primitive(p), r); }
+CGAL::Sign sign(const PolyZ& p, RealRoot& r) { return p.empty() ? CGAL::ZERO : sign_at(p, r); }
 
 bool zero_at(const V3& a, RealRoot& r) {
-  for (const PolyQ& p : a)
+  for (const PolyZ& p : a)
     if (sign(p, r) != CGAL::ZERO) return false;
   return true;
 }
@@ -31,9 +72,9 @@ bool zero_at(const V3& a, RealRoot& r) {
 // gcd of the nonzero components (their common roots); a is not zero.
 PolyZ common(const V3& a) {
   PolyZ g;
-  for (const PolyQ& p : a) {
+  for (const PolyZ& p : a) {
     if (p.empty()) continue;
-    g = g.empty() ? primitive(p) : gcd(g, primitive(p));
+    g = g.empty() ? primitive(p) : gcd(g, p);
     if (degree(g) == 0) break;
   }
   return g;
@@ -41,7 +82,7 @@ PolyZ common(const V3& a) {
 
 // The area vector of a polygon: sum of (p_k - p_0) x (p_(k+1) - p_0);
 // zero exactly when the (convex) polygon is collapsed to a segment or point.
-V3 area_vector(const std::vector<MovingPoint>& poly) {
+V3 area_vector(const Points& poly) {
   V3 n;
   for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
     const V3 c = cross(diff(poly[k], poly[0]), diff(poly[k + 1], poly[0]));
@@ -50,28 +91,152 @@ V3 area_vector(const std::vector<MovingPoint>& poly) {
   return n;
 }
 
-// Where two coplanar segments meet at r, or nothing.
-std::optional<ContactPoint> meet(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
-                                 const MovingPoint& b1, RealRoot& r) {
-  const V3 da = diff(a1, a0), db = diff(b1, b0);
+// A contact found on the integer points: its time and the indices of the
+// points that locate it (one, or the four of two edges).
+struct Found {
+  RealRoot t;
+  std::vector<int> where;
+};
+
+std::optional<Found> first(std::optional<Found> a, std::optional<Found> b) {
+  if (!a) return b;
+  if (!b) return a;
+  return compare(b->t, a->t) == CGAL::SMALLER ? b : a;
+}
+
+bool on_segment(const ZPoint& v, const ZPoint& e0, const ZPoint& e1, RealRoot& r) {
+  const V3 d = diff(e1, e0), q = diff(v, e0);
+  if (zero_at(d, r)) return zero_at(q, r);  // the segment is a point at r
+  if (!zero_at(cross(q, d), r)) return false;
+  return sign(dot(q, d), r) != CGAL::NEGATIVE && sign(dot(diff(v, e1), diff(e0, e1)), r) != CGAL::NEGATIVE;
+}
+
+// Vertex v (coplanar with the polygon at r) in the closed convex polygon.
+bool in_polygon(const ZPoint& v, const Points& poly, RealRoot& r) {
+  const V3 n = area_vector(poly);
+  const std::size_t m = poly.size();
+  if (zero_at(n, r)) {  // collapsed: the polygon is the union of its edges
+    for (std::size_t k = 0; k < m; ++k)
+      if (on_segment(v, poly[k], poly[(k + 1) % m], r)) return true;
+    return false;
+  }
+  for (std::size_t k = 0; k < m; ++k) {
+    const V3 e = diff(poly[(k + 1) % m], poly[k]);
+    if (sign(dot(cross(e, diff(v, poly[k])), n), r) == CGAL::NEGATIVE) return false;
+  }
+  return true;
+}
+
+// Where two coplanar segments (points 0 1 and 2 3 of p) meet at r: the
+// indices of the points that locate it, or nothing.
+std::optional<std::vector<int>> meet(const Points& p, RealRoot& r) {
+  const V3 da = diff(p[1], p[0]), db = diff(p[3], p[2]);
   const V3 n = cross(da, db);
   if (zero_at(n, r)) {
     // Parallel (or a segment reduced to a point): they meet exactly when an
     // endpoint of one lies on the other.
-    if (ContactSolver::on_segment(a0, b0, b1, r)) return ContactPoint{{a0}};
-    if (ContactSolver::on_segment(a1, b0, b1, r)) return ContactPoint{{a1}};
-    if (ContactSolver::on_segment(b0, a0, a1, r)) return ContactPoint{{b0}};
-    if (ContactSolver::on_segment(b1, a0, a1, r)) return ContactPoint{{b1}};
+    if (on_segment(p[0], p[2], p[3], r)) return std::vector<int>{0};
+    if (on_segment(p[1], p[2], p[3], r)) return std::vector<int>{1};
+    if (on_segment(p[2], p[0], p[1], r)) return std::vector<int>{2};
+    if (on_segment(p[3], p[0], p[1], r)) return std::vector<int>{3};
     return std::nullopt;
   }
   // In their common plane (normal n != 0): each segment's ends on opposite
   // sides of (or on) the other's line.
-  auto side = [&](const V3& d, const MovingPoint& p, const MovingPoint& o) { return sign(dot(cross(d, diff(p, o)), n), r); };
+  auto side = [&](const V3& d, const ZPoint& x, const ZPoint& o) { return sign(dot(cross(d, diff(x, o)), n), r); };
   auto opposite_or_on = [](CGAL::Sign x, CGAL::Sign y) { return static_cast<int>(x) * static_cast<int>(y) <= 0; };
-  if (!opposite_or_on(side(db, a0, b0), side(db, a1, b0))) return std::nullopt;
-  if (!opposite_or_on(side(da, b0, a0), side(da, b1, a0))) return std::nullopt;
-  return ContactPoint{{a0, a1, b0, b1}};
+  if (!opposite_or_on(side(db, p[0], p[2]), side(db, p[1], p[2]))) return std::nullopt;
+  if (!opposite_or_on(side(da, p[2], p[0]), side(da, p[3], p[0]))) return std::nullopt;
+  return std::vector<int>{0, 1, 2, 3};
 }
+
+class Solver {
+ public:
+  Solver(const Exact& u0, const Exact& u1) : u0_(u0), u1_(u1) {}
+
+  std::optional<Found> vertex_vertex(const Points& p, int a, int b) const {
+    const V3 d = diff(p[a], p[b]);
+    if (is_zero(d)) return Found{rational_root(u0_), {a}};  // the same point throughout
+    const PolyZ g = common(d);
+    if (degree(g) <= 0) return std::nullopt;
+    std::vector<RealRoot> roots = real_roots(square_free(g), u0_, u1_);
+    if (roots.empty()) return std::nullopt;
+    return Found{roots.front(), {a}};
+  }
+
+  std::optional<Found> vertex_edge(const Points& p, int v, int e0, int e1) const {
+    const V3 c = cross(diff(p[v], p[e0]), diff(p[e1], p[e0]));
+    if (is_zero(c)) {
+      // On the segment's line throughout (or the segment is a point): the
+      // vertex first meets the segment at the start or at an endpoint.
+      RealRoot start = rational_root(u0_);
+      if (on_segment(p[v], p[e0], p[e1], start)) return Found{start, {v}};
+      return first(vertex_vertex(p, v, e0), vertex_vertex(p, v, e1));
+    }
+    const PolyZ g = common(c);
+    if (degree(g) <= 0) return std::nullopt;
+    for (RealRoot& r : real_roots(square_free(g), u0_, u1_))
+      if (on_segment(p[v], p[e0], p[e1], r)) return Found{r, {v}};
+    return std::nullopt;
+  }
+
+  // Vertex p[0] and the polygon p[1..].
+  std::optional<Found> vertex_face(const Points& p) const {
+    const Points poly(p.begin() + 1, p.end());
+    const PolyZ d = dot(area_vector(poly), diff(p[0], poly[0]));
+    if (d.empty()) {
+      // In the polygon's plane throughout (or the polygon is collapsed): the
+      // vertex first meets it at the start or on an edge.
+      RealRoot start = rational_root(u0_);
+      if (in_polygon(p[0], poly, start)) return Found{start, {0}};
+      std::optional<Found> best;
+      const int m = static_cast<int>(poly.size());
+      for (int k = 0; k < m; ++k) best = first(std::move(best), vertex_edge(p, 0, 1 + k, 1 + (k + 1) % m));
+      return best;
+    }
+    for (RealRoot& r : real_roots(square_free(d), u0_, u1_))
+      if (in_polygon(p[0], poly, r)) return Found{r, {0}};
+    return std::nullopt;
+  }
+
+  // Edges p[0] p[1] and p[2] p[3].
+  std::optional<Found> edge_edge(const Points& p) const {
+    const PolyZ d = dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0]));
+    if (d.empty()) {
+      // In one plane throughout (parallel, coplanar or degenerate): the
+      // segments first meet at the start or with an endpoint on the other.
+      RealRoot start = rational_root(u0_);
+      if (auto where = meet(p, start)) return Found{start, std::move(*where)};
+      std::optional<Found> best = vertex_edge(p, 0, 2, 3);
+      best = first(std::move(best), vertex_edge(p, 1, 2, 3));
+      best = first(std::move(best), vertex_edge(p, 2, 0, 1));
+      return first(std::move(best), vertex_edge(p, 3, 0, 1));
+    }
+    for (RealRoot& r : real_roots(square_free(d), u0_, u1_))
+      if (auto where = meet(p, r)) return Found{r, std::move(*where)};
+    return std::nullopt;
+  }
+
+ private:
+  Exact u0_, u1_;
+};
+
+std::optional<Contact> contact_of(std::optional<Found> f, const Scaled& s) {
+  if (!f) return std::nullopt;
+  Contact c{std::move(f->t), {}};
+  for (int i : f->where) c.where.points.push_back(unscaled(s.points[i]));
+  c.where.scale = Exact(s.scale);
+  return c;
+}
+
+// Rational polynomial vectors (for the point box).
+using VQ = std::array<PolyQ, 3>;
+VQ diff_q(const MovingPoint& a, const MovingPoint& b) { return {sub(a.x[0], b.x[0]), sub(a.x[1], b.x[1]), sub(a.x[2], b.x[2])}; }
+VQ cross_q(const VQ& a, const VQ& b) {
+  return {sub(mul(a[1], b[2]), mul(a[2], b[1])), sub(mul(a[2], b[0]), mul(a[0], b[2])),
+          sub(mul(a[0], b[1]), mul(a[1], b[0]))};
+}
+PolyQ dot_q(const VQ& a, const VQ& b) { return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2])); }
 
 // Exact rational intervals (for the point box).
 struct Range {
@@ -107,105 +272,63 @@ std::optional<Contact> earlier(std::optional<Contact> a, std::optional<Contact> 
 }
 
 bool ContactSolver::on_segment(const MovingPoint& v, const MovingPoint& e0, const MovingPoint& e1, RealRoot& r) {
-  const V3 d = diff(e1, e0), q = diff(v, e0);
-  if (zero_at(d, r)) return zero_at(q, r);  // the segment is a point at r
-  if (!zero_at(cross(q, d), r)) return false;
-  return sign(dot(q, d), r) != CGAL::NEGATIVE && sign(dot(diff(v, e1), diff(e0, e1)), r) != CGAL::NEGATIVE;
+  const std::vector<MovingPoint> all{v, e0, e1};
+  const Scaled s = scaled({&all});
+  return ::tmcert::on_segment(s.points[0], s.points[1], s.points[2], r);
 }
 
 bool ContactSolver::in_polygon(const MovingPoint& v, const std::vector<MovingPoint>& poly, RealRoot& r) {
-  const V3 n = area_vector(poly);
-  const std::size_t m = poly.size();
-  if (zero_at(n, r)) {  // collapsed: the polygon is the union of its edges
-    for (std::size_t k = 0; k < m; ++k)
-      if (on_segment(v, poly[k], poly[(k + 1) % m], r)) return true;
-    return false;
-  }
-  for (std::size_t k = 0; k < m; ++k) {
-    const V3 e = diff(poly[(k + 1) % m], poly[k]);
-    if (sign(dot(cross(e, diff(v, poly[k])), n), r) == CGAL::NEGATIVE) return false;
-  }
-  return true;
+  const std::vector<MovingPoint> vertex{v};
+  Scaled s = scaled({&vertex, &poly});
+  const Points p(s.points.begin() + 1, s.points.end());
+  return ::tmcert::in_polygon(s.points[0], p, r);
 }
 
 bool ContactSolver::segments_meet(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                   const MovingPoint& b1, RealRoot& r) {
-  return meet(a0, a1, b0, b1, r).has_value();
+  const std::vector<MovingPoint> all{a0, a1, b0, b1};
+  return meet(scaled({&all}).points, r).has_value();
 }
 
 bool ContactSolver::touch(const std::vector<MovingPoint>& a, const std::vector<MovingPoint>& b, RealRoot& r) {
   if (a.size() > 1 && b.size() == 1) return touch(b, a, r);
+  const Scaled s = scaled({&a, &b});
+  const Points& p = s.points;
   if (a.size() == 1) {
-    if (b.size() == 1) return on_segment(a[0], b[0], b[0], r);  // a segment reduced to the point b
-    if (b.size() == 2) return on_segment(a[0], b[0], b[1], r);
-    return sign(dot(area_vector(b), diff(a[0], b[0])), r) == CGAL::ZERO && in_polygon(a[0], b, r);
+    if (b.size() == 1) return ::tmcert::on_segment(p[0], p[1], p[1], r);  // a segment reduced to the point b
+    if (b.size() == 2) return ::tmcert::on_segment(p[0], p[1], p[2], r);
+    const Points poly(p.begin() + 1, p.end());
+    return sign(dot(area_vector(poly), diff(p[0], poly[0])), r) == CGAL::ZERO && ::tmcert::in_polygon(p[0], poly, r);
   }
   if (a.size() == 2 && b.size() == 2)
-    return sign(dot(cross(diff(a[1], a[0]), diff(b[1], b[0])), diff(b[0], a[0])), r) == CGAL::ZERO &&
-           segments_meet(a[0], a[1], b[0], b[1], r);
+    return sign(dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0])), r) == CGAL::ZERO && meet(p, r);
   return false;
 }
 
 std::optional<Contact> ContactSolver::vertex_vertex(const MovingPoint& a, const MovingPoint& b) const {
-  const V3 d = diff(a, b);
-  if (is_zero(d)) return Contact{rational_root(u0_), {{a}}};  // the same point throughout
-  const PolyZ g = common(d);
-  if (degree(g) <= 0) return std::nullopt;
-  std::vector<RealRoot> roots = real_roots(square_free(g), u0_, u1_);
-  if (roots.empty()) return std::nullopt;
-  return Contact{roots.front(), {{a}}};
+  const std::vector<MovingPoint> all{a, b};
+  const Scaled s = scaled({&all});
+  return contact_of(Solver(u0_, u1_).vertex_vertex(s.points, 0, 1), s);
 }
 
 std::optional<Contact> ContactSolver::vertex_edge(const MovingPoint& v, const MovingPoint& e0,
                                                   const MovingPoint& e1) const {
-  const V3 c = cross(diff(v, e0), diff(e1, e0));
-  if (is_zero(c)) {
-    // On the segment's line throughout (or the segment is a point): the
-    // vertex first meets the segment at the start or at an endpoint.
-    RealRoot start = rational_root(u0_);
-    if (on_segment(v, e0, e1, start)) return Contact{start, {{v}}};
-    return earlier(vertex_vertex(v, e0), vertex_vertex(v, e1));
-  }
-  const PolyZ g = common(c);
-  if (degree(g) <= 0) return std::nullopt;
-  for (RealRoot& r : real_roots(square_free(g), u0_, u1_))
-    if (on_segment(v, e0, e1, r)) return Contact{r, {{v}}};
-  return std::nullopt;
+  const std::vector<MovingPoint> all{v, e0, e1};
+  const Scaled s = scaled({&all});
+  return contact_of(Solver(u0_, u1_).vertex_edge(s.points, 0, 1, 2), s);
 }
 
 std::optional<Contact> ContactSolver::vertex_face(const MovingPoint& v, const std::vector<MovingPoint>& poly) const {
-  const PolyQ d = dot(area_vector(poly), diff(v, poly[0]));
-  if (d.empty()) {
-    // In the polygon's plane throughout (or the polygon is collapsed): the
-    // vertex first meets it at the start or on an edge.
-    RealRoot start = rational_root(u0_);
-    if (in_polygon(v, poly, start)) return Contact{start, {{v}}};
-    std::optional<Contact> best;
-    for (std::size_t k = 0; k < poly.size(); ++k)
-      best = earlier(std::move(best), vertex_edge(v, poly[k], poly[(k + 1) % poly.size()]));
-    return best;
-  }
-  for (RealRoot& r : real_roots(square_free(primitive(d)), u0_, u1_))
-    if (in_polygon(v, poly, r)) return Contact{r, {{v}}};
-  return std::nullopt;
+  const std::vector<MovingPoint> vertex{v};
+  const Scaled s = scaled({&vertex, &poly});
+  return contact_of(Solver(u0_, u1_).vertex_face(s.points), s);
 }
 
 std::optional<Contact> ContactSolver::edge_edge(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                                 const MovingPoint& b1) const {
-  const PolyQ d = dot(cross(diff(a1, a0), diff(b1, b0)), diff(b0, a0));
-  if (d.empty()) {
-    // In one plane throughout (parallel, coplanar or degenerate): the
-    // segments first meet at the start or with an endpoint on the other.
-    RealRoot start = rational_root(u0_);
-    if (auto where = meet(a0, a1, b0, b1, start)) return Contact{start, std::move(*where)};
-    std::optional<Contact> best = vertex_edge(a0, b0, b1);
-    best = earlier(std::move(best), vertex_edge(a1, b0, b1));
-    best = earlier(std::move(best), vertex_edge(b0, a0, a1));
-    return earlier(std::move(best), vertex_edge(b1, a0, a1));
-  }
-  for (RealRoot& r : real_roots(square_free(primitive(d)), u0_, u1_))
-    if (auto where = meet(a0, a1, b0, b1, r)) return Contact{r, std::move(*where)};
-  return std::nullopt;
+  const std::vector<MovingPoint> all{a0, a1, b0, b1};
+  const Scaled s = scaled({&all});
+  return contact_of(Solver(u0_, u1_).edge_edge(s.points), s);
 }
 
 std::array<std::array<Exact, 2>, 3> point_box(Contact& c, const PolyQ& weight) {
@@ -216,8 +339,9 @@ std::array<std::array<Exact, 2>, 3> point_box(Contact& c, const PolyQ& weight) {
   const Exact width = Exact(Integer(1), two80);
   refine_to(c.t, width);
   const Range t{c.t.lo, c.t.hi};
-  const Range w = evaluate(weight, t);
+  Range w = evaluate(weight, t);
   if (!(w.lo > 0)) throw ExactLimit("point_box: weight range not positive");
+  w = w * Range{c.where.scale, c.where.scale};  // the points are scaled
   auto place = [&](const MovingPoint& p) {
     std::array<Range, 3> out;
     for (int i = 0; i < 3; ++i) out[i] = evaluate(p.x[i], t) / w;
@@ -232,11 +356,11 @@ std::array<std::array<Exact, 2>, 3> point_box(Contact& c, const PolyQ& weight) {
     // the lines' equations when their directions are far from parallel.
     const auto A0 = place(pts[0]), A1 = place(pts[1]), B0 = place(pts[2]), B1 = place(pts[3]);
     for (int i = 0; i < 3; ++i) box[i] = intersect(hull(A0[i], A1[i]), hull(B0[i], B1[i]));
-    const V3 da = diff(pts[1], pts[0]), db = diff(pts[3], pts[2]);
-    const V3 n = cross(da, db);
-    const Range nn = evaluate(dot(n, n), t);
+    const VQ da = diff_q(pts[1], pts[0]), db = diff_q(pts[3], pts[2]);
+    const VQ n = cross_q(da, db);
+    const Range nn = evaluate(dot_q(n, n), t);
     if (nn.lo > 0) {
-      const Range s = evaluate(dot(cross(diff(pts[2], pts[0]), db), n), t) / nn;
+      const Range s = evaluate(dot_q(cross_q(diff_q(pts[2], pts[0]), db), n), t) / nn;
       for (int i = 0; i < 3; ++i) {
         const Range x = A0[i] + s * (evaluate(da[i], t) / w);
         box[i] = intersect(box[i], x);

@@ -167,6 +167,37 @@ PolyQ mul(const PolyQ& a, const PolyQ& b) {
   return r;
 }
 
+PolyZ add(const PolyZ& a, const PolyZ& b) {
+  PolyZ r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < a.size()) r[i] += a[i];
+    if (i < b.size()) r[i] += b[i];
+  }
+  trim(r);
+  return r;
+}
+
+PolyZ sub(const PolyZ& a, const PolyZ& b) {
+  PolyZ r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < a.size()) r[i] += a[i];
+    if (i < b.size()) r[i] -= b[i];
+  }
+  trim(r);
+  return r;
+}
+
+PolyZ mul(const PolyZ& a, const PolyZ& b) {
+  if (a.empty() || b.empty()) return {};
+  PolyZ r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == 0) continue;
+    for (std::size_t j = 0; j < b.size(); ++j) mpz_addmul(r[i + j].mpz(), a[i].mpz(), b[j].mpz());
+  }
+  trim(r);
+  return r;
+}
+
 PolyZ primitive(const PolyQ& p) {
   Integer den(1);
   for (const Exact& c : p) den = lcm(den, c.denominator());
@@ -182,7 +213,13 @@ PolyZ primitive(const PolyZ& p) {
   trim(z);
   const Integer g = content(z);
   if (g > 1)
-    for (Integer& c : z) mpz_divexact(c.mpz(), c.mpz(), g.mpz());
+    for (Integer& c : z) {
+      // Into a fresh integer: CGAL::Gmpz copies share their value, and
+      // mpz() writes through to every copy.
+      Integer q;
+      mpz_divexact(q.mpz(), c.mpz(), g.mpz());
+      c = q;
+    }
   return z;
 }
 
@@ -353,8 +390,49 @@ CGAL::Comparison_result compare(RealRoot& a, RealRoot& b) {
   throw ExactLimit("compare: too many bisections");
 }
 
+namespace {
+
+// True when p has no rational root at all: p mod q has no root in Z/q for
+// some small prime q not dividing the leading coefficient (a rational root
+// n/d has d | lc, so d is invertible mod q and n/d mod q would be a root).
+bool no_rational_root(const PolyZ& p) {
+  static const unsigned long primes[] = {3,  5,  7,  11, 13, 17, 19, 23, 29, 31, 37,  41,  43,  47,  53,
+                                         59, 61, 67, 71, 73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127};
+  std::vector<unsigned long> c(p.size());
+  for (unsigned long q : primes) {
+    if (mpz_divisible_ui_p(p.back().mpz(), q)) continue;
+    for (std::size_t i = 0; i < p.size(); ++i) c[i] = mpz_fdiv_ui(p[i].mpz(), q);
+    bool root = false;
+    for (unsigned long x = 0; x < q && !root; ++x) {
+      unsigned long acc = 0;
+      for (std::size_t i = c.size(); i-- > 0;) acc = (acc * x + c[i]) % q;
+      root = acc == 0;
+    }
+    if (!root) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 bool settle_rational(RealRoot& r) {
   if (r.is_rational()) return true;
+  if (no_rational_root(r.poly)) return false;
+  {
+    // A rational root with a small denominator is the simplest rational of
+    // a narrow interval around it.
+    RealRoot narrow = r;
+    refine_to(narrow, Exact(Integer(1), Integer(1) << 64));
+    if (narrow.is_rational()) {
+      r = narrow;
+      return true;
+    }
+    const Exact c = simplest_between(narrow.lo, narrow.hi);
+    if (sign_at(r.poly, c) == CGAL::ZERO) {
+      r.lo = r.hi = c;
+      return true;
+    }
+  }
   // A rational root n/d of the primitive poly has d | lc; two distinct
   // rationals with denominators <= |lc| are at least 1/lc^2 apart, so in
   // an interval narrower than that only the simplest rational can be it.

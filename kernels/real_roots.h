@@ -36,6 +36,9 @@ inline int degree(const PolyZ& p) { return static_cast<int>(p.size()) - 1; }  //
 PolyQ add(const PolyQ& a, const PolyQ& b);
 PolyQ sub(const PolyQ& a, const PolyQ& b);
 PolyQ mul(const PolyQ& a, const PolyQ& b);
+PolyZ add(const PolyZ& a, const PolyZ& b);
+PolyZ sub(const PolyZ& a, const PolyZ& b);
+PolyZ mul(const PolyZ& a, const PolyZ& b);
 
 // The positive multiple of p with coprime integer coefficients (the zero
 // polynomial stays zero): same roots, same signs everywhere.

@@ -67,19 +67,14 @@ inline MovingPoint moving_point(const std::vector<PolyQ>& power, int block, cons
   return m;
 }
 
-// A feature's vertices (a point, a segment's ends, a convex polygon's
-// vertices in order) in its body's frame, exactly.
-inline std::vector<Vec3E> feature_vertices(const FeatureGeometry<Exact>& f) {
-  auto at = [&](const Exact& s, const Exact& t) {
-    Vec3E p;
-    for (int i = 0; i < 3; ++i) p[i] = f.origin[i] + s * f.axis[0][i] + t * f.axis[1][i];
-    return p;
-  };
-  if (f.dim == 0) return {f.origin};
-  if (f.dim == 1) return {f.origin, at(Exact(1), Exact(0))};
-  std::vector<Vec3E> out;
-  for (const auto& d : f.domain) out.push_back(at(d[0], d[1]));
-  return out;
+// The exact vertices of the features of a pair's kind, per body.
+inline const std::vector<std::vector<Vec3E>>& moving_vertices(const PreparedBody& b, ContactKind k) {
+  const ExactFeatureVertices& e = b.exact_vertices();
+  return k == ContactKind::VertexFace ? e.vertices : k == ContactKind::EdgeEdge ? e.edges : e.faces;
+}
+inline const std::vector<std::vector<Vec3E>>& other_vertices(const PreparedBody& b, ContactKind k) {
+  const ExactFeatureVertices& e = b.exact_vertices();
+  return k == ContactKind::VertexFace ? e.faces : k == ContactKind::EdgeEdge ? e.edges : e.vertices;
 }
 
 struct PairContact {
@@ -110,11 +105,11 @@ PieceResolution resolve_piece(const PreparedBody& moving, const PreparedBody& ot
   const int other_block = B == 2 ? 1 : -1;
   try {
     for (const PairRef& p : alive) {
-      const FeatureGeometry<Exact>& fm = moving_exact(moving, p.kind)[p.i];
-      const FeatureGeometry<Exact>& fo = other_exact(other, p.kind)[p.j];
+      const std::vector<Vec3E>& fm = moving_vertices(moving, p.kind)[p.i];
+      const std::vector<Vec3E>& fo = other_vertices(other, p.kind)[p.j];
       std::vector<MovingPoint> xm, xo;
-      for (const Vec3E& v : feature_vertices(fm)) xm.push_back(moving_point(power, 0, v));
-      for (const Vec3E& v : feature_vertices(fo)) xo.push_back(moving_point(power, other_block, v));
+      for (const Vec3E& v : fm) xm.push_back(moving_point(power, 0, v));
+      for (const Vec3E& v : fo) xo.push_back(moving_point(power, other_block, v));
       std::optional<Contact> c;
       if (xm.size() == 1 && xo.size() >= 3) c = solver.vertex_face(xm[0], xo);
       else if (xm.size() >= 3 && xo.size() == 1) c = solver.vertex_face(xo[0], xm);
@@ -165,7 +160,7 @@ ExactOutcome decide_piece(CheckT& check, const NodeT& node) {
   // count).
   RealRoot isolated = pc.contact.t;
   try {
-    if (!isolated.is_rational()) {
+    if (!isolated.is_rational() && !(node.u0() == 0 && node.u1() == 1)) {  // on [0, 1] already
       RealRoot probe = isolated;
       for (const RealRoot& c : real_roots(isolated.poly, Exact(0), Exact(1))) {
         RealRoot candidate = c;  // compare narrows its arguments
@@ -206,11 +201,10 @@ ExactOutcome decide_piece(CheckT& check, const NodeT& node) {
     at.root_of = compose_affine(isolated.poly, -m.t0 / length, Exact(1) / length);
     at.lo = m.t0 + isolated.lo * length;
     at.hi = m.t0 + isolated.hi * length;
-    RealRoot scene_root{at.root_of, at.lo, at.hi};
-    at.approx = approximate(scene_root);
+    w.point_box = point_box(pc.contact, power.back());  // narrows pc.contact.t
+    at.approx = approximate(RealRoot{at.root_of, m.t0 + pc.contact.t.lo * length, m.t0 + pc.contact.t.hi * length});
     w.t = at.lo;
     w.root = std::move(at);
-    w.point_box = point_box(pc.contact, power.back());
     check.result.first_contact = std::pair{exact_first ? w.root->lo : check.result.first_contact->first, w.root->hi};
     check.result.first_contact_exact = exact_first;
     check.result.witness = std::move(w);
