@@ -43,13 +43,6 @@ Scaled scaled(std::initializer_list<const std::vector<MovingPoint>*> groups) {
   return out;
 }
 
-MovingPoint unscaled(const ZPoint& z) {
-  MovingPoint m;
-  for (int i = 0; i < 3; ++i)
-    for (const Integer& c : z.x[i]) m.x[i].push_back(Exact(c));
-  return m;
-}
-
 V3 diff(const ZPoint& a, const ZPoint& b) { return {sub(a.x[0], b.x[0]), sub(a.x[1], b.x[1]), sub(a.x[2], b.x[2])}; }
 
 V3 cross(const V3& a, const V3& b) {
@@ -221,11 +214,14 @@ class Solver {
   Exact u0_, u1_;
 };
 
-std::optional<Contact> contact_of(std::optional<Found> f, const Scaled& s) {
+// The contact with the caller's points (not the scaled ones) locating it.
+std::optional<Contact> contact_of(std::optional<Found> f, std::initializer_list<const std::vector<MovingPoint>*> groups) {
   if (!f) return std::nullopt;
+  std::vector<const MovingPoint*> all;
+  for (const auto* g : groups)
+    for (const MovingPoint& m : *g) all.push_back(&m);
   Contact c{std::move(f->t), {}};
-  for (int i : f->where) c.where.points.push_back(unscaled(s.points[i]));
-  c.where.scale = Exact(s.scale);
+  for (int i : f->where) c.where.points.push_back(*all[i]);
   return c;
 }
 
@@ -308,40 +304,101 @@ bool ContactSolver::touch(const std::vector<MovingPoint>& a, const std::vector<M
 std::optional<Contact> ContactSolver::vertex_vertex(const MovingPoint& a, const MovingPoint& b) const {
   const std::vector<MovingPoint> all{a, b};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_).vertex_vertex(s.points, 0, 1), s);
+  return contact_of(Solver(u0_, u1_).vertex_vertex(s.points, 0, 1), {&all});
 }
 
 std::optional<Contact> ContactSolver::vertex_edge(const MovingPoint& v, const MovingPoint& e0,
                                                   const MovingPoint& e1) const {
   const std::vector<MovingPoint> all{v, e0, e1};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_).vertex_edge(s.points, 0, 1, 2), s);
+  return contact_of(Solver(u0_, u1_).vertex_edge(s.points, 0, 1, 2), {&all});
 }
 
 std::optional<Contact> ContactSolver::vertex_face(const MovingPoint& v, const std::vector<MovingPoint>& poly) const {
   const std::vector<MovingPoint> vertex{v};
   const Scaled s = scaled({&vertex, &poly});
-  return contact_of(Solver(u0_, u1_).vertex_face(s.points), s);
+  return contact_of(Solver(u0_, u1_).vertex_face(s.points), {&vertex, &poly});
 }
 
 std::optional<Contact> ContactSolver::edge_edge(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                                 const MovingPoint& b1) const {
   const std::vector<MovingPoint> all{a0, a1, b0, b1};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_).edge_edge(s.points), s);
+  return contact_of(Solver(u0_, u1_).edge_edge(s.points), {&all});
 }
 
+namespace {
+
+// The point's box over the time interval t in double intervals (call under
+// RoundingGuard); nothing when a bound is not finite.
+std::optional<std::array<Interval, 3>> box_in_doubles(const Contact& c, const PolyQ& weight, const Interval& t) {
+  auto eval = [&](const PolyQ& p) {
+    Interval acc(0);
+    for (std::size_t i = p.size(); i-- > 0;) acc = acc * t + to_interval(p[i]);
+    return acc;
+  };
+  const Interval w = eval(weight);
+  if (!(w.inf() > 0)) return std::nullopt;
+  auto place = [&](const MovingPoint& p) {
+    std::array<Interval, 3> out;
+    for (int i = 0; i < 3; ++i) out[i] = eval(p.x[i]) / w;
+    return out;
+  };
+  auto meet = [](const Interval& a, const Interval& b) { return Interval(std::max(a.inf(), b.inf()), std::min(a.sup(), b.sup())); };
+  auto join = [](const Interval& a, const Interval& b) { return Interval(std::min(a.inf(), b.inf()), std::max(a.sup(), b.sup())); };
+  std::array<Interval, 3> box;
+  const auto& pts = c.where.points;
+  if (pts.size() == 1) {
+    box = place(pts[0]);
+  } else {
+    const auto A0 = place(pts[0]), A1 = place(pts[1]), B0 = place(pts[2]), B1 = place(pts[3]);
+    for (int i = 0; i < 3; ++i) {
+      const Interval a = join(A0[i], A1[i]), b = join(B0[i], B1[i]);
+      if (!(std::max(a.inf(), b.inf()) <= std::min(a.sup(), b.sup()))) return std::nullopt;
+      box[i] = meet(a, b);
+    }
+    // And a0 + s (a1 - a0), s from the lines' equations, when the
+    // directions are not nearly parallel (intervals over the same time).
+    using I3 = std::array<Interval, 3>;
+    auto minus = [](const I3& x, const I3& y) { return I3{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+    auto cross3 = [](const I3& x, const I3& y) {
+      return I3{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    };
+    auto dot3 = [](const I3& x, const I3& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    const I3 da = minus(A1, A0), db = minus(B1, B0), n = cross3(da, db);
+    const Interval nn = dot3(n, n);
+    if (nn.inf() > 0) {
+      const Interval sa = dot3(cross3(minus(B0, A0), db), n) / nn;
+      for (int i = 0; i < 3; ++i) {
+        const Interval x = A0[i] + sa * da[i];
+        if (std::max(x.inf(), box[i].inf()) <= std::min(x.sup(), box[i].sup())) box[i] = meet(box[i], x);
+      }
+    }
+  }
+  for (const Interval& x : box)
+    if (!std::isfinite(x.inf()) || !std::isfinite(x.sup()) || !(x.inf() <= x.sup())) return std::nullopt;
+  return box;
+}
+
+}  // namespace
+
 std::array<std::array<Exact, 2>, 3> point_box(Contact& c, const PolyQ& weight) {
-  // Narrow the time, then enclose the point with exact interval arithmetic
-  // over it; the bounds are rounded outward to doubles (short numbers).
-  Integer two80(1);
-  mpz_mul_2exp(two80.mpz(), two80.mpz(), 80);
-  const Exact width = Exact(Integer(1), two80);
-  refine_to(c.t, width);
+  // Narrow the time to about double precision, then enclose the point over
+  // it: in double intervals (their bounds are the box), or if those
+  // overflow, in exact rational intervals rounded outward to doubles.
+  refine_to(c.t, Exact(Integer(1), Integer(1) << 56));
+  std::array<std::array<Exact, 2>, 3> out;
+  {
+    RoundingGuard guard;
+    const Interval t(to_interval(c.t.lo).inf(), to_interval(c.t.hi).sup());
+    if (const auto box = box_in_doubles(c, weight, t)) {
+      for (int i = 0; i < 3; ++i) out[i] = {Exact((*box)[i].inf()), Exact((*box)[i].sup())};
+      return out;
+    }
+  }
   const Range t{c.t.lo, c.t.hi};
-  Range w = evaluate(weight, t);
+  const Range w = evaluate(weight, t);
   if (!(w.lo > 0)) throw ExactLimit("point_box: weight range not positive");
-  w = w * Range{c.where.scale, c.where.scale};  // the points are scaled
   auto place = [&](const MovingPoint& p) {
     std::array<Range, 3> out;
     for (int i = 0; i < 3; ++i) out[i] = evaluate(p.x[i], t) / w;
@@ -367,7 +424,6 @@ std::array<std::array<Exact, 2>, 3> point_box(Contact& c, const PolyQ& weight) {
       }
     }
   }
-  std::array<std::array<Exact, 2>, 3> out;
   for (int i = 0; i < 3; ++i) {
     out[i][0] = Exact(to_interval(box[i].lo).inf());
     out[i][1] = Exact(to_interval(box[i].hi).sup());

@@ -25,8 +25,7 @@ struct MovingPoint {
 // Where a contact happens: at a vertex (one point, exactly on the other
 // feature), or where two edges' lines meet (four points a0 a1 b0 b1).
 struct ContactPoint {
-  std::vector<MovingPoint> points;  // size 1 or 4, each times `scale`
-  Exact scale = Exact(1);           // > 0: the points here are scale * the solver's input
+  std::vector<MovingPoint> points;  // size 1 or 4
 };
 
 struct Contact {
