@@ -241,3 +241,69 @@ BOOST_AUTO_TEST_CASE(far_from_the_origin_with_small_motions) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+// ------------------------------------------------------------------ regression scenes
+
+#include "src/scene/parse.h"
+#include "src/verify/verify.h"
+
+namespace {
+
+CheckResult verified(const std::string& name) {
+  const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/" + name);
+  VerifyOptions options;
+  options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
+  options.max_depth = scene.max_depth;
+  return verify_scene(scene, options).checks[0];
+}
+
+// The scene parameter of an algebraic witness, to about 1e-12.
+double witness_time(const CheckResult& r) {
+  const AlgebraicTime& a = *r.witness->root;
+  PolyZ p(a.root_of.begin(), a.root_of.end());
+  RealRoot root{p, a.lo, a.hi};
+  refine_to(root, Exact(Integer(1), Integer(1) << 50));
+  return CGAL::to_double((root.lo + root.hi) / 2);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(exact_resolution_scenes)
+
+// Hard cases with their exact first contacts known in closed form
+// (tests/data/scenes; EXPECTED holds their verdicts for the CLI).
+BOOST_AUTO_TEST_CASE(first_contacts_are_exact) {
+  for (const char* name : {"cubic-crossing-irrational.json", "far-cubic-crossing.json"}) {
+    BOOST_TEST_CONTEXT(name) {
+      const CheckResult r = verified(name);
+      BOOST_REQUIRE(r.verdict == Verdict::Collision);
+      BOOST_REQUIRE(r.witness->root);
+      BOOST_TEST(r.first_contact_exact);
+      BOOST_TEST(std::fabs(witness_time(r) - 0.6823278038280193) < 1e-12);  // u^3 + u - 1 = 0
+    }
+  }
+  {
+    const CheckResult r = verified("edges-cross-at-sqrt-half.json");
+    BOOST_REQUIRE(r.verdict == Verdict::Collision);
+    BOOST_REQUIRE(r.witness->root);
+    BOOST_TEST(std::fabs(witness_time(r) - std::sqrt(0.5)) < 1e-12);
+    // The point box holds (1/2, 0, 0).
+    BOOST_TEST((r.witness->point_box[0][0] <= q(1, 2) && q(1, 2) <= r.witness->point_box[0][1]));
+    BOOST_TEST((r.witness->point_box[1][0] <= 0 && 0 <= r.witness->point_box[1][1]));
+  }
+  for (const auto& [name, t] : {std::pair{"vertex-sliding-into-face.json", q(5, 12)},
+                                std::pair{"parallel-edges-sliding.json", q(4, 5)}}) {
+    BOOST_TEST_CONTEXT(name) {
+      const CheckResult r = verified(name);
+      BOOST_REQUIRE(r.verdict == Verdict::Collision);
+      BOOST_TEST(!r.witness->root);
+      BOOST_TEST(r.witness->t == t);
+      BOOST_TEST(r.first_contact_exact);
+      BOOST_TEST((r.first_contact->first == t && r.first_contact->second == t));
+    }
+  }
+  for (const char* name : {"vertex-sliding-beside-face.json", "parallel-edges-passing.json", "hover-1e-17.json"})
+    BOOST_TEST(verified(name).verdict == Verdict::Safe, name);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
