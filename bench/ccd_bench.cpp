@@ -32,6 +32,13 @@
 using namespace tmcert;
 using namespace tmcert::bench;
 
+// TMCERT_EXACT_RESOLUTION=0 runs the ball search alone (as before exact
+// resolution), for before/after tables from one build.
+inline bool exact_resolution_enabled() {
+  const char* v = std::getenv("TMCERT_EXACT_RESOLUTION");
+  return !(v && std::string(v) == "0");
+}
+
 namespace {
 
 struct Row {
@@ -74,6 +81,7 @@ double now_us() {
 Row run(const QuerySet& set, double fraction, std::map<std::string, Row>* by_kind, double* setup_us) {
   Row row;
   VerifyOptions options;
+  options.exact_resolution = exact_resolution_enabled();
   options.max_stops = g_max_stops;
   char text[64];
   std::snprintf(text, sizeof text, "%.3g", 2 * fraction);
@@ -133,6 +141,7 @@ void header(const char* first) {
 static int run_scene(const std::string& scene_file, const std::string& truth_file) {
   const Scene scene = parse_scene_file(scene_file);
   VerifyOptions options;
+  options.exact_resolution = exact_resolution_enabled();
   options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   options.max_depth = scene.max_depth;
   options.max_stops = g_max_stops;
