@@ -421,16 +421,20 @@ bool settle_rational(RealRoot& r) {
   {
     // A rational root with a small denominator is the simplest rational of
     // a narrow interval around it.
+    // Tried on narrower and narrower intervals (most such roots, like 1/3
+    // or 0.137, are the simplest rational of a wide one).
     RealRoot narrow = r;
-    refine_to(narrow, Exact(Integer(1), Integer(1) << 64));
-    if (narrow.is_rational()) {
-      r = narrow;
-      return true;
-    }
-    const Exact c = simplest_between(narrow.lo, narrow.hi);
-    if (sign_at(r.poly, c) == CGAL::ZERO) {
-      r.lo = r.hi = c;
-      return true;
+    for (const unsigned long bits : {0ul, 8ul, 16ul, 32ul, 64ul}) {
+      if (bits > 0) refine_to(narrow, Exact(Integer(1), Integer(1) << bits));
+      if (narrow.is_rational()) {
+        r = narrow;
+        return true;
+      }
+      const Exact c = simplest_between(narrow.lo, narrow.hi);
+      if (sign_at(r.poly, c) == CGAL::ZERO) {
+        r.lo = r.hi = c;
+        return true;
+      }
     }
   }
   // A rational root n/d of the primitive poly has d | lc; two distinct
