@@ -350,6 +350,13 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   if (q.empty()) return CGAL::ZERO;
   if (r.is_rational()) return sign_at(q, r.lo);
   if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  // A few bisections first: cheaper than the gcd below when q(r) != 0
+  // (high degrees, large coefficients).
+  for (int k = 0; k < 24; ++k) {
+    refine(r);
+    if (r.is_rational()) return sign_at(q, r.lo);
+    if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  }
   // q(r) = 0 exactly when r is a root of g = gcd(q, poly): g divides the
   // square-free poly, so r is g's only root in [lo, hi], and g is nonzero
   // at lo and hi; it changes sign there exactly when r is its root.
