@@ -6,7 +6,8 @@
 // max_stops replaces VerifyOptions::max_stops, to see what the stop budget
 // costs).
 //
-// tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N]: times every
+// tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N] [--slowest K]
+// [--cpu-time]: times every
 // check of a given scene the same way (one by one, in process, one
 // verifier for the scene), e.g. a set converted by
 // scripts/ccd_csv_to_scene.py, with its --truth-out list for false safe /
@@ -25,10 +26,18 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <map>
 
 using namespace tmcert;
 using namespace tmcert::bench;
+
+// TMCERT_EXACT_RESOLUTION=0 runs the ball search alone (as before exact
+// resolution), for before/after tables from one build.
+inline bool exact_resolution_enabled() {
+  const char* v = std::getenv("TMCERT_EXACT_RESOLUTION");
+  return !(v && std::string(v) == "0");
+}
 
 namespace {
 
@@ -54,10 +63,25 @@ double mean(const std::vector<double>& v) {
 // Queries are generated in [-1, 1]^3 (scene size 2 per axis); epsilon is a
 // fraction of that.
 std::uint64_t g_max_stops = VerifyOptions{}.max_stops;
+std::size_t g_slowest = 0;  // --slowest K: list the K slowest checks on stderr
+// --cpu-time: time each check by the thread's CPU clock instead of the wall
+// clock (on a loaded machine, wall times of single checks include the
+// time slices other processes took).
+bool g_cpu_time = false;
+
+double now_us() {
+  if (g_cpu_time) {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+  }
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 Row run(const QuerySet& set, double fraction, std::map<std::string, Row>* by_kind, double* setup_us) {
   Row row;
   VerifyOptions options;
+  options.exact_resolution = exact_resolution_enabled();
   options.max_stops = g_max_stops;
   char text[64];
   std::snprintf(text, sizeof text, "%.3g", 2 * fraction);
@@ -117,6 +141,7 @@ void header(const char* first) {
 static int run_scene(const std::string& scene_file, const std::string& truth_file) {
   const Scene scene = parse_scene_file(scene_file);
   VerifyOptions options;
+  options.exact_resolution = exact_resolution_enabled();
   options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   options.max_depth = scene.max_depth;
   options.max_stops = g_max_stops;
@@ -136,10 +161,12 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
   const double setup_us =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - setup_start).count();
   std::map<std::string, Row> groups;
+  std::vector<std::pair<double, std::size_t>> times;
   for (std::size_t i = 0; i < scene.checks.size(); ++i) {
-    const auto start = std::chrono::steady_clock::now();
+    const double start = now_us();
     const CheckResult r = verifier.check(scene.checks[i].first, scene.checks[i].second);
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    const double us = now_us() - start;
+    times.emplace_back(us, i);
     const std::string group = truth[i] == 1 ? "~colliding" : truth[i] == 0 ? "~free" : "~no truth";
     for (Row* t : {&groups["all"], &groups[group]}) {
       ++t->queries;
@@ -156,11 +183,22 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
       }
     }
   }
-  std::printf("tmcert CCD scene %s: %zu checks, filtered kernel, epsilon %s; times per check, one by one;\n"
+  std::printf("tmcert CCD scene %s: %zu checks, filtered kernel, epsilon %s; %s times per check, one by one;\n"
               "setup = the verifier's set-up divided by the number of checks\n\n",
-              scene_file.c_str(), scene.checks.size(), to_string(options.epsilon).c_str());
+              scene_file.c_str(), scene.checks.size(), to_string(options.epsilon).c_str(),
+              g_cpu_time ? "thread CPU" : "wall");
   header("checks");
   for (const auto& [name, r] : groups) print_row(name.c_str(), r, setup_us / scene.checks.size());
+  std::sort(times.rbegin(), times.rend());
+  for (std::size_t k = 0; k < std::min(g_slowest, times.size()); ++k) {
+    const std::size_t i = times[k].second;
+    const CheckResult r = verifier.check(scene.checks[i].first, scene.checks[i].second);
+    std::fprintf(stderr, "slow: check %zu (%s x %s) %.1f us: %s, truth %d, nodes %llu, exact pieces %llu, %s\n", i,
+                 scene.bodies[scene.checks[i].first].name.c_str(), scene.bodies[scene.checks[i].second].name.c_str(),
+                 times[k].first, to_string(r.verdict), truth[i], static_cast<unsigned long long>(r.stats.nodes),
+                 static_cast<unsigned long long>(r.stats.exact_pieces),
+                 r.witness ? (r.witness->root ? "irrational witness" : "rational witness") : "no witness");
+  }
   return groups["all"].false_safe == 0 && groups["all"].false_collision == 0 ? 0 : 1;
 }
 
@@ -171,13 +209,19 @@ int main(int argc, char** argv) {
     bool ok = argc >= 3;
     for (int i = 3; ok && i < argc; i += 2) {
       const std::string flag = argv[i];
-      if (i + 1 >= argc) ok = false;
+      if (flag == "--cpu-time") {
+        g_cpu_time = true;
+        --i;  // no value
+      } else if (i + 1 >= argc) ok = false;
       else if (flag == "--truth") truth = argv[i + 1];
       else if (flag == "--max-stops") g_max_stops = std::strtoull(argv[i + 1], nullptr, 10);
+      else if (flag == "--slowest") g_slowest = std::strtoull(argv[i + 1], nullptr, 10);
       else ok = false;
     }
     if (!ok) {
-      std::fprintf(stderr, "usage: tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N]\n");
+      std::fprintf(stderr,
+                   "usage: tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N] [--slowest K] "
+                   "[--cpu-time]\n");
       return 2;
     }
     try {

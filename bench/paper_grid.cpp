@@ -31,6 +31,13 @@
 #include <vector>
 
 using namespace tmcert;
+
+// TMCERT_EXACT_RESOLUTION=0 runs the ball search alone (as before exact
+// resolution), for before/after tables from one build.
+inline bool exact_resolution_enabled() {
+  const char* v = std::getenv("TMCERT_EXACT_RESOLUTION");
+  return !(v && std::string(v) == "0");
+}
 namespace fs = std::filesystem;
 
 namespace {
@@ -206,6 +213,7 @@ int main(int argc, char** argv) {
       const Scene scene = parse_scene_file(e.path.string());
       row.parse_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - parse_start).count();
       VerifyOptions options;
+      options.exact_resolution = exact_resolution_enabled();
       options.kernel = KernelKind::Filtered;
       options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
       options.max_depth = scene.max_depth;

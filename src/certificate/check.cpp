@@ -12,6 +12,7 @@
 // otherwise.  No floating point is used anywhere.
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
+#include "src/certificate/algebraic_witness.h"
 #include "src/scene/parse.h"
 #include "src/scene/read_file.h"
 
@@ -744,6 +745,7 @@ struct WitnessSide {
   std::size_t element = 0;
   std::vector<Exact> weights;
   Vec3E ray;
+  std::vector<std::size_t> vertices;  // an algebraic witness: the sub-feature's vertices
 };
 
 struct StartPoint {
@@ -773,8 +775,9 @@ struct CheckContext {
   std::vector<std::pair<Exact, Exact>> undecided;   // undecided intervals
   std::optional<std::pair<Exact, Exact>> first_contact;
   bool has_witness = false;
-  Exact witness_t;
+  Exact witness_t;  // an algebraic witness: the lower end of its interval
   Vec3E witness_point;
+  std::optional<ClaimedRoot> witness_root;  // a witness at an irrational time
   WitnessSide side[2];
   std::vector<StartEntry> start;
   std::vector<CP> curve;
@@ -1056,12 +1059,46 @@ class Checker {
     const std::string wp = mem(ctx.path, "witness");
     in_.object(w, wp);
     ctx.has_witness = true;
-    ctx.witness_t = in_.rational(in_.member(w, "t", wp), mem(wp, "t"));
-    ctx.witness_point = in_.vec3(in_.member(w, "point", wp), mem(wp, "point"));
+    const json& t = in_.member(w, "t", wp);
+    if (t.is_object()) {  // {"root_of": [...], "interval": [lo, hi]}
+      const std::string tp = mem(wp, "t");
+      ClaimedRoot root;
+      const json& coefficients = in_.array(in_.member(t, "root_of", tp), mem(tp, "root_of"));
+      for (std::size_t k = 0; k < coefficients.size(); ++k) {
+        const Exact c = in_.rational(coefficients[k], idx(mem(tp, "root_of"), k));
+        if (c.denominator() != 1) in_.bad(idx(mem(tp, "root_of"), k), "not an integer");
+        root.root_of.push_back(c.numerator());
+      }
+      const auto [lo, hi] = in_.pair(in_.member(t, "interval", tp), mem(tp, "interval"));
+      root.lo = lo;
+      root.hi = hi;
+      ctx.witness_t = lo;
+      ctx.witness_root = std::move(root);
+    } else {
+      ctx.witness_t = in_.rational(t, mem(wp, "t"));
+      ctx.witness_point = in_.vec3(in_.member(w, "point", wp), mem(wp, "point"));
+    }
     for (int s = 0; s < 2; ++s) {
       WitnessSide& side = ctx.side[s];
       const std::string sp = mem(wp, s == 0 ? "a" : "b");
       const json& x = in_.object(in_.member(w, s == 0 ? "a" : "b", wp), sp);
+      if (ctx.witness_root) {  // an element and a sub-feature's vertices
+        const BodyData& bd = *ctx.data[s];
+        side.element = in_.index(in_.member(x, "element", sp), mem(sp, "element"), bd.elems.size(),
+                                 quote_text(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
+        const std::size_t nv = bd.elems[side.element].size();
+        const json& vs = in_.array(in_.member(x, "vertices", sp), mem(sp, "vertices"));
+        for (std::size_t i = 0; i < vs.size(); ++i)
+          side.vertices.push_back(in_.index(vs[i], idx(mem(sp, "vertices"), i), nv,
+                                            "element " + std::to_string(side.element) + " has " + std::to_string(nv) + " vertices"));
+        // A vertex, two vertices (a segment inside the convex element), or
+        // all of them in order (the element itself).
+        bool whole = side.vertices.size() == nv;
+        for (std::size_t i = 0; whole && i < nv; ++i) whole = side.vertices[i] == i;
+        if (!(side.vertices.size() == 1 || side.vertices.size() == 2 || whole))
+          in_.bad(mem(sp, "vertices"), "expected one vertex, two vertices or all of the element's vertices in order");
+        continue;
+      }
       if (const json* interior = in_.find(x, "interior")) {
         if (in_.find(x, "element") || in_.find(x, "weights"))
           in_.bad(sp, "expected either \"interior\" or \"element\" and \"weights\"");
@@ -1158,7 +1195,10 @@ class Checker {
         if (lo > t) reject(fc + ": lo is after the witness t = " + str(t));
         if (t > hi) reject(fc + ": the witness t = " + str(t) + " is after hi");
         clear_until = lo;
-        summary = "collision proven at t = " + str(t) + "; no contact before t = " + str(lo) + " proven";
+        summary = (ctx.witness_root ? "collision proven at an irrational t in (" + str(ctx.witness_root->lo) + ", " +
+                                          str(ctx.witness_root->hi) + ")"
+                                    : "collision proven at t = " + str(t)) +
+                  "; no contact before t = " + str(lo) + " proven";
       }
     } else {  // undecided
       const std::vector<std::pair<Exact, Exact>>& ut = ctx.undecided;
@@ -1239,7 +1279,24 @@ class Checker {
 
   // ------------------------------------------------------------ witness
 
+  // A witness at an irrational time: a valid root claim, and the two
+  // sub-features share a point at that root (exact signs at the root).
+  void check_algebraic_witness(const CheckContext& ctx) {
+    const std::string L = ctx.label + ": witness";
+    const ClaimedRoot& claim = *ctx.witness_root;
+    if (const std::string error = root_claim_error(claim, ctx.t0, ctx.t1); !error.empty()) reject(L + ".t: " + error);
+    RealRoot root = check_parameter_root(claim, ctx.t0, ctx.t1);
+    const CheckMotions motions(*ctx.body[0], *ctx.body[1]);
+    std::vector<MovingPoint> points[2];
+    for (int s = 0; s < 2; ++s)
+      for (std::size_t v : ctx.side[s].vertices)
+        points[s].push_back(motions.place(s, ctx.data[s]->elems[ctx.side[s].element][v]));
+    if (!ContactSolver::touch(points[0], points[1], root))
+      reject(L + ": the two sub-features do not meet at the root of t in (" + str(claim.lo) + ", " + str(claim.hi) + ")");
+  }
+
   void check_witness(const CheckContext& ctx) {
+    if (ctx.witness_root) return check_algebraic_witness(ctx);
     const Exact& t = ctx.witness_t;
     const Vec3E& point = ctx.witness_point;
     const std::string L = ctx.label + ": witness";

@@ -1,5 +1,6 @@
 #include "src/certificate/writer.h"
 
+#include "src/certificate/algebraic_witness.h"
 #include "src/certificate/check.h"
 #include "src/scene/solid.h"
 #include "kernels/separation.h"
@@ -595,6 +596,7 @@ struct CheckWriter {
 
   json witness() const {
     const Witness& w = *r.witness;
+    if (w.root) return algebraic_witness(w);
     json out{{"t", rational(w.t)}, {"point", vec(w.point)}};
     const Body* bodies[2] = {&a, &b};
     const char* keys[2] = {"a", "b"};
@@ -623,6 +625,43 @@ struct CheckWriter {
       if (!found) fail("the witness point was not found on " + feature);
     }
     return out;
+  }
+
+  // A witness at an irrational time: the root as the result gives it, and
+  // on each side an element and the vertices of a sub-feature of it (a
+  // vertex, an edge or the whole element) such that the two sub-features
+  // provably share a point at the root (algebraic_witness.h).
+  json algebraic_witness(const Witness& w) const {
+    const AlgebraicTime& at = *w.root;
+    const ClaimedRoot claim{at.root_of, at.lo, at.hi};
+    if (const std::string error = root_claim_error(claim, interval.first, interval.second); !error.empty())
+      fail("the witness time is not a valid root claim: " + error);
+    RealRoot root = check_parameter_root(claim, interval.first, interval.second);
+    const CheckMotions motions(a, b);
+    const std::vector<std::vector<Vec3E>> el[2] = {elements(a), elements(b)};
+    const std::vector<int> named[2] = {named_elements(a, w.features[0]), named_elements(b, w.features[1])};
+    for (int ea : named[0])
+      for (int eb : named[1]) {
+        if (ea < 0 || eb < 0 || ea >= static_cast<int>(el[0].size()) || eb >= static_cast<int>(el[1].size())) continue;
+        const std::vector<Vec3E>& va = el[0][ea];
+        const std::vector<Vec3E>& vb = el[1][eb];
+        for (const std::vector<int>& sa : sub_features(va.size()))
+          for (const std::vector<int>& sb : sub_features(vb.size())) {
+            std::vector<MovingPoint> pa, pb;
+            for (int i : sa) pa.push_back(motions.place(0, va[i]));
+            for (int j : sb) pb.push_back(motions.place(1, vb[j]));
+            if (!ContactSolver::touch(pa, pb, root)) continue;
+            json coefficients = json::array();
+            for (const CGAL::Gmpz& c : at.root_of) coefficients.push_back(rational(Exact(c)));
+            json box = json::array();
+            for (const auto& range : *w.point_box) box.push_back(json::array({rational(range[0]), rational(range[1])}));
+            return json{{"t", {{"root_of", coefficients}, {"interval", json::array({rational(at.lo), rational(at.hi)})}}},
+                        {"point_box", box},
+                        {"a", {{"element", ea}, {"vertices", sa}}},
+                        {"b", {{"element", eb}, {"vertices", sb}}}};
+          }
+      }
+    fail("no two sub-features of the witness's elements meet at its time " + at.approx);
   }
 
   // Start claims: one outside point per component of the other body for
@@ -693,7 +732,16 @@ struct CheckWriter {
     out["start"] = out["pieces"].empty() ? json::array() : start();
     if (r.verdict == Verdict::Collision) {
       out["witness"] = witness();
-      out["first_contact"] = json::array({rational(r.first_contact->first), rational(r.first_contact->second)});
+      // The bracket the certificate proves: from the end of its pieces
+      // (contiguous from t0).  An exact first contact (exact resolution)
+      // also rests on "no contact between the piece's start and the
+      // witness", which certificates do not carry yet: its bracket starts
+      // at that piece's start.
+      Exact clear_until = interval.first;
+      for (const CoverPiece& c : cover_pieces)
+        if (scene_t(c.index, c.depth) == clear_until) clear_until = scene_t(c.index + 1, c.depth);
+      if (clear_until > r.first_contact->first) clear_until = r.first_contact->first;
+      out["first_contact"] = json::array({rational(clear_until), rational(r.first_contact->second)});
     }
     json undecided = json::array();
     for (const UndecidedInterval& u : r.undecided) undecided.push_back(json::array({rational(u.t0), rational(u.t1)}));

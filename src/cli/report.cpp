@@ -128,6 +128,23 @@ class JsonWriter {
   bool after_key_ = false;
 };
 
+// A parameter: a rational string, or an irrational root as
+// {"root_of", "interval", "approx"} (SCENE_FORMAT.md, "Exact contact times").
+void write_root(JsonWriter& w, const AlgebraicTime& a) {
+  w.begin_object();
+  w.key("root_of");
+  w.begin_array();
+  for (const CGAL::Gmpz& c : a.root_of) w.value(to_string(Exact(c)));
+  w.end_array();
+  w.key("interval");
+  w.begin_array();
+  w.value(to_string(a.lo));
+  w.value(to_string(a.hi));
+  w.end_array();
+  w.member("approx", a.approx);
+  w.end_object();
+}
+
 void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.begin_object();
   w.key("bodies");
@@ -145,8 +162,11 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     w.begin_object();
     w.key("t");
     w.begin_array();
-    w.value(to_string(c.first_contact->first));
-    w.value(to_string(c.first_contact->second));
+    const AlgebraicTime* root = c.witness && c.witness->root ? &*c.witness->root : nullptr;
+    if (root && c.first_contact_exact) write_root(w, *root);
+    else w.value(to_string(c.first_contact->first));
+    if (root) write_root(w, *root);  // a witness's bracket ends at its time
+    else w.value(to_string(c.first_contact->second));
     w.end_array();
     w.end_object();
   }
@@ -154,14 +174,20 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     const Witness& wit = *c.witness;
     w.key("witness");
     w.begin_object();
-    w.member("t", to_string(wit.t));
+    if (wit.root) {
+      w.key("t");
+      write_root(w, *wit.root);
+    } else {
+      w.member("t", to_string(wit.t));
+    }
     w.key("features");
     w.begin_array();
     w.value(wit.features[0]);
     w.value(wit.features[1]);
     w.end_array();
     if (wit.point_box) {
-      // An enclosed pose: a rational box holding the common point.
+      // A rational box holding the common point: an enclosed pose, or an
+      // algebraic time (exact resolution).
       w.key("point_box");
       w.begin_array();
       for (const auto& range : *wit.point_box) {
@@ -231,6 +257,8 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.member("hull_clears", s.hull_clears);
   w.member("axis_clears", s.axis_clears);
   w.member("stops", s.stops);
+  w.member("exact_pieces", s.exact_pieces);
+  w.member("exact_undecided", s.exact_unknown);
   w.member("prefiltered", s.prefiltered);
   w.member("seconds", s.seconds);
   w.end_object();
@@ -324,14 +352,23 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
         << to_string(c.verdict);
     if (c.clearance > 0) out << " (clearance " << to_string(c.clearance) << (c.verdict == Verdict::Collision ? " violated" : "") << ")";
     if (c.witness) {
-      out << " at t = " << to_string(c.witness->t) << " (" << c.witness->features[0]
-          << (c.witness->points ? " comes within the clearance of " : " meets ") << c.witness->features[1];
-      if (c.witness->displacement)
-        out << " when " << scene.bodies[c.bodies[c.witness->displaced]].name
-            << " is displaced within its tolerance";
+      const Witness& wit = *c.witness;
+      out << " at t = ";
+      if (wit.root) {
+        // The polynomial itself is in --json and in certificates.
+        out << "~" << wit.root->approx << " (the root of a degree-" << wit.root->root_of.size() - 1
+            << " polynomial in (" << to_string(wit.root->lo) << ", " << to_string(wit.root->hi) << "))";
+      } else {
+        out << to_string(wit.t);
+      }
+      out << " (" << wit.features[0] << (wit.points ? " comes within the clearance of " : " meets ") << wit.features[1];
+      if (wit.displacement)
+        out << " when " << scene.bodies[c.bodies[wit.displaced]].name << " is displaced within its tolerance";
       out << ")";
     }
-    if (c.first_contact)
+    if (c.first_contact && c.first_contact_exact && c.witness)
+      out << "; the exact first contact";
+    else if (c.first_contact)
       out << "; no contact before t = " << to_string(c.first_contact->first);
     if (!c.undecided.empty()) out << "; " << c.undecided.size() << " undecided interval(s)";
     for (int side = 0; side < 2; ++side)

@@ -384,6 +384,20 @@ std::vector<Vec3E> PreparedBody::placed(const std::vector<Vec3E>& points) const 
   return out;
 }
 
+const ExactFeatureVertices& PreparedBody::exact_vertices() const {
+  std::call_once(vertices_once_, [this] {
+    auto e = std::make_unique<ExactFeatureVertices>();
+    const bool identity = pose_ == kIdentity;
+    const FeatureList list =
+        feature_list(*body, [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); });
+    for (const auto& [v, part] : list.faces) e->faces.push_back(v);
+    for (const auto& [ed, part] : list.edges) e->edges.push_back({ed[0], ed[1]});
+    for (const auto& [v, part] : list.vertices) e->vertices.push_back({v});
+    vertices_ = std::move(e);
+  });
+  return *vertices_;
+}
+
 const ExactFeatures& PreparedBody::exact() const {
   std::call_once(exact_once_, [this] {
     auto e = std::make_unique<ExactFeatures>();

@@ -42,6 +42,13 @@ struct ExactFeatures {
   std::vector<FeatureGeometry<Exact>> vertices, edges, faces;
 };
 
+// The exact vertices of the features (a vertex, an edge's two ends, a
+// convex face's vertices in order), in the same order as the tables, in the
+// frame of ExactFeatures; no metric needed (exact resolution).
+struct ExactFeatureVertices {
+  std::vector<std::vector<Vec3E>> vertices, edges, faces;
+};
+
 // A polygon, segment or point as written, as simplices (a polygon's convex
 // pieces fanned into triangles) for the exact static test.
 struct StaticPart {
@@ -73,12 +80,14 @@ class PreparedBody {
   // Exact metric and features; thread-safe, computed once on first call.
   const Metric& exact_metric() const;
   const ExactFeatures& exact() const;
+  const ExactFeatureVertices& exact_vertices() const;
 
  private:
   std::vector<Vec3E> placed(const std::vector<Vec3E>& points) const;
 
   Mat34E pose_;
-  mutable std::once_flag metric_once_, exact_once_;
+  mutable std::once_flag metric_once_, exact_once_, vertices_once_;
+  mutable std::unique_ptr<const ExactFeatureVertices> vertices_;
   mutable std::unique_ptr<const Metric> metric_;
   mutable std::unique_ptr<const ExactFeatures> exact_;
 };

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "src/verify/kernel_policies.h"
+#include "src/verify/exact_resolution.h"
 #include "kernels/distance.h"
 #include "kernels/robust_crossing.h"
 #include "src/verify/solid_contact.h"
@@ -52,6 +53,8 @@ inline bool merge_result(CheckResult& total, const CheckResult& part) {
   s.slab_clears += p.slab_clears;
   s.hull_clears += p.hull_clears;
   s.axis_clears += p.axis_clears;
+  s.exact_pieces += p.exact_pieces;
+  s.exact_unknown += p.exact_unknown;
   total.cleared.insert(total.cleared.end(), part.cleared.begin(), part.cleared.end());
   for (const UndecidedInterval& u : part.undecided) {
     if (!total.undecided.empty() && total.undecided.back().t1 == u.t0 && total.undecided.back().reason == u.reason)
@@ -62,6 +65,7 @@ inline bool merge_result(CheckResult& total, const CheckResult& part) {
   if (part.witness) {
     total.witness = part.witness;
     total.verdict = Verdict::Collision;
+    total.first_contact_exact = part.first_contact_exact && !total.first_contact;
     const Exact lo = total.first_contact ? total.first_contact->first : part.first_contact->first;
     total.first_contact = std::pair{lo, part.first_contact->second};
     return false;
@@ -883,6 +887,32 @@ struct Check {
   // What a node's tests decided.
   enum class Outcome { Cleared, Split, Stopped, Witness };
 
+  // Exact resolution of a piece's feature pairs (src/verify/exact_resolution.h):
+  // the outcome, or nothing when it could not decide.  Early, before the
+  // stop, for the certified kernels when the few pairs left are cheaper to
+  // decide than to subdivide (continuous-collision queries at the root).
+  static constexpr std::size_t kExactEarlyWork = 16;  // alive pairs times the curve's degree
+  // Exact resolution decides the nominal rational curve: not for enclosed
+  // motions (no exact curve), and not with a tube (tolerance, clearance),
+  // where "the nominal motion does not touch" would not clear the piece.
+  bool exact_resolution_applies() const {
+    return options.kernel != KernelKind::Fast && options.exact_resolution && !extras.enclosed && extras.tube == 0 &&
+           !extras.distance_witness();
+  }
+  bool exact_early(const Node& node) const {
+    if (!exact_resolution_applies()) return false;
+    const std::size_t degree = curve.size() - 1;
+    if (node.alive.size() * std::max<std::size_t>(degree, 1) > kExactEarlyWork) return false;
+    return std::none_of(node.alive.begin(), node.alive.end(), [](const PairRef& p) { return p.nodes; });
+  }
+  std::optional<Outcome> decide_exactly(const Node& node) {
+    switch (decide_piece<B>(*this, node)) {
+      case ExactOutcome::Cleared: cleared(node); return Outcome::Cleared;
+      case ExactOutcome::Witness: return Outcome::Witness;
+      default: return std::nullopt;
+    }
+  }
+
   // Tests one node: prunes its pairs; on a stop, descends to feature pairs
   // and tries the witness candidates (setting the witness, or recording the
   // undecided piece); else splits it into `left` and `right`.
@@ -903,6 +933,9 @@ struct Check {
       cleared(node);
       return Outcome::Cleared;
     }
+    if (exact_early(node)) {  // few feature pairs left: decide them exactly now
+      if (const auto outcome = decide_exactly(node)) return *outcome;
+    }
     typename Policy::Ball& ball = get_ball();
     std::optional<StopReason> stop;
     if (node.depth >= std::min(options.max_depth, kDepthCap)) stop = StopReason::Depth;
@@ -916,6 +949,9 @@ struct Check {
       if (node.alive.empty()) {
         cleared(node);
         return Outcome::Cleared;
+      }
+      if (exact_resolution_applies()) {  // rational motions, no tube
+        if (const auto outcome = decide_exactly(node)) return *outcome;
       }
       // Witness candidates: the scene time with the smallest denominator in
       // the piece (a contact at a "round" rational time, such as 1/3 or
@@ -1130,6 +1166,7 @@ struct Check {
     } else if (auto hit = static_test(Exact(0), nullptr, &uncertain)) {
       set_witness(Exact(0), *hit);
       result.first_contact = std::pair{motion.t0, motion.t0};
+      result.first_contact_exact = true;
       return;
     }
     if (uncertain) {

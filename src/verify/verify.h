@@ -48,17 +48,35 @@ struct VerifyOptions {
   // Called (from any thread, serialized by the caller's function if needed)
   // with the fraction of a check's pieces done; empty: no reports.
   std::function<void(double)> progress;
+  // Decide the feature pairs alive on a piece exactly from the roots of
+  // their contact polynomials (certified kernels; proofs/exact-resolution.md):
+  // at a stop, and at once when few pairs are left.  false: the ball search
+  // alone (as before exact resolution; for tests of its budgets and stops).
+  bool exact_resolution = true;
   // Keep the pieces the search cleared (CheckResult::cleared), for
   // certificates.
   bool record_cover = false;
 };
 
+// An irrational parameter: the only root of `root_of` (integer
+// coefficients, constant term first, square-free) in the open interval
+// (lo, hi) (SCENE_FORMAT.md, "Exact contact times").
+struct AlgebraicTime {
+  std::vector<CGAL::Gmpz> root_of;
+  Exact lo, hi;
+  std::string approx;  // decimal, for people
+};
+
 struct Witness {
-  Exact t;                                  // scene parameter
+  Exact t;                                  // scene parameter (with `root`: the lower end of its interval)
   std::array<std::string, 2> features;      // as the check names its bodies
-  Vec3E point;                              // world coordinates, shared by both (when exact)
-  // An enclosed (transcendental) pose: a rational box [lo, hi] per
-  // coordinate holding the common point; `point` is then not used.
+  Vec3E point;                              // world coordinates, shared by both (when exact; unset with `root`)
+  // A contact at an irrational parameter (exact resolution,
+  // proofs/exact-resolution.md): its exact time.
+  std::optional<AlgebraicTime> root{};
+  // A rational box [lo, hi] per coordinate holding the common point, in
+  // place of `point`: at an algebraic time (with `root`), or at a pose that
+  // is only enclosed (a transcendental motion).
   std::optional<std::array<std::array<Exact, 2>, 3>> point_box;
   // Tolerance: the nominal poses do not touch, but translating body
   // `displaced` (0 or 1, in the check's order) by `displacement`, within its
@@ -94,6 +112,11 @@ struct CheckStats {
   std::uint64_t slab_clears = 0;   // node pairs cleared by their slabs
   std::uint64_t hull_clears = 0;   // feature pairs cleared by the hull test (contact test failed)
   std::uint64_t axis_clears = 0;   // contact tests settled by the axis test alone (not counted in `contact`)
+  // Exact resolution (proofs/exact-resolution.md): pieces decided by the
+  // contact polynomials' roots, and those it could not decide (a node pair
+  // alive, or an iteration cap).
+  std::uint64_t exact_pieces = 0;
+  std::uint64_t exact_unknown = 0;
   bool prefiltered = false;      // cleared by the swept-box prefilter alone
   double seconds = 0;
 };
@@ -111,6 +134,10 @@ struct CheckResult {
   Exact clearance = 0;
   Verdict verdict = Verdict::Undecided;
   std::optional<std::pair<Exact, Exact>> first_contact;
+  // The first contact's time is known exactly: it is the witness's time
+  // (first_contact then holds it, or with an algebraic witness the
+  // rational bounds of its interval).
+  bool first_contact_exact = false;
   std::optional<Witness> witness;
   std::vector<UndecidedInterval> undecided;
   // With VerifyOptions::record_cover: the pieces the search cleared,

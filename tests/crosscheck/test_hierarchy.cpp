@@ -1203,7 +1203,18 @@ void run_case(const Case& c, KernelKind kernel, const std::string& where, Failur
   for (const auto& [x, y] : {std::pair{&h, &a}, std::pair{&a, &h}}) {
     if (x->witness && y->first_contact && x->witness->t < y->first_contact->first)
       fail(ctx + ": a witness before the other run's certified first_contact lower end");
-    if (x->witness) {
+    if (x->witness && x->witness->root) {
+      // An irrational time: its polynomial changes sign over its interval
+      // (so it has a root there), inside the check's interval.
+      const AlgebraicTime& r = *x->witness->root;
+      auto value = [&](const Exact& t) {
+        Exact v(0);
+        for (std::size_t k = r.root_of.size(); k-- > 0;) v = v * t + Exact(r.root_of[k]);
+        return v;
+      };
+      if (!(r.lo < r.hi) || static_cast<int>(CGAL::sign(value(r.lo))) * static_cast<int>(CGAL::sign(value(r.hi))) >= 0)
+        fail(ctx + ": an algebraic witness time whose polynomial does not change sign over its interval");
+    } else if (x->witness) {
       const Witness& w = *x->witness;
       if (!body_contains(c.scene.bodies[0], w.t, w.point) || !body_contains(c.scene.bodies[1], w.t, w.point))
         fail(ctx + ": a witness point not on both bodies at its time");
@@ -1226,7 +1237,10 @@ void run_case(const Case& c, KernelKind kernel, const std::string& where, Failur
     if (h.first_contact != a.first_contact) fail(ctx + ": different first-contact brackets");
     if (h.witness.has_value() != a.witness.has_value() ||
         (h.witness && (h.witness->t != a.witness->t || h.witness->point != a.witness->point ||
-                       h.witness->features != a.witness->features)))
+                       h.witness->features != a.witness->features ||
+                       h.witness->root.has_value() != a.witness->root.has_value() ||
+                       (h.witness->root && (h.witness->root->root_of != a.witness->root->root_of ||
+                                            h.witness->root->hi != a.witness->root->hi)))))
       fail(ctx + ": different witnesses");
     bool same_undecided = h.undecided.size() == a.undecided.size();
     for (std::size_t i = 0; same_undecided && i < h.undecided.size(); ++i)

@@ -13,6 +13,7 @@
 #include "kernels/number_types.h"
 #include "src/metric/metric.h"
 #include "src/scene/model.h"
+#include "src/certificate/algebraic_witness.h"
 #include "src/verify/verify.h"
 #include "tests/support/exact_oracle.h"
 
@@ -285,6 +286,57 @@ inline bool body_contains(const Body& b, const Exact& t, const Vec3E& p) {
   return false;
 }
 
+// A witness at an irrational time (exact resolution): its root claim holds
+// (square-free, exactly one root in the open interval, inside the motion),
+// the bracket ends at it (and is exact unless something before it was left
+// undecided), the point box is a box, and some sub-features (a vertex, an
+// edge, the whole element) of the two named parts provably meet at the
+// root - checked as `tmcert check` checks certificates, from the scene
+// alone, not by the search.
+inline std::string algebraic_witness_problem(const Scene& s, int a, int b, const CheckResult& r) {
+  const Witness& w = *r.witness;
+  const AlgebraicTime& at = *w.root;
+  const Body& mb = is_moving(s.bodies[a]) ? s.bodies[a] : s.bodies[b];
+  const Exact t0 = mb.motion->t0, t1 = mb.motion->t1;
+  const certificate::ClaimedRoot claim{at.root_of, at.lo, at.hi};
+  if (const std::string e = certificate::root_claim_error(claim, t0, t1); !e.empty()) return "witness root: " + e;
+  if (w.t != at.lo || r.first_contact->second != at.hi) return "the bracket does not end at the witness's root";
+  if (r.first_contact_exact != r.undecided.empty()) return "first contact exact unless undecided pieces precede it";
+  if (r.first_contact_exact && r.first_contact->first != at.lo) return "exact first contact not at the witness";
+  if (!w.point_box) return "no point box at an algebraic time";
+  for (const auto& range : *w.point_box)
+    if (range[0] > range[1]) return "empty point box";
+  RealRoot root = certificate::check_parameter_root(claim, t0, t1);
+  const certificate::CheckMotions motions(s.bodies[a], s.bodies[b]);
+  const Body* bodies[2] = {&s.bodies[a], &s.bodies[b]};
+  std::vector<std::vector<Vec3E>> elems[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string part = w.features[k].substr(bodies[k]->name.size() + 1);
+    std::istringstream in(part);
+    std::string kind;
+    int index = -1;
+    in >> kind >> index;
+    if (kind == "polygon") {
+      for (const ConvexPiece& piece : bodies[k]->pieces)
+        if (piece.polygon == index) elems[k].push_back(piece.vertices);
+    } else if (kind == "segment" && index >= 0 && index < static_cast<int>(bodies[k]->segments.size())) {
+      elems[k].push_back({bodies[k]->segments[index][0], bodies[k]->segments[index][1]});
+    } else if (kind == "point" && index >= 0 && index < static_cast<int>(bodies[k]->points.size())) {
+      elems[k].push_back({bodies[k]->points[index]});
+    }
+  }
+  for (const auto& ea : elems[0])
+    for (const auto& eb : elems[1])
+      for (const auto& sa : certificate::sub_features(ea.size()))
+        for (const auto& sb : certificate::sub_features(eb.size())) {
+          std::vector<MovingPoint> pa, pb;
+          for (int i : sa) pa.push_back(motions.place(0, ea[i]));
+          for (int j : sb) pb.push_back(motions.place(1, eb[j]));
+          if (ContactSolver::touch(pa, pb, root)) return "";
+        }
+  return "no sub-features of the witness's parts meet at its root";
+}
+
 // Empty when the result is consistent with the guarantee as far as can be
 // checked without knowing the truth: a collision has a genuine witness inside
 // its first-contact bracket, a non-safe verdict has a bracket, and so on.
@@ -316,6 +368,7 @@ inline std::string consistency_problem(const Scene& s, int a, int b, const Check
   if (w.t < lo || w.t > hi) return "witness time outside first_contact";
   if (w.features[0].rfind(s.bodies[a].name + " ", 0) != 0 || w.features[1].rfind(s.bodies[b].name + " ", 0) != 0)
     return "witness features do not name the check's bodies in order";
+  if (w.root) return algebraic_witness_problem(s, a, b, r);
   if (!body_contains(s.bodies[a], w.t, w.point)) return "witness point not on body " + s.bodies[a].name;
   if (!body_contains(s.bodies[b], w.t, w.point)) return "witness point not on body " + s.bodies[b].name;
   return "";

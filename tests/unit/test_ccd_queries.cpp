@@ -32,7 +32,8 @@ BOOST_AUTO_TEST_CASE(no_false_verdicts_and_certified_brackets) {
       const CheckResult r = verifier.check(q.body_a, q.body_b);
       BOOST_TEST_CONTEXT("query " << i << " (" << q.kind << "), kernel " << to_string(kernel)) {
         if (q.collides) {
-          BOOST_TEST(r.verdict != Verdict::Safe);
+          // Exact resolution: every colliding linear query is proven.
+          BOOST_TEST(r.verdict == Verdict::Collision);
           if (q.contact_time && r.first_contact) BOOST_TEST(r.first_contact->first <= *q.contact_time);
         } else {
           ++free;
@@ -42,13 +43,22 @@ BOOST_AUTO_TEST_CASE(no_false_verdicts_and_certified_brackets) {
         if (r.verdict == Verdict::Collision) {
           ++collisions;
           BOOST_TEST(r.witness.has_value());
-          BOOST_TEST(r.first_contact->first <= r.witness->t);
-          BOOST_TEST(r.first_contact->second == r.witness->t);
+          // Nothing was left undecided before it: the first contact is exact.
+          BOOST_TEST(r.first_contact_exact);
+          if (r.witness->root) {  // an irrational time: the bracket is its isolating interval
+            BOOST_TEST(r.first_contact->first == r.witness->root->lo);
+            BOOST_TEST(r.first_contact->second == r.witness->root->hi);
+            if (q.contact_time) BOOST_TEST(r.witness->root->lo < *q.contact_time);
+          } else {
+            BOOST_TEST(r.first_contact->first == r.witness->t);
+            BOOST_TEST(r.first_contact->second == r.witness->t);
+            if (q.contact_time) BOOST_TEST(r.witness->t <= *q.contact_time);
+          }
         }
       }
     }
-    // Non-colliding queries must be decided: fewer than 1% undecided.
-    BOOST_TEST(undecided_free * 100 < free);
+    // Non-colliding queries are decided exactly: none undecided.
+    BOOST_TEST(undecided_free == 0);
     BOOST_TEST(collisions > 0);  // witnesses are found for interpenetrations and dyadic contacts
   }
 }

@@ -6,6 +6,8 @@
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
+#include "kernels/real_roots.h"
+
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
@@ -156,9 +158,61 @@ void each_direction(json& proof, const std::function<void(json&)>& f) {
   for (json& part : proof["parts"]) each_direction(part, f);
 }
 
+// A witness at an irrational time (octagons-collision: the exact first
+// contact at t = 0.3026..., a root of a cubic): accepted as written, and
+// rejected after any change to its root, interval or sub-features.
+BOOST_AUTO_TEST_CASE(algebraic_witnesses_are_checked_exactly) {
+  const Verified v = verified(example("octagons-collision.json"));
+  BOOST_REQUIRE(v.result.checks[0].witness && v.result.checks[0].witness->root);
+  BOOST_REQUIRE(accepted(v, v.certificate));
+  const json& w = v.certificate["checks"][0]["witness"];
+  BOOST_REQUIRE(w["t"].is_object());
+  int tried = 0, rejected = 0;
+  auto expect_rejected = [&](const std::function<void(json&)>& change, const std::string& what) {
+    json altered = v.certificate;
+    change(altered["checks"][0]["witness"]);
+    ++tried;
+    const bool ok = accepted(v, altered);
+    BOOST_TEST(!ok, "accepted after: " << what);
+    rejected += !ok;
+  };
+  auto integer = [](const json& x) { return CGAL::Gmpz(x.get<std::string>()); };
+  auto text = [](const CGAL::Gmpz& z) { return to_string(Exact(z)); };
+  // Each coefficient changed by one: another polynomial, whose root (if
+  // any in the interval) is not a contact.
+  for (std::size_t k = 0; k < w["t"]["root_of"].size(); ++k)
+    expect_rejected([&](json& x) { x["t"]["root_of"][k] = text(integer(x["t"]["root_of"][k]) + 1); },
+                    "root_of[" + std::to_string(k) + "] + 1");
+  // The polynomial squared (not square-free), and times (t - lo) (a root at the end).
+  expect_rejected([&](json& x) {
+    PolyQ p;
+    for (const json& c : x["t"]["root_of"]) p.push_back(Exact(integer(c)));
+    const PolyZ q = primitive(mul(p, p));
+    x["t"]["root_of"] = json::array();
+    for (const CGAL::Gmpz& c : q) x["t"]["root_of"].push_back(text(c));
+  }, "root_of squared");
+  // The interval moved off the root, reversed, or widened past the check.
+  expect_rejected([&](json& x) { x["t"]["interval"][0] = x["t"]["interval"][1]; x["t"]["interval"][1] = "1"; },
+                  "interval moved above the root");
+  expect_rejected([&](json& x) { std::swap(x["t"]["interval"][0], x["t"]["interval"][1]); }, "interval reversed");
+  expect_rejected([&](json& x) { x["t"]["interval"][1] = "100"; }, "interval past the check");
+  // Other sub-features: another vertex of the same element on each side.
+  for (const char* side : {"a", "b"}) {
+    expect_rejected([&](json& x) {
+      json& vs = x[side]["vertices"];
+      if (vs.size() == 1) vs[0] = vs[0].get<int>() == 0 ? 1 : 0;
+      else vs = json::array({vs[0].get<int>() == 0 ? 1 : 0});
+    }, std::string("another vertex on side ") + side);
+  }
+  expect_rejected([&](json& x) { x["a"]["vertices"] = json::array({0, 1, 2}); }, "three vertices, not all");
+  BOOST_TEST(rejected == tried);
+}
+
 BOOST_AUTO_TEST_CASE(altered_certificates_are_rejected) {
   const Verified clear = verified(example("octagons-near.json"));
-  const Verified collision = verified(example("octagons-collision.json"));
+  // A rational witness (t = 1/3, with its exact point); octagons-collision's
+  // is at an irrational time (algebraic_witnesses_are_checked_exactly).
+  const Verified collision = verified(data("scenes/crossing-at-one-third.json"));
   BOOST_REQUIRE(accepted(clear, clear.certificate));
   BOOST_REQUIRE(accepted(collision, collision.certificate));
   BOOST_REQUIRE(clear.certificate["checks"][0]["pieces"].size() >= 2);
@@ -213,7 +267,7 @@ BOOST_AUTO_TEST_CASE(altered_certificates_are_rejected) {
     expect_rejected(collision, altered, "witness point moved");
   }
   // The certificate of one scene against another.
-  expect_rejected(collision, clear.certificate, "certificate of octagons-near checked against octagons-collision");
+  expect_rejected(collision, clear.certificate, "certificate of octagons-near checked against crossing-at-one-third");
   BOOST_TEST(rejected == tried);
 }
 

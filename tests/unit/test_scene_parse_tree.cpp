@@ -115,13 +115,27 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
     ordered_json k;
     k["bodies"] = {scene.bodies[c.bodies[0]].name, scene.bodies[c.bodies[1]].name};
     k["verdict"] = to_string(c.verdict);
-    if (c.first_contact)
+    // An irrational time as the contract writes it.
+    auto root = [](const tmcert::AlgebraicTime& a) {
+      ordered_json coefficients = ordered_json::array();
+      for (const CGAL::Gmpz& x : a.root_of) coefficients.push_back(to_string(Exact(x)));
+      return ordered_json{{"root_of", coefficients}, {"interval", {to_string(a.lo), to_string(a.hi)}}, {"approx", a.approx}};
+    };
+    const tmcert::AlgebraicTime* at = c.witness && c.witness->root ? &*c.witness->root : nullptr;
+    if (c.first_contact && at)
+      k["first_contact"] = {{"t", {c.first_contact_exact ? root(*at) : ordered_json(to_string(c.first_contact->first)), root(*at)}}};
+    else if (c.first_contact)
       k["first_contact"] = {{"t", {to_string(c.first_contact->first), to_string(c.first_contact->second)}}};
-    if (c.witness)
+    if (c.witness && at) {
+      ordered_json box = ordered_json::array();
+      if (c.witness->point_box) for (const auto& range : *c.witness->point_box) box.push_back({to_string(range[0]), to_string(range[1])});
+      k["witness"] = {{"t", root(*at)}, {"features", {c.witness->features[0], c.witness->features[1]}}, {"point_box", box}};
+    } else if (c.witness) {
       k["witness"] = {{"t", to_string(c.witness->t)},
                       {"features", {c.witness->features[0], c.witness->features[1]}},
                       {"point", {to_string(c.witness->point[0]), to_string(c.witness->point[1]),
                                  to_string(c.witness->point[2])}}};
+    }
     ordered_json und = ordered_json::array();
     for (const tmcert::UndecidedInterval& u : c.undecided)
       und.push_back({{"t", {to_string(u.t0), to_string(u.t1)}}, {"reason", to_string(u.reason)}});
@@ -146,6 +160,8 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
                   {"hull_clears", s.hull_clears},
                   {"axis_clears", s.axis_clears},
                   {"stops", s.stops},
+                  {"exact_pieces", s.exact_pieces},
+                  {"exact_undecided", s.exact_unknown},
                   {"prefiltered", s.prefiltered},
                   {"seconds", s.seconds}};
     j["checks"].push_back(k);
@@ -188,6 +204,20 @@ BOOST_AUTO_TEST_CASE(result_json_is_written_as_nlohmann_dumps_it) {
   hit.stats.by_kind[1].exact_fallbacks = 3;
   hit.stats.seconds = 2.0;
   r.checks.push_back(hit);
+
+  // A contact at an irrational time: root, interval and point box.
+  tmcert::CheckResult algebraic = hit;
+  algebraic.undecided.clear();
+  tmcert::AlgebraicTime sqrt_half{{CGAL::Gmpz(-1), CGAL::Gmpz(0), CGAL::Gmpz(2)}, Exact(7, 10), Exact(71, 100), "0.707106781186548"};
+  algebraic.witness->root = sqrt_half;
+  algebraic.witness->t = sqrt_half.lo;
+  algebraic.witness->point_box = {{{Exact(0), Exact(1, 4)}, {Exact(-1), Exact(1)}, {Exact(3), Exact(3)}}};
+  algebraic.first_contact = std::make_pair(sqrt_half.lo, sqrt_half.hi);
+  algebraic.first_contact_exact = true;
+  r.checks.push_back(algebraic);
+  algebraic.first_contact = std::make_pair(Exact(1, 2), sqrt_half.hi);  // an undecided piece before it
+  algebraic.first_contact_exact = false;
+  r.checks.push_back(algebraic);
 
   tmcert::CheckResult slow = safe;
   slow.verdict = tmcert::Verdict::Undecided;

@@ -1,0 +1,484 @@
+#include "kernels/real_roots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+namespace tmcert {
+
+namespace {
+
+// Caps on loops that terminate mathematically (ExactLimit past them).
+constexpr int kMaxBisections = 4000;
+
+Integer lcm(const Integer& a, const Integer& b) {
+  Integer r;
+  mpz_lcm(r.mpz(), a.mpz(), b.mpz());
+  return r;
+}
+
+Integer gcd_int(const Integer& a, const Integer& b) {
+  Integer r;
+  mpz_gcd(r.mpz(), a.mpz(), b.mpz());
+  return r;
+}
+
+Integer content(const PolyZ& p) {
+  Integer g(0);
+  for (const Integer& c : p) {
+    if (c == 0) continue;
+    g = gcd_int(g, c);
+    if (g == 1) break;
+  }
+  return g;
+}
+
+// A positive multiple of the remainder of a divided by b (deg b >= 0):
+// pseudo-division, lc(b)^k * a mod b after k steps, negated when that
+// factor is negative.
+PolyZ prem(PolyZ a, const PolyZ& b) {
+  const int db = degree(b);
+  const Integer& lb = b.back();
+  int steps = 0;
+  while (!a.empty() && degree(a) >= db) {
+    const int shift = degree(a) - db;
+    const Integer la = a.back();
+    for (Integer& c : a) c *= lb;
+    for (int k = 0; k <= db; ++k) a[k + shift] -= la * b[k];
+    trim(a);
+    ++steps;
+  }
+  if (lb < 0 && steps % 2 == 1)
+    for (Integer& c : a) c = -c;
+  return a;
+}
+
+// The Sturm sequence of a square-free p: p, p', then negated remainders
+// (positive multiples of them, so the sign variations are Sturm's).
+std::vector<PolyZ> sturm(const PolyZ& p) {
+  std::vector<PolyZ> s{p};
+  PolyZ d;
+  for (int i = 1; i <= degree(p); ++i) d.push_back(p[i] * i);
+  trim(d);
+  if (d.empty()) return s;
+  s.push_back(primitive(d));
+  while (degree(s.back()) > 0) {
+    const PolyZ& a = s[s.size() - 2];
+    const PolyZ& b = s.back();
+    PolyZ r = prem(a, b);
+    if (r.empty()) break;  // p was not square-free: the last entry is a gcd
+    r = primitive(r);
+    for (Integer& c : r) c = -c;
+    s.push_back(std::move(r));
+  }
+  return s;
+}
+
+int variations(const std::vector<PolyZ>& s, const Exact& x) {
+  int count = 0;
+  CGAL::Sign last = CGAL::ZERO;
+  for (const PolyZ& p : s) {
+    const CGAL::Sign v = sign_at(p, x);
+    if (v == CGAL::ZERO) continue;
+    if (last != CGAL::ZERO && v != last) ++count;
+    last = v;
+  }
+  return count;
+}
+
+// Interval enclosure of q over [lo, hi] (exact rational endpoints, Horner
+// with exact interval products).
+std::pair<Exact, Exact> exact_range(const PolyZ& q, const Exact& lo, const Exact& hi) {
+  Exact a(q.back()), b(q.back());
+  for (int i = degree(q) - 1; i >= 0; --i) {
+    const Exact p[4] = {a * lo, a * hi, b * lo, b * hi};
+    a = *std::min_element(p, p + 4) + Exact(q[i]);
+    b = *std::max_element(p, p + 4) + Exact(q[i]);
+  }
+  return {a, b};
+}
+
+// The sign of q over [lo, hi] when it is the same everywhere there and
+// proven so (ZERO when not proven): a double interval filter, then exact
+// rational intervals.
+CGAL::Sign range_sign(const PolyZ& q, const Exact& lo, const Exact& hi) {
+  {
+    RoundingGuard guard;
+    const Interval x(to_interval(lo).inf(), to_interval(hi).sup());  // lo <= hi
+    Interval acc = Interval(CGAL::to_interval(q.back()));
+    for (int i = degree(q) - 1; i >= 0; --i) acc = acc * x + Interval(CGAL::to_interval(q[i]));
+    if (acc.inf() > 0) return CGAL::POSITIVE;
+    if (acc.sup() < 0) return CGAL::NEGATIVE;
+  }
+  const auto [a, b] = exact_range(q, lo, hi);
+  if (a > 0) return CGAL::POSITIVE;
+  if (b < 0) return CGAL::NEGATIVE;
+  return CGAL::ZERO;
+}
+
+Exact simplest_between(const Exact& lo, const Exact& hi) {
+  if (lo <= 0 && hi >= 0) return Exact(0);
+  if (hi < 0) return -simplest_between(-hi, -lo);
+  Integer fl;
+  mpz_fdiv_q(fl.mpz(), lo.numerator().mpz(), lo.denominator().mpz());
+  if (Exact(fl) == lo) return lo;
+  if (Exact(fl + 1) <= hi) return Exact(fl + 1);
+  return Exact(fl) + Exact(1) / simplest_between(Exact(1) / (hi - Exact(fl)), Exact(1) / (lo - Exact(fl)));
+}
+
+}  // namespace
+
+void trim(PolyQ& p) {
+  while (!p.empty() && p.back() == 0) p.pop_back();
+}
+void trim(PolyZ& p) {
+  while (!p.empty() && p.back() == 0) p.pop_back();
+}
+
+PolyQ add(const PolyQ& a, const PolyQ& b) {
+  PolyQ r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < a.size()) r[i] += a[i];
+    if (i < b.size()) r[i] += b[i];
+  }
+  trim(r);
+  return r;
+}
+
+PolyQ sub(const PolyQ& a, const PolyQ& b) {
+  PolyQ r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < a.size()) r[i] += a[i];
+    if (i < b.size()) r[i] -= b[i];
+  }
+  trim(r);
+  return r;
+}
+
+PolyQ mul(const PolyQ& a, const PolyQ& b) {
+  if (a.empty() || b.empty()) return {};
+  PolyQ r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == 0) continue;
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
+  }
+  trim(r);
+  return r;
+}
+
+PolyZ add(const PolyZ& a, const PolyZ& b) {
+  PolyZ r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < a.size()) r[i] += a[i];
+    if (i < b.size()) r[i] += b[i];
+  }
+  trim(r);
+  return r;
+}
+
+PolyZ sub(const PolyZ& a, const PolyZ& b) {
+  PolyZ r(std::max(a.size(), b.size()));
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i < a.size()) r[i] += a[i];
+    if (i < b.size()) r[i] -= b[i];
+  }
+  trim(r);
+  return r;
+}
+
+PolyZ mul(const PolyZ& a, const PolyZ& b) {
+  if (a.empty() || b.empty()) return {};
+  PolyZ r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == 0) continue;
+    for (std::size_t j = 0; j < b.size(); ++j) mpz_addmul(r[i + j].mpz(), a[i].mpz(), b[j].mpz());
+  }
+  trim(r);
+  return r;
+}
+
+PolyZ primitive(const PolyQ& p) {
+  Integer den(1);
+  for (const Exact& c : p) den = lcm(den, c.denominator());
+  PolyZ z;
+  z.reserve(p.size());
+  for (const Exact& c : p) z.push_back(c.numerator() * (den / c.denominator()));
+  trim(z);
+  return primitive(z);
+}
+
+PolyZ primitive(const PolyZ& p) {
+  PolyZ z = p;
+  trim(z);
+  const Integer g = content(z);
+  if (g > 1)
+    for (Integer& c : z) {
+      // Into a fresh integer: CGAL::Gmpz copies share their value, and
+      // mpz() writes through to every copy.
+      Integer q;
+      mpz_divexact(q.mpz(), c.mpz(), g.mpz());
+      c = q;
+    }
+  return z;
+}
+
+CGAL::Sign sign_at(const PolyZ& p, const Exact& x) {
+  if (p.empty()) return CGAL::ZERO;
+  // sign(p(n/d)) = sign(sum c_i n^i d^(deg - i)), d > 0.
+  const Integer& n = x.numerator();
+  const Integer& d = x.denominator();
+  Integer acc = p.back(), dpow(1);
+  for (int i = degree(p) - 1; i >= 0; --i) {
+    dpow *= d;
+    acc = acc * n + p[i] * dpow;
+  }
+  return CGAL::sign(acc);
+}
+
+Exact value_at(const PolyZ& p, const Exact& x) {
+  Exact acc(0);
+  for (int i = degree(p); i >= 0; --i) acc = acc * x + Exact(p[i]);
+  return acc;
+}
+
+PolyZ gcd(const PolyZ& a0, const PolyZ& b0) {
+  PolyZ a = primitive(a0), b = primitive(b0);
+  if (degree(a) < degree(b)) std::swap(a, b);
+  while (!b.empty()) {
+    PolyZ r = prem(a, b);
+    a = std::move(b);
+    b = primitive(r);
+  }
+  if (!a.empty() && a.back() < 0)
+    for (Integer& c : a) c = -c;
+  return a;
+}
+
+PolyZ square_free(const PolyZ& p0) {
+  const PolyZ p = primitive(p0);
+  if (degree(p) <= 1) return p;
+  PolyZ d;
+  for (int i = 1; i <= degree(p); ++i) d.push_back(p[i] * i);
+  const PolyZ g = gcd(p, d);
+  if (degree(g) <= 0) return p;
+  // Exact division p / g over Q.
+  PolyQ rem(p.begin(), p.end()), q(p.size() - g.size() + 1);
+  const int dg = degree(g);
+  for (int k = degree(p) - dg; k >= 0; --k) {
+    const Exact c = rem[k + dg] / Exact(g.back());
+    q[k] = c;
+    for (int i = 0; i <= dg; ++i) rem[k + i] -= c * Exact(g[i]);
+  }
+  return primitive(q);
+}
+
+RealRoot rational_root(const Exact& x) {
+  RealRoot r;
+  r.poly = primitive(PolyQ{-x, Exact(1)});
+  r.lo = r.hi = x;
+  return r;
+}
+
+std::vector<RealRoot> real_roots(const PolyZ& p0, const Exact& a, const Exact& b) {
+  const PolyZ p = primitive(p0);
+  std::vector<RealRoot> out;
+  if (p.empty()) throw std::logic_error("real_roots: zero polynomial");
+  if (degree(p) == 0) return out;
+  if (sign_at(p, a) == CGAL::ZERO) out.push_back(RealRoot{p, a, a});
+  if (a == b) return out;
+  if (degree(p) == 1) {
+    const Exact x = -Exact(p[0]) / Exact(p[1]);
+    if (a < x && x <= b) out.push_back(RealRoot{p, x, x});
+    return out;
+  }
+  const std::vector<PolyZ> s = sturm(p);
+  // Depth-first on half-open pieces (lo, hi] with their root counts, left
+  // first: roots come out in increasing order.
+  struct Piece {
+    Exact lo, hi;
+    int vlo, vhi;
+  };
+  std::vector<Piece> stack{{a, b, variations(s, a), variations(s, b)}};
+  int steps = 0;
+  while (!stack.empty()) {
+    Piece c = stack.back();
+    stack.pop_back();
+    const int count = c.vlo - c.vhi;
+    if (count <= 0) continue;
+    if (++steps > kMaxBisections) throw ExactLimit("real_roots: too many bisections");
+    const CGAL::Sign shi = sign_at(p, c.hi);
+    if (count == 1) {
+      if (shi == CGAL::ZERO) {
+        out.push_back(RealRoot{p, c.hi, c.hi});
+        continue;
+      }
+      const CGAL::Sign slo = sign_at(p, c.lo);
+      if (slo != CGAL::ZERO) {
+        out.push_back(RealRoot{p, c.lo, c.hi});
+        continue;
+      }
+    }
+    const Exact m = (c.lo + c.hi) / 2;
+    const int vm = variations(s, m);
+    stack.push_back({m, c.hi, vm, c.vhi});
+    stack.push_back({c.lo, m, c.vlo, vm});
+  }
+  return out;
+}
+
+void refine(RealRoot& r) {
+  if (r.is_rational()) return;
+  const Exact m = (r.lo + r.hi) / 2;
+  const CGAL::Sign sm = sign_at(r.poly, m);
+  if (sm == CGAL::ZERO) {
+    r.lo = r.hi = m;
+    return;
+  }
+  if (sm == sign_at(r.poly, r.lo)) r.lo = m;
+  else r.hi = m;
+}
+
+void refine_to(RealRoot& r, const Exact& width) {
+  for (int k = 0; !r.is_rational() && r.hi - r.lo > width; ++k) {
+    if (k > kMaxBisections) throw ExactLimit("refine_to: too many bisections");
+    refine(r);
+  }
+}
+
+CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
+  if (q.empty()) return CGAL::ZERO;
+  if (r.is_rational()) return sign_at(q, r.lo);
+  if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  // A few bisections first: cheaper than the gcd below when q(r) != 0
+  // (high degrees, large coefficients).
+  for (int k = 0; k < 24; ++k) {
+    refine(r);
+    if (r.is_rational()) return sign_at(q, r.lo);
+    if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  }
+  // q(r) = 0 exactly when r is a root of g = gcd(q, poly): g divides the
+  // square-free poly, so r is g's only root in [lo, hi], and g is nonzero
+  // at lo and hi; it changes sign there exactly when r is its root.
+  const PolyZ g = gcd(q, r.poly);
+  if (degree(g) >= 1 && sign_at(g, r.lo) != sign_at(g, r.hi)) return CGAL::ZERO;
+  // q(r) != 0: a small enough interval around r proves q's sign.
+  for (int k = 0; k < kMaxBisections; ++k) {
+    refine(r);
+    if (r.is_rational()) return sign_at(q, r.lo);
+    if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  }
+  throw ExactLimit("sign_at: too many bisections");
+}
+
+CGAL::Comparison_result compare(RealRoot& a, RealRoot& b) {
+  if (a.is_rational() && b.is_rational()) return CGAL::compare(a.lo, b.lo);
+  if (b.is_rational() && !a.is_rational()) return CGAL::opposite(compare(b, a));
+  if (a.is_rational()) {
+    const Exact& x = a.lo;
+    if (x <= b.lo) return CGAL::SMALLER;
+    if (x >= b.hi) return CGAL::LARGER;
+    const CGAL::Sign s = sign_at(b.poly, x);
+    if (s == CGAL::ZERO) return CGAL::EQUAL;  // b's only root in (lo, hi)
+    // b's root is below x exactly when poly changes sign on (lo, x).
+    return s != sign_at(b.poly, b.lo) ? CGAL::LARGER : CGAL::SMALLER;
+  }
+  // Equal only if a is a root of b's polynomial, inside b's interval.
+  const PolyZ g = gcd(a.poly, b.poly);
+  const bool a_root_of_b = degree(g) >= 1 && sign_at(g, a.lo) != sign_at(g, a.hi);
+  for (int k = 0; k < kMaxBisections; ++k) {
+    if (a.is_rational() || b.is_rational()) return compare(a, b);
+    if (a.hi <= b.lo) return CGAL::SMALLER;
+    if (b.hi <= a.lo) return CGAL::LARGER;
+    if (a_root_of_b && b.lo < a.lo && a.hi < b.hi) return CGAL::EQUAL;  // b.poly's only root in (b.lo, b.hi)
+    refine(a);
+    if (!a_root_of_b) refine(b);
+  }
+  throw ExactLimit("compare: too many bisections");
+}
+
+namespace {
+
+// True when p has no rational root at all: p mod q has no root in Z/q for
+// some small prime q not dividing the leading coefficient (a rational root
+// n/d has d | lc, so d is invertible mod q and n/d mod q would be a root).
+bool no_rational_root(const PolyZ& p) {
+  static const unsigned long primes[] = {3,  5,  7,  11, 13, 17, 19, 23, 29, 31, 37,  41,  43,  47,  53,
+                                         59, 61, 67, 71, 73, 79, 83, 89, 97, 101, 103, 107, 109, 113, 127};
+  std::vector<unsigned long> c(p.size());
+  for (unsigned long q : primes) {
+    if (mpz_divisible_ui_p(p.back().mpz(), q)) continue;
+    for (std::size_t i = 0; i < p.size(); ++i) c[i] = mpz_fdiv_ui(p[i].mpz(), q);
+    bool root = false;
+    for (unsigned long x = 0; x < q && !root; ++x) {
+      unsigned long acc = 0;
+      for (std::size_t i = c.size(); i-- > 0;) acc = (acc * x + c[i]) % q;
+      root = acc == 0;
+    }
+    if (!root) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool settle_rational(RealRoot& r) {
+  if (r.is_rational()) return true;
+  if (no_rational_root(r.poly)) return false;
+  {
+    // A rational root with a small denominator is the simplest rational of
+    // a narrow interval around it.
+    // Tried on narrower and narrower intervals (most such roots, like 1/3
+    // or 0.137, are the simplest rational of a wide one).
+    RealRoot narrow = r;
+    for (const unsigned long bits : {0ul, 8ul, 16ul, 32ul, 64ul}) {
+      if (bits > 0) refine_to(narrow, Exact(Integer(1), Integer(1) << bits));
+      if (narrow.is_rational()) {
+        r = narrow;
+        return true;
+      }
+      const Exact c = simplest_between(narrow.lo, narrow.hi);
+      if (sign_at(r.poly, c) == CGAL::ZERO) {
+        r.lo = r.hi = c;
+        return true;
+      }
+    }
+  }
+  // A rational root n/d of the primitive poly has d | lc; two distinct
+  // rationals with denominators <= |lc| are at least 1/lc^2 apart, so in
+  // an interval narrower than that only the simplest rational can be it.
+  Integer lc = r.poly.back();
+  if (lc < 0) lc = -lc;
+  refine_to(r, Exact(Integer(1), lc * lc * 2));
+  if (r.is_rational()) return true;
+  const Exact c = simplest_between(r.lo, r.hi);
+  if (c.denominator() <= lc && sign_at(r.poly, c) == CGAL::ZERO) {
+    r.lo = r.hi = c;
+    return true;
+  }
+  return false;
+}
+
+PolyZ compose_affine(const PolyZ& p, const Exact& x0, const Exact& scale) {
+  // Horner in the polynomial ring: acc = acc * (x0 + scale x) + c_i.
+  PolyQ acc;
+  const PolyQ lin{x0, scale};
+  for (int i = degree(p); i >= 0; --i) acc = add(mul(acc, lin), PolyQ{Exact(p[i])});
+  return primitive(acc);
+}
+
+std::string approximate(RealRoot r, int digits) {
+  if (!r.is_rational()) {
+    const Exact mag = CGAL::abs(r.lo) > CGAL::abs(r.hi) ? CGAL::abs(r.lo) : CGAL::abs(r.hi);
+    const Exact scale = mag > 1 ? mag : Exact(1);
+    Integer ten_power;
+    mpz_ui_pow_ui(ten_power.mpz(), 10, static_cast<unsigned long>(digits + 2));
+    refine_to(r, scale / Exact(ten_power));
+  }
+  const double x = CGAL::to_double((r.lo + r.hi) / 2);
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+  return buffer;
+}
+
+}  // namespace tmcert
