@@ -102,6 +102,17 @@ std::pair<Exact, Exact> exact_range(const PolyZ& q, const Exact& lo, const Exact
 // The sign of q over [lo, hi] when it is the same everywhere there and
 // proven so (ZERO when not proven): a double interval filter, then exact
 // rational intervals.
+// The double interval filter of range_sign alone.
+CGAL::Sign range_sign_double(const PolyZ& q, const Exact& lo, const Exact& hi) {
+  RoundingGuard guard;
+  const Interval x(to_interval(lo).inf(), to_interval(hi).sup());  // lo <= hi
+  Interval acc = Interval(CGAL::to_interval(q.back()));
+  for (int i = degree(q) - 1; i >= 0; --i) acc = acc * x + Interval(CGAL::to_interval(q[i]));
+  if (acc.inf() > 0) return CGAL::POSITIVE;
+  if (acc.sup() < 0) return CGAL::NEGATIVE;
+  return CGAL::ZERO;
+}
+
 CGAL::Sign range_sign(const PolyZ& q, const Exact& lo, const Exact& hi) {
   {
     RoundingGuard guard;
@@ -285,6 +296,9 @@ std::vector<RealRoot> real_roots(const PolyZ& p0, const Exact& a, const Exact& b
   std::vector<RealRoot> out;
   if (p.empty()) throw std::logic_error("real_roots: zero polynomial");
   if (degree(p) == 0) return out;
+  // An enclosure of p over [a, b] without 0: no root (the common case on
+  // small pieces, and far cheaper than a Sturm sequence at high degrees).
+  if (range_sign_double(p, a, b) != CGAL::ZERO) return out;
   if (sign_at(p, a) == CGAL::ZERO) out.push_back(RealRoot{p, a, a});
   if (a == b) return out;
   if (degree(p) == 1) {

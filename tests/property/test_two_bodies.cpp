@@ -352,8 +352,8 @@ bool robust(const Case& c) {
 void check_compatible(const Case& c, const CheckResult& x, const CheckResult& y) {
   RC_ASSERT(!(x.verdict == Verdict::Safe && y.verdict == Verdict::Collision));
   RC_ASSERT(!(y.verdict == Verdict::Safe && x.verdict == Verdict::Collision));
-  if (x.verdict == Verdict::Collision) RC_ASSERT(y.first_contact->first <= x.witness->t);
-  if (y.verdict == Verdict::Collision) RC_ASSERT(x.first_contact->first <= y.witness->t);
+  if (x.verdict == Verdict::Collision) RC_ASSERT(witness_not_before(y.first_contact->first, *x.witness));
+  if (y.verdict == Verdict::Collision) RC_ASSERT(witness_not_before(x.first_contact->first, *y.witness));
   if (robust(c)) RC_ASSERT(x.verdict == y.verdict);
 }
 

@@ -284,8 +284,11 @@ if [ -f "$sc/planner-tolerance-collision.json" ]; then
   # An enclosed witness: a rational box, on the wall's plane x = 1, at the bar's height z = 2t - 1, within the wall's y range.
   expect_json "$sc/planner-wall1-slerp.json" \
     "'point' not in w and F(w['point_box'][0][0]) <= 1 <= F(w['point_box'][0][1]) and F(w['point_box'][2][0]) <= 2 * F(w['t']) - 1 <= F(w['point_box'][2][1]) and F(47, 50) <= F(w['point_box'][1][0]) and F(w['point_box'][1][1]) <= F(53, 50)"
-  # nlerp between exact quaternions is exact: an exact point on the wall's plane.
-  expect_json "$sc/planner-wall2-nlerp.json" "'point_box' not in w and F(w['point'][0]) == 1"
+  # nlerp between exact quaternions is exact: decided by exact resolution, so
+  # the witness is the exact first contact, at an algebraic time (the bar's
+  # tip entering the wall) with a rational box on the wall's plane x = 1.
+  expect_json "$sc/planner-wall2-nlerp.json" \
+    "'root_of' in w['t'] and 'point' not in w and F(w['point_box'][0][0]) <= 1 <= F(w['point_box'][0][1]) and c['first_contact']['t'][0] == c['first_contact']['t'][1]"
 fi
 
 echo "$passed passed, $failed failed"

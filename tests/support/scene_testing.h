@@ -14,6 +14,7 @@
 #include "src/metric/metric.h"
 #include "src/scene/model.h"
 #include "src/certificate/algebraic_witness.h"
+#include "tests/support/witness_time.h"
 #include "src/verify/verify.h"
 #include "tests/support/exact_oracle.h"
 
