@@ -272,6 +272,9 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
 // the body without meaning to).  Empty for rigid motions.
 std::string rigidity_note(const Body& b) {
   if (!b.motion || b.motion->degree() < 1) return {};
+  // A body of points only has no shape to deform (continuous-collision
+  // queries encode moving points by singular maps on purpose).
+  if (b.polygons.empty() && b.segments.empty()) return {};
   const Motion& m = *b.motion;
   auto linear_equal = [](const Mat34E& x, const Mat34E& y) {
     for (int r = 0; r < 3; ++r)

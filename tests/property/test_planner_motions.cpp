@@ -349,8 +349,53 @@ std::string fail_text(const KeyScene& k, const CheckResult& r, const std::string
 }
 
 // The witness, re-checked at its time from the independent pose.
+// A witness at an algebraic time (exact resolution of a rational part): the
+// root of `root_of` in (lo, hi) is narrowed exactly by bisection to 2^-80,
+// and there the independent reference must place both features within a
+// small distance of the witness box.
+std::string algebraic_witness_problem(const KeyScene& k, const CheckResult& r) {
+  const Witness& w = *r.witness;
+  const AlgebraicTime& at = *w.root;
+  if (!w.point_box) return "algebraic witness without point_box";
+  if (!r.first_contact || r.first_contact->second != at.hi) return "bracket does not end at the root's interval";
+  auto value = [&](const Exact& t) {
+    Exact v = 0;
+    for (std::size_t i = at.root_of.size(); i-- > 0;) v = v * t + Exact(at.root_of[i]);
+    return v;
+  };
+  Exact lo = at.lo, hi = at.hi;
+  const int sign_lo = CGAL::sign(value(lo));
+  if (sign_lo == 0 || CGAL::sign(value(hi)) == 0 || sign_lo == CGAL::sign(value(hi)))
+    return "root interval does not isolate a simple sign change";
+  for (int i = 0; i < 80; ++i) {
+    const Exact mid = (lo + hi) / 2;
+    const int sm = CGAL::sign(value(mid));
+    if (sm == 0) {
+      lo = hi = mid;
+      break;
+    }
+    (sm == sign_lo ? lo : hi) = mid;
+  }
+  const auto pose = pose_at(k, lo);
+  if (!pose) return "witness root outside the motion";
+  const std::vector<P3> m = placed_moving(k, *pose);
+  const std::array<P3, 3> oa = placed_obstacle(k, lo);
+  const std::vector<P3> o(oa.begin(), oa.end());
+  P3 center;
+  Mp diameter(0);
+  for (int c = 0; c < 3; ++c) {
+    center[c] = (Mp((*w.point_box)[c][0]) + Mp((*w.point_box)[c][1])) / Mp(2);
+    diameter = diameter + (Mp((*w.point_box)[c][1]) - Mp((*w.point_box)[c][0]));
+  }
+  const Mp slack = diameter + Mp(1e-12);  // the box, and 2^-80 of motion
+  if (slack < dist_feature(center, m)) return "algebraic witness box not on the moving feature at its root";
+  if (slack < dist_feature(center, o)) return "algebraic witness box not on the obstacle at its root";
+  return "";
+}
+
 std::string witness_problem(const KeyScene& k, const CheckResult& r) {
   const Witness& w = *r.witness;
+  if (w.root) return algebraic_witness_problem(k, r);
   if (!r.first_contact || w.t < r.first_contact->first || w.t > r.first_contact->second) return "witness time outside first_contact";
   const auto pose = pose_at(k, w.t);
   if (!pose) return "witness time outside the motion";
