@@ -140,32 +140,36 @@ Exact simplest_between(const Exact& lo, const Exact& hi) {
 
 }  // namespace
 
-void trim(PolyQ& p) {
-  while (!p.empty() && p.back() == 0) p.pop_back();
-}
-void trim(PolyZ& p) {
+namespace {
+
+// The same coefficient-wise code for rational and integer polynomials.
+template <class Poly>
+void trim_any(Poly& p) {
   while (!p.empty() && p.back() == 0) p.pop_back();
 }
 
-PolyQ add(const PolyQ& a, const PolyQ& b) {
-  PolyQ r(std::max(a.size(), b.size()));
+template <class Poly>
+Poly add_or_sub(const Poly& a, const Poly& b, bool subtract) {
+  Poly r(std::max(a.size(), b.size()));
   for (std::size_t i = 0; i < r.size(); ++i) {
     if (i < a.size()) r[i] += a[i];
-    if (i < b.size()) r[i] += b[i];
+    if (i < b.size()) {
+      if (subtract) r[i] -= b[i];
+      else r[i] += b[i];
+    }
   }
-  trim(r);
+  trim_any(r);
   return r;
 }
 
-PolyQ sub(const PolyQ& a, const PolyQ& b) {
-  PolyQ r(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < a.size()) r[i] += a[i];
-    if (i < b.size()) r[i] -= b[i];
-  }
-  trim(r);
-  return r;
-}
+}  // namespace
+
+void trim(PolyQ& p) { trim_any(p); }
+void trim(PolyZ& p) { trim_any(p); }
+PolyQ add(const PolyQ& a, const PolyQ& b) { return add_or_sub(a, b, false); }
+PolyQ sub(const PolyQ& a, const PolyQ& b) { return add_or_sub(a, b, true); }
+PolyZ add(const PolyZ& a, const PolyZ& b) { return add_or_sub(a, b, false); }
+PolyZ sub(const PolyZ& a, const PolyZ& b) { return add_or_sub(a, b, true); }
 
 PolyQ mul(const PolyQ& a, const PolyQ& b) {
   if (a.empty() || b.empty()) return {};
@@ -173,26 +177,6 @@ PolyQ mul(const PolyQ& a, const PolyQ& b) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] == 0) continue;
     for (std::size_t j = 0; j < b.size(); ++j) r[i + j] += a[i] * b[j];
-  }
-  trim(r);
-  return r;
-}
-
-PolyZ add(const PolyZ& a, const PolyZ& b) {
-  PolyZ r(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < a.size()) r[i] += a[i];
-    if (i < b.size()) r[i] += b[i];
-  }
-  trim(r);
-  return r;
-}
-
-PolyZ sub(const PolyZ& a, const PolyZ& b) {
-  PolyZ r(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    if (i < a.size()) r[i] += a[i];
-    if (i < b.size()) r[i] -= b[i];
   }
   trim(r);
   return r;
