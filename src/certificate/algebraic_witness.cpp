@@ -25,15 +25,15 @@ namespace {
 
 // A body's motion in s in [0, 1] (power basis): 12 numerator entries and the
 // weight; a fixed body its constant pose with weight 1.
-void motion_polys(const Body& b, std::vector<PolyQ>& numerator, PolyQ& weight) {
+void motion_polys(const Motion* motion, std::vector<PolyQ>& numerator, PolyQ& weight) {
   numerator.assign(12, PolyQ{});
-  if (!b.motion) {
+  if (!motion) {
     const Exact id[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     for (int e = 0; e < 12; ++e) numerator[e] = id[e] == 0 ? PolyQ{} : PolyQ{id[e]};
     weight = {Exact(1)};
     return;
   }
-  const Motion& m = *b.motion;
+  const Motion& m = *motion;
   const int n = m.degree();
   // B_k(s) = C(n,k) s^k (1-s)^(n-k) in the power basis.
   std::vector<PolyQ> basis(n + 1);
@@ -61,8 +61,13 @@ void motion_polys(const Body& b, std::vector<PolyQ>& numerator, PolyQ& weight) {
 }  // namespace
 
 CheckMotions::CheckMotions(const Body& a, const Body& b) {
-  motion_polys(a, numerator_[0], weight_[0]);
-  motion_polys(b, numerator_[1], weight_[1]);
+  motion_polys(a.motion ? &*a.motion : nullptr, numerator_[0], weight_[0]);
+  motion_polys(b.motion ? &*b.motion : nullptr, numerator_[1], weight_[1]);
+}
+
+CheckMotions::CheckMotions(const Motion& a, const Motion& b) {
+  motion_polys(&a, numerator_[0], weight_[0]);
+  motion_polys(&b, numerator_[1], weight_[1]);
 }
 
 MovingPoint CheckMotions::place(int side, const Vec3E& x) const {

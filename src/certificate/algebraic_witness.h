@@ -32,6 +32,9 @@ RealRoot check_parameter_root(const ClaimedRoot& root, const Exact& t0, const Ex
 class CheckMotions {
  public:
   CheckMotions(const Body& a, const Body& b);
+  // Two motions over one parameter interval (pieces of keyframe or
+  // piecewise motions): s in [0, 1] over that interval.
+  CheckMotions(const Motion& a, const Motion& b);
   // Vertex x (body frame) of body `side` (0: a, 1: b) as a moving point in
   // world coordinates over the common weight.
   MovingPoint place(int side, const Vec3E& x) const;

@@ -13,6 +13,7 @@
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/certificate/algebraic_witness.h"
+#include "src/certificate/motions.h"
 #include "src/scene/parse.h"
 #include "src/scene/read_file.h"
 
@@ -157,8 +158,7 @@ bool constant_weights(const std::vector<Exact>& w) {
   return std::all_of(w.begin(), w.end(), [&](const Exact& x) { return x == w.front(); });
 }
 
-std::vector<CP> joint_curve(const Body& a, const Body& b) {
-  const HomogeneousMotion ma = motion_of(a), mb = motion_of(b);
+std::vector<CP> joint_curve(const HomogeneousMotion& ma, const HomogeneousMotion& mb) {
   const int na = static_cast<int>(ma.affine.size()) - 1, nb = static_cast<int>(mb.affine.size()) - 1;
   const bool polynomial = constant_weights(ma.weights) && constant_weights(mb.weights);
   const HomogeneousMotion* m[2] = {&ma, &mb};
@@ -190,6 +190,8 @@ std::vector<CP> joint_curve(const Body& a, const Body& b) {
   for (std::size_t k = 0; k < c.size(); ++k) c[k][24] = weight[k];
   return c;
 }
+
+std::vector<CP> joint_curve(const Body& a, const Body& b) { return joint_curve(motion_of(a), motion_of(b)); }
 
 // de Casteljau at s: the control points of [0, s] (left) or [s, 1] (right).
 std::vector<CP> split(std::vector<CP> p, const Exact& s, bool keep_left) {
@@ -717,6 +719,7 @@ struct GroupSet {
 struct PieceInts {
   std::vector<Z> v;  // 24 per control point
   std::size_t count = 0;
+  std::vector<Exact> q, w;  // Q_l and W_l per control point
 };
 
 PieceInts integer_control_points(const std::vector<CP>& c) {
@@ -730,6 +733,8 @@ PieceInts integer_control_points(const std::vector<CP>& c) {
     if (sgn(c[l][24]) <= 0) throw std::logic_error("certificate check: joint weight not positive");
     mpz_set_ui(q.v, 1);
     for (int e = 0; e < 24; ++e) mpz_lcm(q.v, q.v, den(c[l][e]));
+    out.q.push_back(from_z(q.v, Z(1).v));
+    out.w.push_back(c[l][24]);
     for (int e = 0; e < 24; ++e) {
       mpz_divexact(f.v, q.v, den(c[l][e]));
       mpz_mul(out.v[24 * l + e].v, num(c[l][e]), f.v);
@@ -783,6 +788,21 @@ struct CheckContext {
   std::vector<CP> curve;
   Z dadb;  // D_a D_b
   std::size_t separations = 0;
+  // Planner motions, tolerances and clearances (docs/certificate-format.md):
+  // the pieces' curves come from each body's motion on the piece, and every
+  // separation must hold with `margin` per unit of the direction's length
+  // and weight: r_a rho_a + r_b rho_b + clearance.
+  bool general = false;
+  Exact clearance = 0;
+  Exact margin = 0;
+  std::array<Exact, 4> bounds[2];  // coordinate_bounds of each body
+  // A witness's extras: a translation of one body within its tolerance, the
+  // two points of a clearance violation, or (at an enclosed pose) an edge
+  // crossing a triangle, each side's vertices in `side[s].vertices`.
+  std::optional<Vec3E> displacement;
+  int displaced = 0;
+  std::optional<std::array<Vec3E, 2>> points;
+  bool enclosed_witness = false;
 };
 
 class Checker {
@@ -868,13 +888,13 @@ class Checker {
   // Scene parameter interval of a check (docs: a if it moves, else b if it
   // moves, else a if it has a motion, else b if it has one, else [0, 1]).
   std::pair<Exact, Exact> check_interval(const Body& a, const Body& b, const std::string& label) const {
-    const bool ma = a.motion && a.motion->degree() >= 1, mb = b.motion && b.motion->degree() >= 1;
-    if (ma && mb && (a.motion->t0 != b.motion->t0 || a.motion->t1 != b.motion->t1))
+    const bool ma = a.moves(), mb = b.moves();
+    if (ma && mb && *a.interval() != *b.interval())
       throw InputError(scene_.source + ": checks: [" + quote_text(a.name) + ", " + quote_text(b.name) +
                        "]: two moving bodies must share their motion interval (" + label + " cannot be certified)");
-    const Motion* m = ma ? &*a.motion : mb ? &*b.motion : a.motion ? &*a.motion : b.motion ? &*b.motion : nullptr;
+    const Body* m = ma ? &a : mb ? &b : a.interval() ? &a : b.interval() ? &b : nullptr;
     if (!m) return {Exact(0), Exact(1)};
-    return {m->t0, m->t1};
+    return *m->interval();
   }
 
   // ------------------------------------------------------------ phase 1
@@ -904,6 +924,18 @@ class Checker {
              str(ctx->t0) + ", " + str(ctx->t1) + "] (the certificate belongs to another scene)");
     ctx->data[0] = &body_data(ia);
     ctx->data[1] = &body_data(ib);
+    const Body& A = *ctx->body[0];
+    const Body& Bb = *ctx->body[1];
+    ctx->clearance = scene_.clearance_of(ci);
+    ctx->general = A.trajectory || Bb.trajectory || A.tolerance > 0 || Bb.tolerance > 0 || ctx->clearance > 0;
+    if (ctx->general) {
+      ctx->margin = ctx->clearance;
+      for (int s = 0; s < 2; ++s) {
+        ctx->bounds[s] = coordinate_bounds(ctx->data[s]->elems);
+        if (ctx->body[s]->tolerance > 0)
+          ctx->margin += ctx->body[s]->tolerance * displacement_bound(*ctx->body[s], ctx->data[s]->elems);
+      }
+    }
     return ctx;
   }
 
@@ -1076,13 +1108,29 @@ class Checker {
       ctx.witness_root = std::move(root);
     } else {
       ctx.witness_t = in_.rational(t, mem(wp, "t"));
-      ctx.witness_point = in_.vec3(in_.member(w, "point", wp), mem(wp, "point"));
+      // At a pose that is only enclosed (a transcendental motion): a
+      // point_box and, on each side, the vertices of an edge or a triangle.
+      ctx.enclosed_witness = in_.find(w, "point") == nullptr && in_.find(w, "point_box") != nullptr;
+      if (!ctx.enclosed_witness) ctx.witness_point = in_.vec3(in_.member(w, "point", wp), mem(wp, "point"));
     }
+    if (const json* d = in_.find(w, "displacement")) {
+      ctx.displacement = in_.vec3(*d, mem(wp, "displacement"));
+      const std::string& which = in_.string(in_.member(w, "displaced", wp), mem(wp, "displaced"));
+      if (which != "a" && which != "b") in_.bad(mem(wp, "displaced"), "expected \"a\" or \"b\", got " + quote_text(which));
+      ctx.displaced = which == "a" ? 0 : 1;
+    }
+    if (const json* pts = in_.find(w, "points")) {
+      const std::string pp = mem(wp, "points");
+      in_.array(*pts, pp, 2);
+      ctx.points = std::array<Vec3E, 2>{in_.vec3((*pts)[0], idx(pp, 0)), in_.vec3((*pts)[1], idx(pp, 1))};
+    }
+    if ((ctx.witness_root || ctx.enclosed_witness) && (ctx.displacement || ctx.points))
+      in_.bad(wp, "a witness at an irrational time or an enclosed pose has no displacement and no points");
     for (int s = 0; s < 2; ++s) {
       WitnessSide& side = ctx.side[s];
       const std::string sp = mem(wp, s == 0 ? "a" : "b");
       const json& x = in_.object(in_.member(w, s == 0 ? "a" : "b", wp), sp);
-      if (ctx.witness_root) {  // an element and a sub-feature's vertices
+      if (ctx.witness_root || ctx.enclosed_witness) {  // an element and a sub-feature's vertices
         const BodyData& bd = *ctx.data[s];
         side.element = in_.index(in_.member(x, "element", sp), mem(sp, "element"), bd.elems.size(),
                                  quote_text(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
@@ -1091,6 +1139,15 @@ class Checker {
         for (std::size_t i = 0; i < vs.size(); ++i)
           side.vertices.push_back(in_.index(vs[i], idx(mem(sp, "vertices"), i), nv,
                                             "element " + std::to_string(side.element) + " has " + std::to_string(nv) + " vertices"));
+        if (ctx.enclosed_witness) {
+          // Two vertices (an edge inside the convex element) or three (a
+          // triangle inside it), distinct.
+          const auto& v = side.vertices;
+          const bool distinct = v.size() < 2 || (v[0] != v[1] && (v.size() < 3 || (v[2] != v[0] && v[2] != v[1])));
+          if (!(v.size() == 2 || v.size() == 3) || !distinct)
+            in_.bad(mem(sp, "vertices"), "expected two or three distinct vertices of the element (an edge or a triangle)");
+          continue;
+        }
         // A vertex, two vertices (a segment inside the convex element), or
         // all of them in order (the element itself).
         bool whole = side.vertices.size() == nv;
@@ -1243,7 +1300,7 @@ class Checker {
 
     // The separation proofs, piece by piece.
     mpz_mul(ctx.dadb.v, ctx.data[0]->coords.D.v, ctx.data[1]->coords.D.v);
-    ctx.curve = joint_curve(*ctx.body[0], *ctx.body[1]);
+    if (!ctx.general) ctx.curve = joint_curve(*ctx.body[0], *ctx.body[1]);
     for (std::size_t k = 0; k < pt.size(); ++k) check_piece((*ctx.pieces)[k], k, pt[k], ctx);
 
     std::string counts = std::to_string(pt.size()) + (pt.size() == 1 ? " piece, " : " pieces, ") +
@@ -1285,8 +1342,24 @@ class Checker {
     const std::string L = ctx.label + ": witness";
     const ClaimedRoot& claim = *ctx.witness_root;
     if (const std::string error = root_claim_error(claim, ctx.t0, ctx.t1); !error.empty()) reject(L + ".t: " + error);
-    RealRoot root = check_parameter_root(claim, ctx.t0, ctx.t1);
-    const CheckMotions motions(*ctx.body[0], *ctx.body[1]);
+    std::optional<CheckMotions> general;
+    RealRoot root;
+    if (ctx.general) {
+      // Keyframe or piecewise motions: both bodies on one rational segment
+      // around the root's interval, in that segment's parameter.
+      const auto span = rational_span(*ctx.body[0], *ctx.body[1], claim.lo, claim.hi, ctx.t0, ctx.t1);
+      if (!span) reject(L + ".t: the interval (" + str(claim.lo) + ", " + str(claim.hi) +
+                        ") is not inside one rational segment of both motions");
+      std::string why;
+      const auto ma = piece_motion(*ctx.body[0], span->first, span->second, why);
+      const auto mb = piece_motion(*ctx.body[1], span->first, span->second, why);
+      if (!ma || !mb || !ma->exact || !mb->exact) reject(L + ".t: " + why);
+      general.emplace(*ma->exact, *mb->exact);
+      root = check_parameter_root(claim, span->first, span->second);
+    } else {
+      root = check_parameter_root(claim, ctx.t0, ctx.t1);
+    }
+    const CheckMotions motions = general ? *general : CheckMotions(*ctx.body[0], *ctx.body[1]);
     std::vector<MovingPoint> points[2];
     for (int s = 0; s < 2; ++s)
       for (std::size_t v : ctx.side[s].vertices)
@@ -1295,18 +1368,71 @@ class Checker {
       reject(L + ": the two sub-features do not meet at the root of t in (" + str(claim.lo) + ", " + str(claim.hi) + ")");
   }
 
+  // A witness at an enclosed pose: an edge of one body crosses a triangle
+  // of the other transversally for every pose in the two pose boxes at t.
+  void check_enclosed_witness(const CheckContext& ctx) {
+    const std::string L = ctx.label + ": witness";
+    const Exact& t = ctx.witness_t;
+    if (t < ctx.t0 || t > ctx.t1)
+      reject(L + ": t = " + str(t) + " is outside the check's interval [" + str(ctx.t0) + ", " + str(ctx.t1) + "]");
+    std::vector<RBox> placed_vertices[2];
+    for (int s = 0; s < 2; ++s) {
+      const std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
+      if (!box) reject(L + ": the pose of " + quote_text(ctx.body[s]->name) + " at t = " + str(t) + " has no finite enclosure");
+      for (std::size_t v : ctx.side[s].vertices)
+        placed_vertices[s].push_back(place_box(*box, ctx.data[s]->elems[ctx.side[s].element][v]));
+    }
+    const int e = placed_vertices[0].size() == 2 ? 0 : 1;  // the edge's side
+    const std::vector<RBox>& edge = placed_vertices[e];
+    const std::vector<RBox>& tri = placed_vertices[1 - e];
+    if (edge.size() != 2 || tri.size() != 3)
+      reject(L + ": an enclosed witness needs an edge (two vertices) on one side and a triangle (three) on the other");
+    if (!certain_crossing(edge[0], edge[1], tri[0], tri[1], tri[2]))
+      reject(L + ": the edge's crossing of the triangle at t = " + str(t) +
+             " is not certain over the enclosed poses (grazing, or not crossing)");
+  }
+
   void check_witness(const CheckContext& ctx) {
     if (ctx.witness_root) return check_algebraic_witness(ctx);
+    if (ctx.enclosed_witness) return check_enclosed_witness(ctx);
     const Exact& t = ctx.witness_t;
-    const Vec3E& point = ctx.witness_point;
     const std::string L = ctx.label + ": witness";
     if (t < ctx.t0 || t > ctx.t1)
       reject(L + ": t = " + str(t) + " is outside the check's interval [" + str(ctx.t0) + ", " + str(ctx.t1) + "]");
+    if (ctx.displacement) {
+      // A translation by v has norm |v| sqrt(sum w) in the body's metric.
+      const Body& body = *ctx.body[ctx.displaced];
+      const Vec3E& v = *ctx.displacement;
+      Exact w = 0;
+      for (const Exact& x : body.mass.weights) w += x;
+      const Exact norm2 = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * w;
+      if (norm2 > body.tolerance * body.tolerance)
+        reject(L + ".displacement: " + str(v) + " is not within the tolerance " + str(body.tolerance) + " of " +
+               quote_text(body.name) + " (its norm squared in the body's metric is " + str(norm2) + ")");
+    }
+    if (ctx.points) {
+      const Vec3E d = sub((*ctx.points)[0], (*ctx.points)[1]);
+      if (dot(d, d) > ctx.clearance * ctx.clearance)
+        reject(L + ".points: " + str((*ctx.points)[0]) + " and " + str((*ctx.points)[1]) +
+               " are farther apart than the clearance " + str(ctx.clearance));
+    }
     for (int s = 0; s < 2; ++s) {
       const WitnessSide& side = ctx.side[s];
       const char* key = s == 0 ? "a" : "b";
       const Body& body = *ctx.body[s];
-      const Mat34E pose = pose_at(body, t);
+      const Vec3E& point = ctx.points ? (*ctx.points)[s] : ctx.witness_point;
+      Mat34E pose;
+      if (ctx.general) {
+        const std::optional<Mat34E> p = exact_pose_at(body, t);
+        if (!p)
+          reject(L + "." + key + ": the pose of " + quote_text(body.name) + " at t = " + str(t) +
+                 " is not exact (an enclosed pose needs the edge-and-triangle witness)");
+        pose = *p;
+        if (ctx.displacement && ctx.displaced == s)
+          for (int r = 0; r < 3; ++r) pose[4 * r + 3] += (*ctx.displacement)[r];
+      } else {
+        pose = pose_at(body, t);
+      }
       if (side.interior) {
         if (!body.solid) reject(L + "." + key + ": " + quote_text(body.name) + " is not solid, it has no interior");
         if (sgn(determinant(pose)) == 0)
@@ -1358,7 +1484,19 @@ class Checker {
   // Checks the start claims; returns the number of points checked.
   std::size_t check_start(CheckContext& ctx, bool pieces_present) {
     std::size_t checked = 0;
-    const Mat34E pose[2] = {pose_at(*ctx.body[0], ctx.t0), pose_at(*ctx.body[1], ctx.t0)};
+    Mat34E pose[2];
+    for (int s = 0; s < 2; ++s) {
+      if (!ctx.general) {
+        pose[s] = pose_at(*ctx.body[s], ctx.t0);
+        continue;
+      }
+      const std::optional<Mat34E> p = exact_pose_at(*ctx.body[s], ctx.t0);
+      const bool needed = !ctx.start.empty() || (pieces_present && (ctx.body[0]->solid || ctx.body[1]->solid));
+      if (!p && needed)
+        reject(ctx.label + ": start: the pose of " + quote_text(ctx.body[s]->name) + " at t0 = " + str(ctx.t0) +
+               " is not exact (a transcendental rotation): start claims need exact poses");
+      pose[s] = p ? *p : identity_pose();
+    }
     bool seen[2] = {false, false};
     for (std::size_t k = 0; k < ctx.start.size(); ++k) {
       const StartEntry& entry = ctx.start[k];
@@ -1413,6 +1551,10 @@ class Checker {
     std::string path;   // "checks[0].pieces[17]"
     std::string label;  // "checks[0] (..): pieces[17] [3/16, 7/32]"
     PieceInts ints;
+    // A general check: every separation holds with W_l |n| margin +
+    // sum_i |n_i| penalty_i to spare (penalty: the pose boxes' radii).
+    bool margins = false;
+    std::array<Exact, 3> penalty{Exact(0), Exact(0), Exact(0)};
   };
 
   void check_piece(const json& piece, std::size_t k, const std::pair<Exact, Exact>& t, CheckContext& ctx) {
@@ -1420,11 +1562,46 @@ class Checker {
     pc.index = k;
     pc.path = idx(mem(ctx.path, "pieces"), k);
     pc.label = ctx.label + ": pieces[" + std::to_string(k) + "] [" + str(t.first) + ", " + str(t.second) + "]";
-    const Exact span = ctx.t1 - ctx.t0;
-    const Exact ua = (t.first - ctx.t0) / span, ub = (t.second - ctx.t0) / span;
-    pc.ints = integer_control_points(restrict_curve(ctx.curve, ua, ub));
+    if (ctx.general) {
+      general_piece(t, pc, ctx);
+    } else {
+      const Exact span = ctx.t1 - ctx.t0;
+      const Exact ua = (t.first - ctx.t0) / span, ub = (t.second - ctx.t0) / span;
+      pc.ints = integer_control_points(restrict_curve(ctx.curve, ua, ub));
+    }
     std::vector<int> trail;
     prove(piece.at("proof"), 0, 0, trail, pc, ctx);
+  }
+
+  // A piece of a general check: each body's motion on the piece, exact (a
+  // rational curve; then the joint curve of the two) or enclosed (a pose
+  // box; then one control point, the boxes' centres, and the radii as a
+  // penalty: |n . (M - C) x^| <= sum_i |n_i| sum_j radius_ij |x_j| <=
+  // sum_i |n_i| sum_j radius_ij bound_j).
+  void general_piece(const std::pair<Exact, Exact>& t, PieceContext& pc, const CheckContext& ctx) {
+    std::optional<PieceMotion> m[2];
+    for (int s = 0; s < 2; ++s) {
+      std::string why;
+      m[s] = piece_motion(*ctx.body[s], t.first, t.second, why);
+      if (!m[s]) reject(pc.label + ": " + why);
+    }
+    std::vector<CP> curve;
+    if (m[0]->exact && m[1]->exact) {
+      curve = joint_curve(HomogeneousMotion{m[0]->exact->control_points, m[0]->exact->weights},
+                          HomogeneousMotion{m[1]->exact->control_points, m[1]->exact->weights});
+    } else {
+      CP c;
+      for (int s = 0; s < 2; ++s) {
+        const PoseBox box = m[s]->exact ? control_box(*m[s]->exact) : m[s]->box;
+        for (int e = 0; e < 12; ++e) c[12 * s + e] = box.center[e];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 4; ++j) pc.penalty[i] += box.radius[4 * i + j] * ctx.bounds[s][j];
+      }
+      c[24] = 1;
+      curve = {c};
+    }
+    pc.ints = integer_control_points(curve);
+    pc.margins = ctx.margin > 0 || sgn(pc.penalty[0]) != 0 || sgn(pc.penalty[1]) != 0 || sgn(pc.penalty[2]) != 0;
   }
 
   static std::string trail_path(const std::vector<int>& trail) {
@@ -1521,6 +1698,26 @@ class Checker {
       mpz_mul(lhs.v, t.v, ctx.dadb.v);
       mpz_addmul(lhs.v, cb.D.v, mina.v);
       mpz_addmul(lhs.v, ca.D.v, minb.v);
+      if (pc.margins) {
+        // lhs = D_a D_b L Q_l (gap); the claim needs
+        // gap > W_l |n| margin + sum_i |n_i| penalty_i, i.e.
+        // lhs - S pen > 0 and (lhs - S pen)^2 > (S W_l)^2 |ñ|^2 margin^2
+        // with S = D_a D_b Q_l, pen = sum_i |ñ_i| penalty_i.
+        const Exact scale = from_z(ctx.dadb.v, Z(1).v) * pc.ints.q[l];
+        Exact pen = 0, n2 = 0;
+        for (int r = 0; r < 3; ++r) {
+          const Exact nr = from_z(nn[r].v, Z(1).v);
+          pen += CGAL::abs(nr) * pc.penalty[r];
+          n2 += nr * nr;
+        }
+        const Exact gap = from_z(lhs.v, Z(1).v) - scale * pen;
+        if (sgn(gap) <= 0) return static_cast<int>(l);
+        if (sgn(ctx.margin) > 0) {
+          const Exact rhs = scale * pc.ints.w[l] * ctx.margin;
+          if (gap * gap <= rhs * rhs * n2) return static_cast<int>(l);
+        }
+        continue;
+      }
       if (mpz_sgn(lhs.v) <= 0) return static_cast<int>(l);
     }
     return -1;

@@ -2,6 +2,7 @@
 
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/check.h"
+#include "src/certificate/motions.h"
 #include "src/scene/solid.h"
 #include "kernels/separation.h"
 #include "src/motion/bezier.h"
@@ -61,10 +62,18 @@ Motion motion_or_identity(const Body& b) {
 
 // The check's parameter interval (docs/certificate-format.md).
 std::pair<Exact, Exact> check_interval(const Body& a, const Body& b) {
-  if (moves(a)) return {a.motion->t0, a.motion->t1};
-  if (moves(b)) return {b.motion->t0, b.motion->t1};
-  if (a.motion) return {a.motion->t0, a.motion->t1};
+  if (a.moves()) return *a.interval();
+  if (b.moves()) return *b.interval();
+  if (a.interval()) return *a.interval();
+  if (b.interval()) return *b.interval();
   return {Exact(0), Exact(1)};
+}
+
+// A check the plain format does not describe: a keyframe or piecewise
+// motion, a tolerance or a clearance (docs/certificate-format.md, "Planner
+// motions, tolerances and clearances").
+bool general_check(const Body& a, const Body& b, const Exact& clearance) {
+  return a.trajectory || b.trajectory || a.tolerance > 0 || b.tolerance > 0 || clearance > 0;
 }
 
 Vec3E apply(const Mat34E& m, const Vec3E& x) {
@@ -74,6 +83,11 @@ Vec3E apply(const Mat34E& m, const Vec3E& x) {
 }
 
 Mat34E pose(const Body& b, const Exact& t) {
+  if (b.trajectory) {
+    const std::optional<Mat34E> m = exact_pose_at(b, t);
+    if (!m) throw ResourceLimit("certificate: the pose of " + b.name + " at t = " + to_string(t) + " is not exact");
+    return *m;
+  }
   if (!b.motion) return kIdentity;
   const Motion& m = *b.motion;
   return evaluate<1>(homogeneous_curve(m), (t - m.t0) / (m.t1 - m.t0));
@@ -168,6 +182,12 @@ struct PieceImages {
   std::array<std::vector<std::array<Interval, 3>>, 2> box;   // [body][l * V + v]
   std::array<std::vector<std::array<double, 3>>, 2> point;   // same layout
   std::array<std::size_t, 2> size{};
+  // A general check (checker: general_piece): each separation must hold
+  // with W_l |n| margin + sum_i |n_i| penalty_i to spare (upper bounds).
+  std::vector<Interval> weight;  // W_l
+  double margin = 0;
+  std::array<double, 3> penalty{0, 0, 0};
+  bool margins() const { return margin > 0 || penalty[0] > 0 || penalty[1] > 0 || penalty[2] > 0; }
 };
 
 struct Prover {
@@ -195,6 +215,8 @@ struct Prover {
       im.size[k] = V;
       im.box[k].resize(piece.size() * V);
       im.point[k].resize(piece.size() * V);
+      if (k == 0)
+        for (const auto& c : piece) im.weight.push_back(c[kWeight]);
       for (std::size_t l = 0; l < piece.size(); ++l) {
         const auto& c = piece[l];
         const double w = CGAL::to_double(c[kWeight]);
@@ -228,6 +250,12 @@ struct Prover {
         high = std::max(high, (n0 * b[0] + n1 * b[1] + n2 * b[2]).sup());
       }
       if (!(low > high)) return false;  // also false on NaN
+      if (im.margins()) {
+        const Interval gap = Interval(low) - Interval(high);
+        const Interval need = im.weight[l] * CGAL::sqrt(n0 * n0 + n1 * n1 + n2 * n2) * Interval(im.margin) +
+                              CGAL::abs(n0) * im.penalty[0] + CGAL::abs(n1) * im.penalty[1] + CGAL::abs(n2) * im.penalty[2];
+        if (!(gap.inf() > need.sup())) return false;
+      }
     }
     return true;
   }
@@ -387,7 +415,8 @@ struct Prover {
     const BodyGroups& B = *groups[1];
     const bool leaf_a = A.element[g] >= 0, leaf_b = B.element[h] >= 0;
     if (leaf_a && leaf_b) {
-      if (auto n = separate_exactly(exact(), g, h, std::nullopt)) {
+      // (The exact fallback knows no margins: general checks bisect instead.)
+      if (auto n = im.margins() || !exact ? std::nullopt : separate_exactly(exact(), g, h, std::nullopt)) {
         ++stats.separations;
         ++stats.exact_separations;
         return json{{"sep", vec(*n)}};
@@ -556,6 +585,105 @@ struct CheckWriter {
     return out;
   }
 
+  bool general() const { return general_check(a, b, r.clearance); }
+
+  // The scene interval of a cleared piece.
+  std::pair<Exact, Exact> piece_times(const CoverPiece& c) const {
+    if (c.timed) return {c.t0, c.t1};
+    return {scene_t(c.index, c.depth), scene_t(c.index + 1, c.depth)};
+  }
+
+  // A general check's cover as scene intervals in order, cut at every join
+  // of either body's motion (the checker wants each piece inside one
+  // segment of each motion).
+  std::vector<std::pair<Exact, Exact>> general_cover() const {
+    std::vector<std::pair<Exact, Exact>> times;
+    if (r.verdict == Verdict::Safe && r.cleared.empty()) times.push_back(interval);
+    for (const CoverPiece& c : r.cleared) {
+      const auto t = piece_times(c);
+      if (r.verdict != Verdict::Collision || t.second <= r.first_contact->first) times.push_back(t);
+    }
+    std::sort(times.begin(), times.end());
+    std::vector<Exact> joins;
+    for (const Body* body : {&a, &b})
+      if (body->trajectory)
+        for (const MotionSegment& seg : body->trajectory->segments) joins.push_back(seg.t1);
+    std::sort(joins.begin(), joins.end());
+    std::vector<std::pair<Exact, Exact>> out;
+    for (auto [lo, hi] : times) {
+      for (const Exact& j : joins)
+        if (lo < j && j < hi) {
+          out.push_back({lo, j});
+          lo = j;
+        }
+      out.push_back({lo, hi});
+    }
+    return out;
+  }
+
+  // A piece of a general check (the checker's general_piece): the joint
+  // curve of the two exact restrictions, or one control point at the pose
+  // boxes' centres with their radii as a penalty; bisected (the boxes
+  // recomputed on each half) when no proof is found.
+  // Returns false (having written the pieces before it) when a piece
+  // cannot be proven and `partial` allows stopping there: a collision's
+  // certificate may prove less of the time before its witness than the
+  // verifier did (a tolerance's plane margin is coarser than the search's
+  // metric balls); its first-contact bracket then starts earlier.
+  bool prove_general(const Prover& prover, const Exact& ta, const Exact& tb, int extra, const Exact& margin,
+                     const std::array<Exact, 4> (&bounds)[2], bool partial, json& pieces) {
+    std::optional<PieceMotion> m[2];
+    const Body* bodies[2] = {&a, &b};
+    std::string why;
+    for (int k = 0; k < 2 && why.empty(); ++k) m[k] = piece_motion(*bodies[k], ta, tb, why);
+    auto bisect = [&](const std::string& what) {
+      if (extra == 0) ++stats.bisections;
+      if (extra >= kMaxExtraDepth) {
+        if (partial) return false;
+        fail(what + " after " + std::to_string(extra) + " bisections");
+      }
+      const Exact mid = (ta + tb) / 2;
+      return prove_general(prover, ta, mid, extra + 1, margin, bounds, partial, pieces) &&
+             prove_general(prover, mid, tb, extra + 1, margin, bounds, partial, pieces);
+    };
+    if (!why.empty()) {
+      if (why.find("inside one segment") != std::string::npos) fail(why);
+      return bisect(why);  // an enclosure too wide to be finite: smaller pieces
+    }
+    CurveE exact_curve;
+    CurveI curve;
+    std::array<double, 3> penalty{0, 0, 0};
+    const bool exact = m[0]->exact && m[1]->exact;
+    if (exact) {
+      exact_curve = joint_curve(*m[0]->exact, *m[1]->exact);
+      curve = enclose(exact_curve);
+    } else {
+      std::array<Interval, 25> c;
+      std::array<Exact, 3> pen{Exact(0), Exact(0), Exact(0)};
+      for (int k = 0; k < 2; ++k) {
+        const PoseBox box = m[k]->exact ? control_box(*m[k]->exact) : m[k]->box;
+        for (int e = 0; e < 12; ++e) c[12 * k + e] = to_interval(box.center[e]);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 4; ++j) pen[i] += box.radius[4 * i + j] * bounds[k][j];
+      }
+      c[kWeight] = Interval(1);
+      curve = {c};
+      for (int i = 0; i < 3; ++i) penalty[i] = to_interval(pen[i]).sup();
+    }
+    PieceImages im = prover.images(curve);
+    im.margin = to_interval(margin).sup();
+    im.penalty = penalty;
+    const std::function<const CurveE&()> exact_of =
+        exact ? std::function<const CurveE&()>([&]() -> const CurveE& { return exact_curve; }) : nullptr;
+    if (std::optional<json> proof = prover.prove(im, exact_of, 0, 0)) {
+      ++stats.pieces;
+      pieces.push_back({{"t", json::array({rational(ta), rational(tb)})}, {"proof", std::move(*proof)}});
+      return true;
+    }
+    return bisect("no separation proof for the cleared piece [" + to_string(ta) + ", " + to_string(tb) + "] (elements " +
+                  std::to_string(prover.failed[0]) + " and " + std::to_string(prover.failed[1]) + ")");
+  }
+
   // The exact control points of piece [index, index + 1] / 2^depth.
   CurveE exact_piece(std::uint64_t index, int depth) const {
     CurveE piece = joint, left, right;
@@ -594,18 +722,68 @@ struct CheckWriter {
     prove_piece(prover, right, 2 * index + 1, depth + 1, extra + 1, pieces);
   }
 
+  // A witness at an enclosed pose (a transcendental motion): an edge of one
+  // named element crossing a triangle of the other, certain over the
+  // checker's own pose boxes at t (motions.h).
+  json enclosed_witness(const Witness& w) const {
+    const Body* bodies[2] = {&a, &b};
+    std::optional<PoseBox> box[2];
+    for (int k = 0; k < 2; ++k) {
+      box[k] = pose_box_at(*bodies[k], w.t);
+      if (!box[k]) fail("the pose of " + bodies[k]->name + " at the witness's t = " + to_string(w.t) + " has no finite enclosure");
+    }
+    const std::vector<std::vector<Vec3E>> el[2] = {elements(a), elements(b)};
+    for (int ea : named_elements(a, w.features[0]))
+      for (int eb : named_elements(b, w.features[1])) {
+        if (ea < 0 || eb < 0 || ea >= static_cast<int>(el[0].size()) || eb >= static_cast<int>(el[1].size())) continue;
+        const int e[2] = {ea, eb};
+        std::vector<RBox> placed[2];
+        for (int k = 0; k < 2; ++k)
+          for (const Vec3E& v : el[k][e[k]]) placed[k].push_back(place_box(*box[k], v));
+        for (int edge_side = 0; edge_side < 2; ++edge_side) {
+          const std::vector<RBox>& P = placed[edge_side];
+          const std::vector<RBox>& T = placed[1 - edge_side];
+          if (P.size() < 2 || T.size() < 3) continue;
+          for (std::size_t i = 0; i < P.size(); ++i)
+            for (std::size_t j = i + 1; j < P.size(); ++j)
+              for (std::size_t x = 0; x < T.size(); ++x)
+                for (std::size_t y = x + 1; y < T.size(); ++y)
+                  for (std::size_t z = y + 1; z < T.size(); ++z) {
+                    if (!certain_crossing(P[i], P[j], T[x], T[y], T[z])) continue;
+                    json box_json = json::array();
+                    for (const auto& range : *w.point_box)
+                      box_json.push_back(json::array({rational(range[0]), rational(range[1])}));
+                    json sides[2];
+                    sides[edge_side] = {{"element", e[edge_side]}, {"vertices", json::array({i, j})}};
+                    sides[1 - edge_side] = {{"element", e[1 - edge_side]}, {"vertices", json::array({x, y, z})}};
+                    return json{{"t", rational(w.t)}, {"point_box", box_json}, {"a", sides[0]}, {"b", sides[1]}};
+                  }
+        }
+      }
+    fail("the enclosed witness at t = " + to_string(w.t) + " is not a certain edge-triangle crossing over the checker's pose boxes");
+  }
+
   json witness() const {
     const Witness& w = *r.witness;
     if (w.root) return algebraic_witness(w);
+    if (w.point_box) return enclosed_witness(w);
     json out{{"t", rational(w.t)}, {"point", vec(w.point)}};
+    if (w.displacement) {
+      out["displacement"] = vec(*w.displacement);
+      out["displaced"] = w.displaced == 0 ? "a" : "b";
+    }
+    if (w.points) out["points"] = json::array({vec((*w.points)[0]), vec((*w.points)[1])});
     const Body* bodies[2] = {&a, &b};
     const char* keys[2] = {"a", "b"};
     for (int k = 0; k < 2; ++k) {
       const Body& body = *bodies[k];
       const std::string& feature = w.features[k];
-      const Mat34E m = pose(body, w.t);
+      Mat34E m = pose(body, w.t);
+      if (w.displacement && w.displaced == k)
+        for (int i = 0; i < 3; ++i) m[4 * i + 3] += (*w.displacement)[i];
+      const Vec3E& target = w.points ? (*w.points)[k] : w.point;
       if (feature == body.name + " interior") {
-        auto ray = ray_from(body, placed_pieces(body, m), w.point);
+        auto ray = ray_from(body, placed_pieces(body, m), target);
         if (!ray || !ray->second) fail("the interior witness could not be confirmed by a ray");
         out[keys[k]] = {{"interior", {{"ray", vec(ray->first)}}}};
         continue;
@@ -614,7 +792,7 @@ struct CheckWriter {
       bool found = false;
       for (int e : named_elements(body, feature)) {
         if (e < 0 || e >= static_cast<int>(el.size())) continue;
-        if (auto weights = weights_at(el[e], m, w.point)) {
+        if (auto weights = weights_at(el[e], m, target)) {
           json ws = json::array();
           for (const Exact& x : *weights) ws.push_back(rational(x));
           out[keys[k]] = {{"element", e}, {"weights", std::move(ws)}};
@@ -636,8 +814,21 @@ struct CheckWriter {
     const ClaimedRoot claim{at.root_of, at.lo, at.hi};
     if (const std::string error = root_claim_error(claim, interval.first, interval.second); !error.empty())
       fail("the witness time is not a valid root claim: " + error);
-    RealRoot root = check_parameter_root(claim, interval.first, interval.second);
-    const CheckMotions motions(a, b);
+    RealRoot root;
+    std::optional<CheckMotions> general_motions;
+    if (general()) {  // on the rational segment of each motion around the root
+      const auto span = rational_span(a, b, at.lo, at.hi, interval.first, interval.second);
+      if (!span) fail("the witness time is not inside one rational segment of both motions");
+      std::string why;
+      const auto ma = piece_motion(a, span->first, span->second, why);
+      const auto mb = piece_motion(b, span->first, span->second, why);
+      if (!ma || !mb || !ma->exact || !mb->exact) fail("the witness's segment is not rational: " + why);
+      general_motions.emplace(*ma->exact, *mb->exact);
+      root = check_parameter_root(claim, span->first, span->second);
+    } else {
+      root = check_parameter_root(claim, interval.first, interval.second);
+    }
+    const CheckMotions motions = general_motions ? *general_motions : CheckMotions(a, b);
     const std::vector<std::vector<Vec3E>> el[2] = {elements(a), elements(b)};
     const std::vector<int> named[2] = {named_elements(a, w.features[0]), named_elements(b, w.features[1])};
     for (int ea : named[0])
@@ -711,8 +902,24 @@ struct CheckWriter {
     const BodyGroups ga(a), gb(b);
     out["groups"] = json::array({ga.to_json(), gb.to_json()});
     json pieces = json::array();
-    const std::vector<CoverPiece> cover_pieces = cover();
-    if (!cover_pieces.empty()) {
+    const bool gen = general();
+    const std::vector<CoverPiece> cover_pieces = gen ? std::vector<CoverPiece>{} : cover();
+    if (gen) {
+      // Margins: the clearance, and each tolerance times how far a point of
+      // its body can move per unit of metric (motions.h).
+      Exact margin = r.clearance;
+      std::array<Exact, 4> bounds[2];
+      const Body* bodies[2] = {&a, &b};
+      for (int k = 0; k < 2; ++k) {
+        bounds[k] = coordinate_bounds(elements(*bodies[k]));
+        if (bodies[k]->tolerance > 0)
+          margin += bodies[k]->tolerance * displacement_bound(*bodies[k], elements(*bodies[k]));
+      }
+      const Prover prover(ga, gb, stats);
+      const bool partial = r.verdict == Verdict::Collision;
+      for (const auto& [ta, tb] : general_cover())
+        if (!prove_general(prover, ta, tb, 0, margin, bounds, partial, pieces)) break;
+    } else if (!cover_pieces.empty()) {
       joint = joint_curve(motion_or_identity(a), motion_or_identity(b));
       const CurveI root = enclose(joint);
       const Prover prover(ga, gb, stats);
@@ -738,6 +945,12 @@ struct CheckWriter {
       // witness", which certificates do not carry yet: its bracket starts
       // at that piece's start.
       Exact clear_until = interval.first;
+      if (gen) {
+        for (const json& p : out["pieces"]) {
+          const std::string& lo = p["t"][0].get_ref<const std::string&>();
+          if (Exact(lo) == clear_until) clear_until = Exact(p["t"][1].get<std::string>());
+        }
+      }
       for (const CoverPiece& c : cover_pieces)
         if (scene_t(c.index, c.depth) == clear_until) clear_until = scene_t(c.index + 1, c.depth);
       if (clear_until > r.first_contact->first) clear_until = r.first_contact->first;
@@ -753,13 +966,19 @@ struct CheckWriter {
 }  // namespace
 
 std::string uncertifiable(const Scene& scene) {
-  for (const Body& b : scene.bodies) {
-    if (b.trajectory)
-      return "body \"" + b.name + "\" has a keyframe or piecewise motion that is not one rational Bezier curve";
-    if (b.tolerance > 0) return "body \"" + b.name + "\" has a tolerance";
+  // Start claims place the other body's vertices exactly at the start: a
+  // check with a solid body needs exact poses of both bodies there (a
+  // keyframe motion starting at an rpy rotation has none).
+  for (const auto& [ia, ib] : scene.checks) {
+    const Body& a = scene.bodies[ia];
+    const Body& b = scene.bodies[ib];
+    if (!a.solid && !b.solid) continue;
+    const Exact t0 = check_interval(a, b).first;
+    for (const Body* body : {&a, &b})
+      if (!exact_pose_at(*body, t0))
+        return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
+               "\" at its start is not exact (a transcendental rotation)";
   }
-  for (std::size_t k = 0; k < scene.checks.size(); ++k)
-    if (scene.clearance_of(k) > 0) return "check " + std::to_string(k) + " has a clearance";
   return {};
 }
 

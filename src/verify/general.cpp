@@ -210,6 +210,16 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
     CheckResult part;
     if (two) run_part<2>(m, o, false, pm, po, t0, t1, options_, tube, e2, part);
     else run_part<1>(m, o, swapped, pm, po, t0, t1, options_, tube, e1, part);
+    if (options_.record_cover)  // the part's pieces as scene intervals, for certificates
+      for (CoverPiece& c : part.cleared)
+        if (!c.timed) {
+          CGAL::Gmpz pieces;  // 2^depth
+          mpz_setbit(pieces.mpz(), static_cast<mp_bitcnt_t>(c.depth));
+          const Exact unit = (t1 - t0) / Exact(pieces);
+          c.t0 = t0 + unit * Exact(CGAL::Gmpz(static_cast<unsigned long>(c.index)));
+          c.t1 = c.t0 + unit;
+          c.timed = true;
+        }
     // A part cleared entirely proves the join after it free: the next part
     // needs no start check there.
     e1.start_proven_free = e2.start_proven_free = part.undecided.empty() && !part.witness;

@@ -125,6 +125,11 @@ struct CheckStats {
 struct CoverPiece {
   std::uint64_t index = 0;
   int depth = 0;
+  // The piece's scene interval, when it was searched on a part of the
+  // check's interval (keyframe and piecewise motions, tolerances,
+  // clearances: src/verify/general.cpp) rather than on the whole of it.
+  bool timed = false;
+  Exact t0 = 0, t1 = 0;
 };
 
 struct CheckResult {

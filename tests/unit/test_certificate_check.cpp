@@ -7,6 +7,8 @@
 // false claim; the ray test, the joint curve, the pose and the integer
 // evaluation paths are checked against hand values and brute force.
 #include "src/certificate/check.h"
+#include "src/certificate/motions.h"
+#include "src/motion/segment.h"
 #include "src/scene/parse.h"
 
 #include <boost/test/unit_test.hpp>
@@ -683,6 +685,63 @@ BOOST_AUTO_TEST_CASE(scenes_that_cannot_be_certified) {
   Case c = load("two-moving", "two-moving");
   c.scene.bodies[1].motion->t1 = 2;
   expect_malformed(c, "two moving bodies must share their motion interval");
+}
+
+// The checker's pose boxes (src/certificate/motions.cpp, Arb from the
+// interpolations' definitions; the screw through V(phi)^-1) and the
+// verifier's jets (src/motion/segment.cpp; the screw through a point on its
+// axis) enclose the same poses: at sample parameters both boxes are tight
+// and overlap in every entry.  A wrong sign or factor in either screw
+// formula separates them by far more than their widths.
+BOOST_AUTO_TEST_CASE(screw_enclosure_matches_the_verifiers) {
+  int compared = 0;
+  for (Interpolation how : {Interpolation::Slerp, Interpolation::Screw, Interpolation::Nlerp}) {
+    for (int variant = 0; variant < 3; ++variant) {
+      MotionSegment seg;
+      seg.t0 = 0;
+      seg.t1 = 2;
+      seg.interpolation = how;
+      seg.from.translation = v("0.5", "-1", "2");
+      seg.to.translation = v("3", "0.25", "-1");
+      seg.from.rotation.kind = Rotation::Kind::Rpy;
+      seg.from.rotation.rpy = {q("0.3"), q("-0.2"), q("1.1")};
+      if (variant == 0) {
+        seg.to.rotation.kind = Rotation::Kind::Rpy;
+        seg.to.rotation.rpy = {q("1.2"), q("0.4"), q("-0.5")};
+      } else if (variant == 1) {
+        seg.to.rotation.kind = Rotation::Kind::Quaternion;
+        seg.to.rotation.quaternion = {q("2"), q("1"), q("-1"), q("3")};
+      } else {
+        seg.to.rotation.kind = Rotation::Kind::Rpy;
+        seg.to.rotation.rpy = {q("0.3"), q("-0.2"), q("1.2")};  // a small turn
+      }
+      Body body;
+      body.name = "b";
+      body.trajectory = Trajectory{{seg}};
+      const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
+      for (const char* st : {"0", "1/7", "1/2", "0.9", "1"}) {
+        const Exact s = q(st);
+        const std::optional<cert::PoseBox> box = cert::pose_box_at(body, s * 2);
+        BOOST_REQUIRE(box);
+        PoseJet jet;
+        {
+          RoundingGuard guard;
+          jet = model->pose(Jet(to_interval(s)));
+        }
+        for (int e = 0; e < 12; ++e) {
+          const double lo = CGAL::to_double(box->center[e] - box->radius[e]);
+          const double hi = CGAL::to_double(box->center[e] + box->radius[e]);
+          BOOST_TEST(hi - lo < 1e-12);
+          BOOST_TEST(jet[e].v.sup() - jet[e].v.inf() < 1e-9);
+          BOOST_TEST((jet[e].v.inf() <= hi + 1e-15 && lo - 1e-15 <= jet[e].v.sup()),
+                     "interpolation " << static_cast<int>(how) << " variant " << variant << " s = " << st << " entry "
+                                      << e << ": checker [" << lo << ", " << hi << "], verifier " << jet[e].v);
+          ++compared;
+        }
+      }
+    }
+  }
+  BOOST_TEST(compared == 3 * 3 * 5 * 12);
 }
 
 BOOST_AUTO_TEST_CASE(joint_curve_by_hand) {
