@@ -13,6 +13,7 @@
 
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
+#include "src/verify/prepared_pair.h"
 #include "src/verify/search.h"
 
 #include <chrono>
@@ -131,12 +132,15 @@ void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const 
 }  // namespace
 
 CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const {
+  return detail::check_prepared_pair(prepared(a), prepared(b), {a, b}, clearance, options_);
+}
+
+CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
+                                        const Exact& clearance, const VerifyOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   CheckResult result;
-  result.bodies = {a, b};
+  result.bodies = ids;
   result.clearance = clearance;
-  const PreparedBody& pa = prepared(a);
-  const PreparedBody& pb = prepared(b);
   const bool swapped = !pa.moving && pb.moving;
   const PreparedBody& m = swapped ? pb : pa;
   const PreparedBody& o = swapped ? pa : pb;
@@ -208,8 +212,8 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
     const PartMotion pm = part_motion(mb, t0, t1);
     const PartMotion po = two ? part_motion(ob, t0, t1) : PartMotion{};
     CheckResult part;
-    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options_, tube, e2, part);
-    else run_part<1>(m, o, swapped, pm, po, t0, t1, options_, tube, e1, part);
+    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options, tube, e2, part);
+    else run_part<1>(m, o, swapped, pm, po, t0, t1, options, tube, e1, part);
     // A part cleared entirely proves the join after it free: the next part
     // needs no start check there.
     e1.start_proven_free = e2.start_proven_free = part.undecided.empty() && !part.witness;

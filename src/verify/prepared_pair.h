@@ -1,0 +1,26 @@
+// One check of two bodies that were prepared beforehand, by the general
+// search (keyframe and piecewise motions, tolerances, clearances;
+// src/verify/general.cpp).  Verifier uses it for such checks; callers that
+// certify many motions of the same bodies (src/verify/fixed_environment.h)
+// prepare the bodies once and call it per motion.
+#pragma once
+
+#include "src/verify/verify.h"
+
+#include <array>
+
+namespace tmcert {
+
+class PreparedBody;
+
+namespace detail {
+
+// `pa`, `pb`: the two bodies (PreparedBody::body points at each one's Body,
+// whose motion is read at the time of the call); `ids` go to
+// CheckResult::bodies.  No prefilter, no solid containment: Verifier::check
+// does those before it gets here.
+CheckResult check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
+                                const Exact& clearance, const VerifyOptions& options);
+
+}  // namespace detail
+}  // namespace tmcert

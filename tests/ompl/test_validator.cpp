@@ -1,0 +1,220 @@
+// The certified OMPL motion validator on edges whose truth is known by
+// construction (src/ompl/certified_motion_validator.h,
+// proofs/ompl-validator.md).
+#define BOOST_TEST_MODULE tmcert_ompl
+#include <boost/test/unit_test.hpp>
+
+#include "src/ompl/certified_motion_validator.h"
+#include "src/scene/parse.h"
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/util/Console.h>
+
+#include <cmath>
+#include <string>
+
+namespace ob = ompl::base;
+using namespace tmcert;
+
+namespace {
+
+// An axis-aligned box [lo, hi] (decimal strings) as six polygons (JSON).
+std::string box_polygons(const std::array<std::string, 3>& lo, const std::array<std::string, 3>& hi) {
+  auto p = [&](int x, int y, int z) {
+    return "[\"" + (x ? hi[0] : lo[0]) + "\",\"" + (y ? hi[1] : lo[1]) + "\",\"" + (z ? hi[2] : lo[2]) + "\"]";
+  };
+  return "[" + p(0, 0, 0) + "," + p(0, 1, 0) + "," + p(0, 1, 1) + "," + p(0, 0, 1) + "],[" + p(1, 0, 0) + "," +
+         p(1, 1, 0) + "," + p(1, 1, 1) + "," + p(1, 0, 1) + "],[" + p(0, 0, 0) + "," + p(1, 0, 0) + "," + p(1, 0, 1) +
+         "," + p(0, 0, 1) + "],[" + p(0, 1, 0) + "," + p(1, 1, 0) + "," + p(1, 1, 1) + "," + p(0, 1, 1) + "],[" +
+         p(0, 0, 0) + "," + p(1, 0, 0) + "," + p(1, 1, 0) + "," + p(0, 1, 0) + "],[" + p(0, 0, 1) + "," + p(1, 0, 1) +
+         "," + p(1, 1, 1) + "," + p(0, 1, 1) + "]";
+}
+
+// Robot and obstacle bodies from their polygons (JSON arrays).
+std::pair<Body, Body> bodies(const std::string& robot, const std::string& obstacles) {
+  const Scene s = parse_scene_text("{\"format\": \"tmcert-scene/1\", \"bodies\": [{\"name\": \"robot\", \"polygons\": [" +
+                                       robot + "]}, {\"name\": \"obstacles\", \"polygons\": [" + obstacles + "]}]}",
+                                   "test");
+  return {s.bodies[0], s.bodies[1]};
+}
+
+struct Fixture {
+  std::shared_ptr<ob::SE3StateSpace> space = std::make_shared<ob::SE3StateSpace>();
+  ob::SpaceInformationPtr si;
+  std::shared_ptr<CertifiedMotionValidator> validator;
+
+  Fixture(const std::string& robot, const std::string& obstacles, Exact epsilon = Exact(1, 1000)) {
+    ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+    ob::RealVectorBounds b(3);
+    b.setLow(-10);
+    b.setHigh(10);
+    space->setBounds(b);
+    si = std::make_shared<ob::SpaceInformation>(space);
+    auto [r, o] = bodies(robot, obstacles);
+    VerifyOptions options;
+    options.epsilon = epsilon;
+    validator = use_certified_se3(si, r, o, options);
+    si->setup();
+  }
+  ob::ScopedState<ob::SE3StateSpace> state(double x, double y, double z, double qw = 1, double qx = 0, double qy = 0,
+                                           double qz = 0) const {
+    ob::ScopedState<ob::SE3StateSpace> s(space);
+    s->setXYZ(x, y, z);
+    s->rotation().w = qw;
+    s->rotation().x = qx;
+    s->rotation().y = qy;
+    s->rotation().z = qz;
+    return s;
+  }
+};
+
+const std::string kCube = box_polygons({"-3/20", "-3/20", "-3/20"}, {"3/20", "3/20", "3/20"});
+// A slab |x| <= 1/20, |y|, |z| <= 1: no hole.
+const std::string kWall = box_polygons({"-1/20", "-1", "-1"}, {"1/20", "1", "1"});
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(safe_edge_is_accepted) {
+  Fixture f(kCube, kWall);
+  // Translation and a rotation, everywhere at least 1/2 from the wall.
+  const auto a = f.state(-2, 0, 0), b = f.state(-1, 1, 0, std::cos(0.3), 0, std::sin(0.3), 0);
+  BOOST_TEST(f.validator->checkMotion(a.get(), b.get()));
+  std::pair<ob::State*, double> last{nullptr, -1};
+  BOOST_TEST(f.validator->checkMotion(a.get(), b.get(), last));
+  BOOST_TEST(last.second == -1);  // untouched when valid
+  BOOST_TEST(f.validator->getValidMotionCount() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(colliding_translation_is_rejected_with_certified_last_valid) {
+  Fixture f(kCube, kWall);
+  // The cube's face x = 3/20 meets the wall's face x = -1/20 when the
+  // centre is at x = -1/5, at fraction 2/5 of the edge from x = -1 to 1.
+  const auto a = f.state(-1, 0, 0), b = f.state(1, 0, 0);
+  const EdgeCertificate edge = f.validator->certify(a.get(), b.get());
+  BOOST_TEST(edge.check.verdict == Verdict::Collision);
+  BOOST_REQUIRE(edge.check.first_contact);
+  BOOST_TEST(edge.check.first_contact->first <= Exact(2, 5));
+  BOOST_TEST(Exact(2, 5) <= edge.check.first_contact->second);
+  BOOST_REQUIRE(edge.check.witness);
+  BOOST_TEST(edge.check.witness->point[0] == Exact(-1, 20));  // on the wall's near face
+
+  ob::ScopedState<ob::SE3StateSpace> last_state(f.space);
+  std::pair<ob::State*, double> last{last_state.get(), -1};
+  BOOST_TEST(!f.validator->checkMotion(a.get(), b.get(), last));
+  BOOST_TEST(last.second > 0.0);
+  BOOST_TEST(last.second < 0.4);
+  // The returned state and the segment to it are certified.
+  BOOST_TEST(f.validator->certify(a.get(), last_state.get()).check.verdict == Verdict::Safe);
+  BOOST_TEST(f.validator->certify_state(last_state.get()).check.verdict == Verdict::Safe);
+  BOOST_TEST(last_state->getX() < -0.2);
+}
+
+BOOST_AUTO_TEST_CASE(end_state_in_contact_is_rejected) {
+  Fixture f(kCube, kWall);
+  // Free until fraction 64/65, then in contact up to the end state (the
+  // cube's face at x = -3/80, inside the slab).
+  const auto a = f.state(-1, 0, 0), b = f.state(-0.1875, 0, 0);
+  BOOST_TEST(f.validator->certify_state(a.get()).check.verdict == Verdict::Safe);
+  BOOST_TEST(f.validator->certify_state(b.get()).check.verdict == Verdict::Collision);
+  BOOST_TEST(!f.validator->checkMotion(a.get(), b.get()));
+  const EdgeCertificate edge = f.validator->certify(a.get(), b.get());
+  BOOST_REQUIRE(edge.check.first_contact);
+  BOOST_TEST(edge.check.first_contact->first <= Exact(64, 65));
+  BOOST_TEST(Exact(64, 65) <= edge.check.first_contact->second);
+}
+
+BOOST_AUTO_TEST_CASE(states_are_read_exactly) {
+  Fixture f(kCube, kWall);
+  // The double nearest -0.2 is -0.2 - 1.1e-17: the cube's face stops just
+  // short of the wall's face x = -1/20 (a rounding reading would touch).
+  BOOST_REQUIRE(Exact(-0.2) < Exact(-1, 5));
+  const auto a = f.state(-1, 0, 0), b = f.state(-0.2, 0, 0);
+  BOOST_TEST(f.validator->certify_state(b.get()).check.verdict == Verdict::Safe);
+  // The edge's end is within 1.1e-17 of contact: decided exactly (a
+  // rational motion), safe.
+  BOOST_TEST(f.validator->certify(a.get(), b.get()).check.verdict == Verdict::Safe);
+  // One ulp further the faces overlap.
+  const auto c = f.state(std::nextafter(-0.2, 0.0), 0, 0);
+  BOOST_TEST(f.validator->certify_state(c.get()).check.verdict == Verdict::Collision);
+}
+
+BOOST_AUTO_TEST_CASE(thin_obstacle_stepped_over_by_discrete_validator_is_caught) {
+  // A plate of zero thickness at x = 0; a small cube (side 1/50) crossing
+  // it.  OMPL's DiscreteMotionValidator (resolution 1% of the extent of
+  // [-10, 10]^3 x SO(3)) samples the edge every 0.35 and misses it.
+  const std::string small = box_polygons({"-1/100", "-1/100", "-1/100"}, {"1/100", "1/100", "1/100"});
+  Fixture f(small, "[[0,-1,-1],[0,1,-1],[0,1,1],[0,-1,1]]");
+  const auto a = f.state(-1, 0, 0), b = f.state(1.1, 0, 0);
+  ob::DiscreteMotionValidator discrete(f.si);
+  BOOST_TEST(discrete.checkMotion(a.get(), b.get()));  // what sampling says
+  BOOST_TEST(!f.validator->checkMotion(a.get(), b.get()));
+  const EdgeCertificate edge = f.validator->certify(a.get(), b.get());
+  BOOST_TEST(edge.check.verdict == Verdict::Collision);
+  BOOST_REQUIRE(edge.check.witness);
+  BOOST_TEST(edge.check.witness->point[0] == Exact(0));
+}
+
+BOOST_AUTO_TEST_CASE(slerp_takes_the_shorter_arc_like_ompl) {
+  // A one-sided bar (x from 0 to 1) turning by 90 degrees about z, from
+  // +x to +y; its end quaternion written negated (OMPL's interpolate then
+  // negates it back: the shorter arc).  The shorter arc sweeps the
+  // quadrant x, y >= 0; the longer one (270 degrees) the other three.
+  const std::string bar = box_polygons({"0", "-1/20", "-1/20"}, {"1", "1/20", "1/20"});
+  const double c = std::cos(M_PI / 4), s = std::sin(M_PI / 4);
+  {
+    // An obstacle at -90 degrees: only the longer arc would hit it.
+    Fixture f(bar, "[[\"-1/10\",\"-7/10\",\"-1/5\"],[\"1/10\",\"-7/10\",\"-1/5\"],[\"1/10\",\"-7/10\",\"1/5\"],[\"-1/10\",\"-7/10\",\"1/5\"]]");
+    const auto a = f.state(0, 0, 0), b = f.state(0, 0, 0, -c, 0, 0, -s);
+    BOOST_TEST(f.validator->checkMotion(a.get(), b.get()));
+  }
+  {
+    // An obstacle at 45 degrees: the shorter arc hits it.
+    Fixture f(bar, "[[\"1/2\",\"1/2\",\"-1/5\"],[\"3/5\",\"2/5\",\"-1/5\"],[\"3/5\",\"2/5\",\"1/5\"],[\"1/2\",\"1/2\",\"1/5\"]]");
+    const auto a = f.state(0, 0, 0), b = f.state(0, 0, 0, -c, 0, 0, -s);
+    BOOST_TEST(f.validator->certify_state(a.get()).check.verdict == Verdict::Safe);
+    BOOST_TEST(f.validator->certify_state(b.get()).check.verdict == Verdict::Safe);
+    const EdgeCertificate edge = f.validator->certify(a.get(), b.get());
+    BOOST_TEST(edge.check.verdict == Verdict::Collision);
+    // The contact is near 45 degrees (the obstacle spans about 38.7 to 51.3).
+    BOOST_REQUIRE(edge.check.first_contact);
+    BOOST_TEST(CGAL::to_double(edge.check.first_contact->first) > 0.3);
+    BOOST_TEST(CGAL::to_double(edge.check.first_contact->second) < 0.6);
+    ob::ScopedState<ob::SE3StateSpace> last_state(f.space);
+    std::pair<ob::State*, double> last{last_state.get(), -1};
+    BOOST_TEST(!f.validator->checkMotion(a.get(), b.get(), last));
+    BOOST_TEST(last.second > 0.0);
+    BOOST_TEST(last.second < CGAL::to_double(edge.check.first_contact->first));
+    BOOST_TEST(f.validator->certify(a.get(), last_state.get()).check.verdict == Verdict::Safe);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(undecided_edge_counts_as_invalid) {
+  // The cube crosses above the wall (top face y = 1) turning from 0 to 90
+  // degrees about x; at the crossing (t = 1/2, 45 degrees) its lowest edge
+  // is 0.15 sqrt 2 below its centre, which passes 2^-30 above that: a gap
+  // far below epsilon = 1/10, so the search stops undecided.  Truly safe,
+  // yet not proven: the edge must count as invalid.
+  const double gap = std::ldexp(1.0, -30);
+  Fixture f(kCube, kWall, Exact(1, 10));
+  const double y = 1 + 0.15 * std::sqrt(2.0) + gap;
+  const auto a = f.state(-1, y, 0), b = f.state(1, y, 0, std::cos(M_PI / 4), std::sin(M_PI / 4), 0, 0);
+  const EdgeCertificate edge = f.validator->certify(a.get(), b.get());
+  BOOST_TEST(edge.check.verdict == Verdict::Undecided);
+  BOOST_TEST(!f.validator->checkMotion(a.get(), b.get()));
+}
+
+BOOST_AUTO_TEST_CASE(bad_states_are_never_valid) {
+  Fixture f(kCube, kWall);
+  const auto a = f.state(-2, 0, 0);
+  const auto zero = f.state(-2, 0, 0, 0, 0, 0, 0);
+  const auto nan = f.state(std::nan(""), 0, 0);
+  BOOST_TEST(!f.validator->checkMotion(a.get(), zero.get()));
+  BOOST_TEST(!f.validator->checkMotion(a.get(), nan.get()));
+  BOOST_TEST(!f.validator->certify(a.get(), nan.get()).problem.empty());
+  // Exactly 180 degrees apart: no shorter arc.
+  const auto turned = f.state(-2, 0, 0, 0, 0, 0, 1);
+  BOOST_TEST(!f.validator->checkMotion(a.get(), turned.get()));
+  BOOST_TEST(f.validator->certify(a.get(), turned.get()).problem.find("180") != std::string::npos);
+}
