@@ -1,12 +1,227 @@
 #include "src/verify/fixed_environment.h"
 
+#include "kernels/robust_crossing.h"
+#include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
 #include "src/verify/search.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
+#include <tuple>
 
 namespace tmcert {
+
+// ---------------------------------------------------------------- the index
+
+// The environment's simplices (world coordinates), each with its interval
+// enclosure and a box holding it, in a tree of boxes (median splits along
+// the longest side; every node's box holds its simplices' boxes).
+struct EnvironmentIndex {
+  struct Item {
+    int part, index;
+    SimplexI s;
+    std::array<double, 3> lo, hi;
+  };
+  struct Node {
+    std::array<double, 3> lo, hi;
+    std::uint32_t first, count;  // a leaf: items order_[first, first + count)
+    std::int32_t left = -1, right = -1;
+  };
+  std::vector<Item> items;
+  std::vector<std::uint32_t> order;
+  std::vector<Node> nodes;
+
+  static constexpr std::uint32_t kLeaf = 8;
+
+  std::int32_t build(std::uint32_t first, std::uint32_t count) {
+    Node n;
+    n.first = first;
+    n.count = count;
+    n.lo.fill(std::numeric_limits<double>::infinity());
+    n.hi.fill(-std::numeric_limits<double>::infinity());
+    for (std::uint32_t k = first; k < first + count; ++k)
+      for (int c = 0; c < 3; ++c) {
+        n.lo[c] = std::min(n.lo[c], items[order[k]].lo[c]);
+        n.hi[c] = std::max(n.hi[c], items[order[k]].hi[c]);
+      }
+    const auto id = static_cast<std::int32_t>(nodes.size());
+    nodes.push_back(n);
+    if (count <= kLeaf) return id;
+    int axis = 0;
+    double best = -1;
+    for (int c = 0; c < 3; ++c) {
+      const double w = n.hi[c] - n.lo[c];  // infinite boxes: any axis
+      if (w > best) best = w, axis = c;
+    }
+    const std::uint32_t half = count / 2;
+    std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                       return items[x].lo[axis] + items[x].hi[axis] < items[y].lo[axis] + items[y].hi[axis];
+                     });
+    const std::int32_t l = build(first, half);
+    const std::int32_t r = build(first + half, count - half);
+    nodes[id].left = l;
+    nodes[id].right = r;
+    return id;
+  }
+
+  explicit EnvironmentIndex(const std::vector<StaticPart>& parts) {
+    RoundingGuard guard;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      for (std::size_t k = 0; k < parts[i].simplices.size(); ++k) {
+        const Simplex& x = parts[i].simplices[k];
+        Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
+        it.s.count = x.count;
+        for (int v = 0; v < x.count; ++v)
+          for (int c = 0; c < 3; ++c) it.s.p[v][c] = to_interval(x.p[v][c]);
+        box(it);
+        items.push_back(it);
+      }
+    order.resize(items.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    if (!items.empty()) build(0, static_cast<std::uint32_t>(items.size()));
+  }
+
+  // The box of an enclosure; NaN: unbounded (never separates).
+  static void box(Item& it) {
+    for (int c = 0; c < 3; ++c) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int v = 0; v < it.s.count; ++v) {
+        const Interval& x = it.s.p[v][c];
+        if (std::isnan(x.inf()) || std::isnan(x.sup())) {
+          lo = -std::numeric_limits<double>::infinity();
+          hi = -lo;
+          break;
+        }
+        lo = std::min(lo, x.inf());
+        hi = std::max(hi, x.sup());
+      }
+      it.lo[c] = lo;
+      it.hi[c] = hi;
+    }
+  }
+
+  static bool overlap(const std::array<double, 3>& alo, const std::array<double, 3>& ahi,
+                      const std::array<double, 3>& blo, const std::array<double, 3>& bhi) {
+    for (int c = 0; c < 3; ++c)
+      if (ahi[c] < blo[c] || bhi[c] < alo[c]) return false;
+    return true;
+  }
+
+  // Items whose boxes overlap [lo, hi] (a strict gap between boxes that
+  // hold the simplices proves them disjoint).
+  template <class F>
+  void query(const std::array<double, 3>& lo, const std::array<double, 3>& hi, F&& f) const {
+    if (nodes.empty()) return;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (!overlap(lo, hi, n.lo, n.hi)) continue;
+      if (n.left < 0) {
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+          const Item& it = items[order[k]];
+          if (overlap(lo, hi, it.lo, it.hi)) f(it);
+        }
+        continue;
+      }
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+  }
+};
+
+namespace {
+
+// The outcome of the static test of one mover's configuration against the
+// environment.
+struct StaticOutcome {
+  enum class Kind { Free, Hit, Unknown } kind = Kind::Free;
+  int part_mover = 0, part_environment = 0;
+  Vec3E point;  // a Hit at an exact configuration
+};
+
+// The mover's parts placed by the interval map `map` (enclosing the pose),
+// against the index: candidates from the box tree, the separating-axis
+// filter, then the exact test on simplices placed by `exact` (the exact
+// pose) in the order of parts and simplices, as filtered_first_hit does
+// (src/verify/search.h; proofs/static-test.md).  Without an exact pose a
+// hit must be a certain transversal crossing; a pair neither separated nor
+// crossing leaves the outcome Unknown.
+StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array<Interval, 12>& map,
+                          const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
+                          const std::vector<StaticPart>& environment) {
+  struct Candidate {
+    int pi, pj, si, sj;
+    SimplexI x, y;
+  };
+  std::vector<Candidate> candidates;
+  {
+    RoundingGuard guard;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      for (std::size_t k = 0; k < parts[i].simplices.size(); ++k) {
+        const Simplex& x = parts[i].simplices[k];
+        EnvironmentIndex::Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
+        it.s.count = x.count;
+        for (int v = 0; v < x.count; ++v) {
+          const std::array<Interval, 3> p = {to_interval(x.p[v][0]), to_interval(x.p[v][1]), to_interval(x.p[v][2])};
+          for (int c = 0; c < 3; ++c)
+            it.s.p[v][c] = map[4 * c] * p[0] + map[4 * c + 1] * p[1] + map[4 * c + 2] * p[2] + map[4 * c + 3];
+        }
+        EnvironmentIndex::box(it);
+        index.query(it.lo, it.hi, [&](const EnvironmentIndex::Item& e) {
+          if (!certainly_disjoint(it.s, e.s)) candidates.push_back({it.part, e.part, it.index, e.index, it.s, e.s});
+        });
+      }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.pi, x.pj, x.si, x.sj) < std::tie(y.pi, y.pj, y.si, y.sj);
+  });
+  StaticOutcome out;
+  if (candidates.empty()) return out;
+  if (!exact) {
+    RoundingGuard guard;
+    for (const Candidate& c : candidates)
+      if (certain_crossing(c.x, c.y)) {
+        out.kind = StaticOutcome::Kind::Hit;
+        out.part_mover = c.pi;
+        out.part_environment = c.pj;
+        return out;  // no exact point: callers only use the kind
+      }
+    out.kind = StaticOutcome::Kind::Unknown;
+    return out;
+  }
+  for (const Candidate& c : candidates) {
+    Simplex x = parts[c.pi].simplices[c.si];
+    for (int k = 0; k < x.count; ++k) {
+      Vec3E r;
+      for (int i = 0; i < 3; ++i)
+        r[i] = (*exact)[4 * i] * x.p[k][0] + (*exact)[4 * i + 1] * x.p[k][1] + (*exact)[4 * i + 2] * x.p[k][2] +
+               (*exact)[4 * i + 3];
+      x.p[k] = r;
+    }
+    if (auto p = common_point(x, environment[c.pj].simplices[c.sj])) {
+      out.kind = StaticOutcome::Kind::Hit;
+      out.part_mover = c.pi;
+      out.part_environment = c.pj;
+      out.point = *p;
+      return out;
+    }
+  }
+  return out;
+}
+
+std::array<Interval, 12> enclose_map(const Mat34E& m) {
+  std::array<Interval, 12> out;
+  for (int e = 0; e < 12; ++e) out[e] = to_interval(m[e]);
+  return out;
+}
+
+}  // namespace
 
 namespace {
 
@@ -60,6 +275,7 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
   // bodies_ is not resized from here on: PreparedBody keeps a pointer to
   // its Body.
   for (const Body& b : bodies_) prepared_.push_back(std::make_unique<PreparedBody>(b));
+  index_ = std::make_unique<EnvironmentIndex>(prepared_[0]->parts);
 }
 
 FixedEnvironment::~FixedEnvironment() = default;
@@ -84,7 +300,28 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
   const Exact t0 = motions.front().t0();
   std::size_t decided = pairs.size();
   for (const auto& [a, b] : pairs) {
-    out.checks.push_back(detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_));
+    // A mover's start against the environment through the index (the
+    // search's own start test would enclose every environment simplex
+    // again); proven free, the search skips its start test.  A hit or an
+    // unknown outcome leaves the start test to the search, which then
+    // reports the collision with its witness, or stops undecided.
+    bool start_free = false;
+    if (b == 0) {
+      const std::unique_ptr<SegmentModel> model = make_segment_model(motions[a - 1].segments.front());
+      const std::optional<Mat34E> exact = model->exact_pose(Exact(0));
+      std::array<Interval, 12> map;
+      if (exact) {
+        map = enclose_map(*exact);
+      } else {
+        RoundingGuard guard;
+        const PoseJet j = model->pose(Jet(Interval(0)));
+        for (int e = 0; e < 12; ++e) map[e] = j[e].v;
+      }
+      start_free = static_test(prepared_[a]->parts, map, exact, *index_, prepared_[0]->parts).kind ==
+                   StaticOutcome::Kind::Free;
+    }
+    out.checks.push_back(
+        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_, start_free));
     const CheckResult& r = out.checks.back();
     if (r.verdict == Verdict::Safe) continue;
     // A check that is not safe always has its bracket; without one nothing
@@ -110,21 +347,25 @@ std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E
   if (poses.size() + 1 != bodies_.size())
     throw InputError("poses: " + std::to_string(poses.size()) + " given for " + std::to_string(bodies_.size() - 1) +
                      " movers");
-  std::vector<std::vector<StaticPart>> placed;
-  for (std::size_t k = 0; k < poses.size(); ++k) placed.push_back(transformed_parts(*prepared_[k + 1], poses[k]));
-  auto test = [&](int a, const std::vector<StaticPart>& pa, int b,
-                  const std::vector<StaticPart>& pb) -> std::optional<Witness> {
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const StaticOutcome o =
+        static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts);
+    if (o.kind == StaticOutcome::Kind::Hit)
+      return Witness{Exact(0),
+                     {bodies_[k + 1].name + " " + prepared_[k + 1]->parts[o.part_mover].name,
+                      bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
+                     o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+  }
+  // Mover pairs: both placed exactly, the filtered test of the search.
+  for (const auto& [i, j] : pairs_) {
+    const std::vector<StaticPart> pi = transformed_parts(*prepared_[i], poses[i - 1]);
+    const std::vector<StaticPart> pj = transformed_parts(*prepared_[j], poses[j - 1]);
     CheckStats stats;
-    const auto hit = detail::first_hit(pa, pb, nullptr, stats);
-    if (!hit) return std::nullopt;
-    return Witness{Exact(0),
-                   {bodies_[a].name + " " + pa[hit->part_moving].name, bodies_[b].name + " " + pb[hit->part_other].name},
-                   hit->point};
-  };
-  for (std::size_t k = 0; k < placed.size(); ++k)
-    if (auto w = test(static_cast<int>(k) + 1, placed[k], 0, prepared_[0]->parts)) return w;
-  for (const auto& [i, j] : pairs_)
-    if (auto w = test(i, placed[i - 1], j, placed[j - 1])) return w;
+    if (const auto hit = detail::first_hit(pi, pj, nullptr, stats))
+      return Witness{Exact(0),
+                     {bodies_[i].name + " " + pi[hit->part_moving].name, bodies_[j].name + " " + pj[hit->part_other].name},
+                     hit->point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+  }
   return std::nullopt;
 }
 

@@ -35,6 +35,7 @@ struct MotionCheck {
 };
 
 class PreparedBody;
+struct EnvironmentIndex;
 
 class FixedEnvironment {
  public:
@@ -70,6 +71,10 @@ class FixedEnvironment {
   std::vector<std::pair<int, int>> pairs_;  // indices into bodies_
   VerifyOptions options_;
   std::vector<std::unique_ptr<PreparedBody>> prepared_;
+  // The environment's simplices enclosed once, in a box tree: the exact
+  // static test of a mover's configuration against it (the start of every
+  // motion, static_contact) touches only the simplices near the mover.
+  std::unique_ptr<EnvironmentIndex> index_;
   mutable std::mutex mutex_;
 };
 

@@ -136,7 +136,8 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
 }
 
 CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
-                                        const Exact& clearance, const VerifyOptions& options) {
+                                        const Exact& clearance, const VerifyOptions& options,
+                                        bool start_proven_free) {
   const auto started = std::chrono::steady_clock::now();
   CheckResult result;
   result.bodies = ids;
@@ -198,7 +199,10 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   // Tubes: each body's tolerance; the clearance as a tolerance of the
   // searched body: a translation by v has norm |v| sqrt(sum w) in its
   // metric, and displaces every point by |v| (proofs/enclosures.md section 6).
-  const Exact wm = mass_sum(mb), wo = mass_sum(ob);
+  // The mass sums only where a tolerance or clearance needs them (a sum
+  // over every mass point: noticeable per check for a large fixed body).
+  const Exact wm = mb.tolerance > 0 || clearance > 0 ? mass_sum(mb) : Exact(1);
+  const Exact wo = ob.tolerance > 0 ? mass_sum(ob) : Exact(1);
   std::array<double, 2> tube = {add_up(to_interval(mb.tolerance).sup(), clearance > 0 ? sqrt_up(clearance * clearance * wm) : 0.0),
                                 o.moving ? to_interval(ob.tolerance).sup() : 0.0};
   const bool two = o.moving;
@@ -206,6 +210,8 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   CheckExtras<2> e2;
   e1.clearance2 = e2.clearance2 = clearance * clearance;
   e1.reach2 = e2.reach2 = {mb.tolerance * mb.tolerance / wm, ob.tolerance * ob.tolerance / wo};
+  // The first part's start: proven free by the caller, or tested by the search.
+  e1.start_proven_free = e2.start_proven_free = start_proven_free;
 
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const Exact &t0 = cuts[k], &t1 = cuts[k + 1];

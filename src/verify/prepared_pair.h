@@ -18,9 +18,13 @@ namespace detail {
 // `pa`, `pb`: the two bodies (PreparedBody::body points at each one's Body,
 // whose motion is read at the time of the call); `ids` go to
 // CheckResult::bodies.  No prefilter, no solid containment: Verifier::check
-// does those before it gets here.
+// does those before it gets here.  `start_proven_free`: the caller has
+// proven the configuration at the start of the interval free of contact
+// (an exact static test, proofs/static-test.md), so the search skips its
+// own start test.
 CheckResult check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
-                                const Exact& clearance, const VerifyOptions& options);
+                                const Exact& clearance, const VerifyOptions& options,
+                                bool start_proven_free = false);
 
 }  // namespace detail
 }  // namespace tmcert
