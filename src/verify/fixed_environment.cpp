@@ -111,6 +111,26 @@ struct EnvironmentIndex {
     return true;
   }
 
+  // Some item's box overlaps [lo, hi].
+  bool any(const std::array<double, 3>& lo, const std::array<double, 3>& hi) const {
+    if (nodes.empty()) return false;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (!overlap(lo, hi, n.lo, n.hi)) continue;
+      if (n.left < 0) {
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+          if (overlap(lo, hi, items[order[k]].lo, items[order[k]].hi)) return true;
+        continue;
+      }
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+    return false;
+  }
+
   // Items whose boxes overlap [lo, hi] (a strict gap between boxes that
   // hold the simplices proves them disjoint).
   template <class F>
@@ -299,7 +319,24 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
   for (const auto& [i, j] : pairs_) pairs.push_back({i, j});
   const Exact t0 = motions.front().t0();
   std::size_t decided = pairs.size();
+  // Certified prefilter (proofs/prefilter.md): a box holding everything a
+  // mover sweeps (swept_box: the hull property for rational pieces, interval
+  // poses over eighths of an enclosed segment) that overlaps no
+  // environment simplex's box, or two movers' disjoint swept boxes, clear
+  // the check without a search.
+  std::vector<SweptBox> swept(bodies_.size());
+  for (std::size_t k = 1; k < bodies_.size(); ++k) swept[k] = swept_box(bodies_[k]);
   for (const auto& [a, b] : pairs) {
+    const bool cleared = b == 0 ? swept[a].valid && !index_->any(swept[a].lo, swept[a].hi)
+                                : disjoint(swept[a], swept[b]);
+    if (cleared) {
+      CheckResult r;
+      r.bodies = {a, b};
+      r.verdict = Verdict::Safe;
+      r.stats.prefiltered = true;
+      out.checks.push_back(r);
+      continue;
+    }
     // A mover's start against the environment through the index (the
     // search's own start test would enclose every environment simplex
     // again); proven free, the search skips its start test.  A hit or an
