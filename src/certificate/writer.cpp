@@ -754,6 +754,9 @@ struct CheckWriter {
 
 std::string uncertifiable(const Scene& scene) {
   for (const Body& b : scene.bodies) {
+    if (b.trajectory && std::any_of(b.trajectory->segments.begin(), b.trajectory->segments.end(),
+                                    [](const MotionSegment& seg) { return seg.link != nullptr; }))
+      return "body \"" + b.name + "\" is a robot link moving in joint space (an enclosed motion, not one rational Bezier curve)";
     if (b.trajectory)
       return "body \"" + b.name + "\" has a keyframe or piecewise motion that is not one rational Bezier curve";
     if (b.tolerance > 0) return "body \"" + b.name + "\" has a tolerance";
