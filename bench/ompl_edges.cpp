@@ -22,7 +22,7 @@
 // Usage: tmcert_ompl_bench [--edges N] [--seed S] [--root DIR] [--verbose]
 // --verbose prints the search statistics of every edge.
 // Exit status 0; 3 on bad usage.
-#include "src/ompl/certified_motion_validator.h"
+#include "src/ompl/certified_arm.h"
 #include "src/scene/parse.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -30,6 +30,7 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
@@ -40,6 +41,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -236,6 +238,111 @@ std::vector<std::pair<ob::State*, ob::State*>> planner_edges(const ob::SpaceInfo
   return edges;
 }
 
+
+// ------------------------------------------------------------------ the arm (doubles, for FCL)
+
+Eigen::Isometry3d to_double(const Pose& p) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.translation() = Eigen::Vector3d(CGAL::to_double(p.translation[0]), CGAL::to_double(p.translation[1]),
+                                      CGAL::to_double(p.translation[2]));
+  const Rotation& r = p.rotation;
+  switch (r.kind) {
+    case Rotation::Kind::Identity: break;
+    case Rotation::Kind::Quaternion:
+      out.linear() = Eigen::Quaterniond(CGAL::to_double(r.quaternion[0]), CGAL::to_double(r.quaternion[1]),
+                                        CGAL::to_double(r.quaternion[2]), CGAL::to_double(r.quaternion[3]))
+                         .normalized()
+                         .toRotationMatrix();
+      break;
+    case Rotation::Kind::Rpy:  // R = Rz(yaw) Ry(pitch) Rx(roll)
+      out.linear() = (Eigen::AngleAxisd(CGAL::to_double(r.rpy[2]), Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(CGAL::to_double(r.rpy[1]), Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(CGAL::to_double(r.rpy[0]), Eigen::Vector3d::UnitX()))
+                         .toRotationMatrix();
+      break;
+    case Rotation::Kind::Matrix:
+      for (int i = 0; i < 9; ++i) out.linear()(i / 3, i % 3) = CGAL::to_double(r.matrix[i]);
+      break;
+  }
+  return out;
+}
+
+// Forward kinematics in doubles: the world pose of every link's body frame
+// at joint values `q` (column k: joint `joints[k]`).
+std::vector<Eigen::Isometry3d> link_poses(const PlacedRobot& robot, const std::vector<std::string>& joints,
+                                          const double* q) {
+  const RobotModel& m = robot.model();
+  std::vector<Eigen::Isometry3d> out(m.links.size());
+  std::vector<char> done(m.links.size(), 0);
+  std::function<const Eigen::Isometry3d&(int)> pose = [&](int l) -> const Eigen::Isometry3d& {
+    if (done[l]) return out[l];
+    const int j = m.links[l].parent_joint;
+    if (j < 0) {
+      out[l] = to_double(robot.base());
+    } else {
+      const RobotJoint& joint = m.joints[j];
+      Eigen::Isometry3d t = pose(joint.parent) * to_double(joint.origin);
+      if (joint.moves()) {
+        const double v = q[std::find(joints.begin(), joints.end(), joint.name) - joints.begin()];
+        const Eigen::Vector3d axis = Eigen::Vector3d(CGAL::to_double(joint.axis[0]), CGAL::to_double(joint.axis[1]),
+                                                     CGAL::to_double(joint.axis[2]))
+                                         .normalized();
+        if (joint.type == RobotJoint::Type::Prismatic) t.translate(v * axis);
+        else t.rotate(Eigen::AngleAxisd(v, axis));
+      }
+      out[l] = t;
+    }
+    done[l] = 1;
+    return out[l];
+  };
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    pose(static_cast<int>(l));
+  }
+  for (std::size_t l = 0; l < m.links.size(); ++l)
+    for (const Pose& p : m.links[l].body_frame) out[l] = out[l] * to_double(p);
+  return out;
+}
+
+// FCL as an OMPL state validity checker for an arm in joint space: every
+// link with geometry against the obstacles (no self-collision).
+class FclArmChecker final : public ob::StateValidityChecker {
+ public:
+  FclArmChecker(const ob::SpaceInformationPtr& si, std::shared_ptr<const PlacedRobot> robot,
+                std::vector<std::string> joints, std::shared_ptr<Model> obstacles)
+      : ob::StateValidityChecker(si), robot_(std::move(robot)), joints_(std::move(joints)),
+        obstacles_(obstacles, fcl::Transform3d::Identity()) {
+    const RobotModel& m = robot_->model();
+    for (std::size_t l = 0; l < m.links.size(); ++l)
+      if (m.links[l].geometry) {
+        links_.push_back(static_cast<int>(l));
+        objects_.push_back(std::make_unique<fcl::CollisionObjectd>(fcl_model(*m.links[l].geometry),
+                                                                   fcl::Transform3d::Identity()));
+      }
+  }
+  bool isValid(const ob::State* s) const override {
+    const auto poses = link_poses(*robot_, joints_, s->as<ob::RealVectorStateSpace::StateType>()->values);
+    for (std::size_t k = 0; k < links_.size(); ++k) {
+      fcl::Transform3d tf = fcl::Transform3d::Identity();
+      tf.linear() = poses[links_[k]].linear();
+      tf.translation() = poses[links_[k]].translation();
+      objects_[k]->setTransform(tf);
+      objects_[k]->computeAABB();
+      fcl::CollisionRequestd request;
+      fcl::CollisionResultd result;
+      fcl::collide(objects_[k].get(), &obstacles_, request, result);
+      if (result.isCollision()) return false;
+    }
+    return true;
+  }
+
+ private:
+  std::shared_ptr<const PlacedRobot> robot_;
+  std::vector<std::string> joints_;
+  fcl::CollisionObjectd obstacles_;
+  std::vector<int> links_;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -330,6 +437,70 @@ int main(int argc, char** argv) {
   for (const auto& [a, b] : edges) {
     si_discrete->freeState(a);
     si_discrete->freeState(b);
+  }
+
+  // ---------------------------------------------------------------- the arm
+  // examples/ompl/arm6.urdf (6 revolute joints, box links) beside the
+  // fixture (5294 triangles), base at (0.32, 0.06, 0): its reach covers the
+  // fixture.  Joint space with the URDF limits; links against the fixture
+  // only (no self-collision, for both validators).
+  {
+    const auto arm = std::make_shared<const PlacedRobot>(
+        load_urdf(root + "/examples/ompl/arm6.urdf"), "arm",
+        Pose{{Exact(8, 25), Exact(3, 50), Exact(0)}, Rotation{}});
+    const std::vector<std::string> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+    auto jspace = std::make_shared<ob::RealVectorStateSpace>(joints.size());
+    ob::RealVectorBounds jb(joints.size());
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+      const RobotJoint& j = arm->model().joints[arm->model().joint_index(joints[k])];
+      jb.setLow(k, CGAL::to_double(*j.lower));
+      jb.setHigh(k, CGAL::to_double(*j.upper));
+    }
+    jspace->setBounds(jb);
+    auto jdiscrete = std::make_shared<ob::SpaceInformation>(jspace);
+    jdiscrete->setStateValidityChecker(std::make_shared<FclArmChecker>(jdiscrete, arm, joints, fcl_model(*fixture)));
+    jdiscrete->setup();
+    auto jcertified = std::make_shared<ob::SpaceInformation>(jspace);
+    const auto t = Clock::now();
+    const auto arm_validator = use_certified_arm(jcertified, arm, joints, *fixture, false, {}, options);
+    const double arm_prepare = since(t);
+    jcertified->setup();
+    std::printf("\narm: 6 revolute joints, %zu box links; preparing once: %.1f ms; joint-space extent %.4g, OMPL "
+                "resolution %.3g\n", arm_validator->environment().bodies().size() - 1, arm_prepare * 1e3,
+                jspace->getMaximumExtent(), jdiscrete->getStateValidityCheckingResolution());
+    const double jrange = 0.2 * jspace->getMaximumExtent();
+    const auto jedges = planner_edges(jdiscrete, n_edges, jrange, [&](const ob::State* s) {
+      return jdiscrete->isValid(s) && jcertified->isValid(s);
+    });
+    ob::DiscreteMotionValidator jdiscrete_validator(jdiscrete);
+    std::vector<Row> jrows;
+    for (const auto& [a, b] : jedges) {
+      Row r;
+      auto t0 = Clock::now();
+      r.discrete_ok = jdiscrete_validator.checkMotion(a, b);
+      r.discrete = since(t0);
+      t0 = Clock::now();
+      const EdgeCertificate e = arm_validator->certify(a, b);
+      r.certified = since(t0);
+      r.verdict = e.check.verdict;
+      r.witness = e.check.witness;
+      r.prefiltered = !e.check.checks.empty();
+      for (const CheckResult& c : e.check.checks) r.prefiltered = r.prefiltered && c.stats.prefiltered;
+      if (verbose) {
+        std::printf("arm edge %zu: %s %.3f ms (discrete %.3f ms)", jrows.size(), to_string(e.check.verdict),
+                    r.certified * 1e3, r.discrete * 1e3);
+        for (const CheckResult& c : e.check.checks)
+          std::printf(" [%s%s %.2f ms %llu nodes]", to_string(c.verdict), c.stats.prefiltered ? " prefiltered" : "",
+                      c.stats.seconds * 1e3, (unsigned long long)c.stats.nodes);
+        std::printf("\n");
+      }
+      jrows.push_back(r);
+    }
+    report("6-joint arm beside the fixture, RRT extension edges in joint space", jrows, 10);
+    for (const auto& [a, b] : jedges) {
+      jdiscrete->freeState(a);
+      jdiscrete->freeState(b);
+    }
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
 #include "src/verify/search.h"
+#include "src/verify/solid_contact.h"
 
 #include <algorithm>
 #include <cmath>
@@ -265,8 +266,107 @@ Trajectory standing_still() {
 
 void require_usable(const Body& b, const char* role) {
   const std::string name = std::string(role) + " \"" + b.name + "\"";
-  if (b.solid) throw InputError(name + ": solid bodies are not supported here (a body is its surface)");
   if (b.tolerance != 0) throw InputError(name + ": tolerances are not supported here");
+}
+
+}  // namespace
+
+namespace {
+
+// A body's pose at the start of a motion: exact when known, always enclosed.
+struct StartPose {
+  std::optional<Mat34E> exact;
+  std::array<Interval, 12> map;
+};
+
+StartPose start_pose_of(const Trajectory& t) {
+  const std::unique_ptr<SegmentModel> model = make_segment_model(t.segments.front());
+  StartPose out;
+  out.exact = model->exact_pose(Exact(0));
+  if (out.exact) {
+    out.map = enclose_map(*out.exact);
+  } else {
+    RoundingGuard guard;
+    const PoseJet j = model->pose(Jet(Interval(0)));
+    for (int e = 0; e < 12; ++e) out.map[e] = j[e].v;
+  }
+  return out;
+}
+
+StartPose fixed_start(const Body& b) {
+  StartPose out;
+  out.exact = fixed_pose(b);
+  out.map = enclose_map(*out.exact);
+  return out;
+}
+
+// The box of points placed by an interval map (NaN: false).
+bool placed_box(const std::vector<Vec3E>& points, const std::array<Interval, 12>& m, std::array<double, 3>& lo,
+                std::array<double, 3>& hi) {
+  RoundingGuard guard;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (const Vec3E& v : points) {
+    const Interval x[3] = {to_interval(v[0]), to_interval(v[1]), to_interval(v[2])};
+    for (int i = 0; i < 3; ++i) {
+      const Interval y = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+      if (std::isnan(y.inf()) || std::isnan(y.sup())) return false;
+      lo[i] = std::min(lo[i], y.inf());
+      hi[i] = std::max(hi[i], y.sup());
+    }
+  }
+  return true;
+}
+
+std::vector<Vec3E> all_vertices(const Body& b) {
+  std::vector<Vec3E> v;
+  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
+  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
+  v.insert(v.end(), b.points.begin(), b.points.end());
+  return v;
+}
+
+// Whether some connected component of `other` lies inside the solid `solid`
+// at the start (proofs/containment.md: with no such component and no
+// surface contact later, no point of one is ever inside the other).  With
+// both poses exact: exact ray parity of one vertex per component.  Else
+// only the boxes decide: every component vertex's enclosure outside the
+// solid's box means free; anything else is Unknown (never "free").
+struct Containment {
+  enum class Kind { Free, Hit, Unknown } kind = Kind::Free;
+  std::optional<Witness> witness;
+};
+
+Containment start_containment(const Body& solid, const StartPose& ps, const Body& other, const StartPose& po,
+                              bool solid_first) {
+  Containment out;
+  if (ps.exact && po.exact) {
+    const std::unique_ptr<ClosedSurface> surface = placed_surface(solid, *ps.exact);
+    if (!surface) return out;  // a singular pose: the solid is its surface there
+    for (const auto& [part, point] : component_representatives(other, *po.exact))
+      if (surface->contains(point)) {
+        const std::string inside = solid.name + " interior", at = other.name + " " + part;
+        out.kind = Containment::Kind::Hit;
+        out.witness = Witness{Exact(0), solid_first ? std::array{inside, at} : std::array{at, inside}, point,
+                              std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+        return out;
+      }
+    return out;
+  }
+  std::array<double, 3> lo, hi;
+  if (!placed_box(all_vertices(solid), ps.map, lo, hi)) {
+    out.kind = Containment::Kind::Unknown;
+    return out;
+  }
+  const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  for (const auto& rep : component_representatives(other, identity)) {
+    std::array<double, 3> rlo, rhi;
+    if (!placed_box({rep.second}, po.map, rlo, rhi) || EnvironmentIndex::overlap(lo, hi, rlo, rhi)) {
+      out.kind = Containment::Kind::Unknown;
+      return out;
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -319,14 +419,66 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
   for (const auto& [i, j] : pairs_) pairs.push_back({i, j});
   const Exact t0 = motions.front().t0();
   std::size_t decided = pairs.size();
+  // Adds check k's verdict to the motion's.
+  auto record = [&](std::size_t k) {
+    const CheckResult& r = out.checks[k];
+    if (r.verdict == Verdict::Safe) return;
+    // A check that is not safe always has its bracket; without one nothing
+    // after the start would count as certified.
+    const Exact lo = r.first_contact ? r.first_contact->first : t0;
+    if (!out.safe_until || lo < *out.safe_until) out.safe_until = lo;
+    if (r.verdict == Verdict::Collision && out.verdict != Verdict::Collision) {
+      out.verdict = Verdict::Collision;
+      decided = k;
+    } else if (out.verdict == Verdict::Safe) {
+      out.verdict = Verdict::Undecided;
+      decided = k;
+    }
+  };
   // Certified prefilter (proofs/prefilter.md): a box holding everything a
   // mover sweeps (swept_box: the hull property for rational pieces, interval
   // poses over eighths of an enclosed segment) that overlaps no
   // environment simplex's box, or two movers' disjoint swept boxes, clear
   // the check without a search.
   std::vector<SweptBox> swept(bodies_.size());
-  for (std::size_t k = 1; k < bodies_.size(); ++k) swept[k] = swept_box(bodies_[k]);
+  std::vector<StartPose> start(bodies_.size());
+  start[0] = fixed_start(bodies_[0]);
+  for (std::size_t k = 1; k < bodies_.size(); ++k) {
+    swept[k] = swept_box(bodies_[k]);
+    start[k] = start_pose_of(motions[k - 1]);
+  }
+  const Exact t1 = motions.front().t1();
   for (const auto& [a, b] : pairs) {
+    // A solid's inside counts as contact: at the start, a component of one
+    // body inside the other (solid) body is a collision there; later
+    // contacts go through the surfaces (as Verifier::check does).
+    if (bodies_[a].solid || bodies_[b].solid) {
+      Containment c;
+      for (int side = 0; side < 2 && c.kind == Containment::Kind::Free; ++side) {
+        const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
+        if (bodies_[sb].solid) c = start_containment(bodies_[sb], start[sb], bodies_[ob], start[ob], side == 0);
+      }
+      if (c.kind != Containment::Kind::Free) {
+        CheckResult r;
+        r.bodies = {a, b};
+        if (c.kind == Containment::Kind::Hit) {
+          r.verdict = Verdict::Collision;
+          r.witness = c.witness;
+          r.witness->t = t0;
+          r.first_contact = std::pair{t0, t0};
+        } else {
+          r.verdict = Verdict::Undecided;
+          r.undecided.push_back({t0, t1, StopReason::Epsilon});
+          r.first_contact = std::pair{t0, t1};
+        }
+        out.checks.push_back(r);
+        record(out.checks.size() - 1);
+        continue;
+      }
+    }
+    // With the start containment settled, a swept box that meets no
+    // environment simplex's box, or two movers' disjoint swept boxes, clear
+    // the check without a search.
     const bool cleared = b == 0 ? swept[a].valid && !index_->any(swept[a].lo, swept[a].hi)
                                 : disjoint(swept[a], swept[b]);
     if (cleared) {
@@ -342,36 +494,12 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     // again); proven free, the search skips its start test.  A hit or an
     // unknown outcome leaves the start test to the search, which then
     // reports the collision with its witness, or stops undecided.
-    bool start_free = false;
-    if (b == 0) {
-      const std::unique_ptr<SegmentModel> model = make_segment_model(motions[a - 1].segments.front());
-      const std::optional<Mat34E> exact = model->exact_pose(Exact(0));
-      std::array<Interval, 12> map;
-      if (exact) {
-        map = enclose_map(*exact);
-      } else {
-        RoundingGuard guard;
-        const PoseJet j = model->pose(Jet(Interval(0)));
-        for (int e = 0; e < 12; ++e) map[e] = j[e].v;
-      }
-      start_free = static_test(prepared_[a]->parts, map, exact, *index_, prepared_[0]->parts).kind ==
-                   StaticOutcome::Kind::Free;
-    }
+    const bool start_free =
+        b == 0 && static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts).kind ==
+                      StaticOutcome::Kind::Free;
     out.checks.push_back(
         detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_, start_free));
-    const CheckResult& r = out.checks.back();
-    if (r.verdict == Verdict::Safe) continue;
-    // A check that is not safe always has its bracket; without one nothing
-    // after the start would count as certified.
-    const Exact lo = r.first_contact ? r.first_contact->first : t0;
-    if (!out.safe_until || lo < *out.safe_until) out.safe_until = lo;
-    if (r.verdict == Verdict::Collision && out.verdict != Verdict::Collision) {
-      out.verdict = Verdict::Collision;
-      decided = out.checks.size() - 1;
-    } else if (out.verdict == Verdict::Safe) {
-      out.verdict = Verdict::Undecided;
-      decided = out.checks.size() - 1;
-    }
+    record(out.checks.size() - 1);
   }
   if (decided < out.checks.size()) {
     out.witness = out.checks[decided].witness;
@@ -384,6 +512,20 @@ std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E
   if (poses.size() + 1 != bodies_.size())
     throw InputError("poses: " + std::to_string(poses.size()) + " given for " + std::to_string(bodies_.size() - 1) +
                      " movers");
+  // A solid's inside counts as contact (exact poses: exact ray parity).
+  std::vector<StartPose> at(bodies_.size());
+  at[0] = fixed_start(bodies_[0]);
+  for (std::size_t k = 0; k < poses.size(); ++k) at[k + 1] = StartPose{poses[k], enclose_map(poses[k])};
+  std::vector<std::array<int, 2>> pairs;
+  for (std::size_t k = 1; k < bodies_.size(); ++k) pairs.push_back({static_cast<int>(k), 0});
+  for (const auto& [i, j] : pairs_) pairs.push_back({i, j});
+  for (const auto& [a, b] : pairs)
+    for (int side = 0; side < 2; ++side) {
+      const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
+      if (!bodies_[sb].solid) continue;
+      const Containment c = start_containment(bodies_[sb], at[sb], bodies_[ob], at[ob], side == 0);
+      if (c.kind == Containment::Kind::Hit) return c.witness;
+    }
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const StaticOutcome o =
         static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts);

@@ -42,10 +42,12 @@ class FixedEnvironment {
   // `environment`: the fixed obstacles as one body (no motion, or a
   // one-pose motion); `movers`: the moving bodies' geometry in their own
   // frames (their motions, if any, are ignored); `mover_pairs`: pairs of
-  // movers (indices into `movers`) also checked against each other.  No
-  // solids (a body is its surface; a solid needs the containment test of
-  // Verifier::check) and no tolerances.  options.epsilon must be > 0.
-  // Throws InputError on any of these.
+  // movers (indices into `movers`) also checked against each other.
+  // Solids as in scenes: a component of one body inside a solid one at the
+  // start is a collision (exact when both start poses are exact; with an
+  // enclosed start pose, e.g. a robot link, only disjoint boxes settle it,
+  // else the check is undecided).  No tolerances.  options.epsilon must be
+  // > 0.  Throws InputError otherwise.
   FixedEnvironment(Body environment, std::vector<Body> movers, std::vector<std::pair<int, int>> mover_pairs,
                    const VerifyOptions& options);
   ~FixedEnvironment();
@@ -59,7 +61,8 @@ class FixedEnvironment {
 
   // The exact static test of the movers at exact poses (one per mover):
   // a witness (t = 0) when a mover touches the environment or a listed
-  // mover pair touches, else nothing (the configuration is certified free).
+  // mover pair touches (a solid's inside included), else nothing (the
+  // configuration is certified free).
   std::optional<Witness> static_contact(const std::vector<Mat34E>& poses) const;
 
   // 0: the environment, 1 + k: mover k (for CheckResult::bodies).

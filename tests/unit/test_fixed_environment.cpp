@@ -2,7 +2,7 @@
 // for many motions, with its own start test over a box tree of the
 // environment, must agree with the Verifier on a scene holding the same
 // motion, and its static test with the exact static test of the search
-// (proofs/ompl-validator.md "Checked by").  Seeded; replay a failure with
+// (proofs/ompl-validator.md "Checked by"); a solid's inside counts.  Seeded; replay a failure with
 // the seed printed.
 #include "src/motion/segment.h"
 #include "src/scene/parse.h"
@@ -141,13 +141,56 @@ BOOST_AUTO_TEST_CASE(motions_agree_with_the_verifier) {
   BOOST_TEST(verdicts[static_cast<int>(Verdict::Collision)] > 0);
 }
 
+BOOST_AUTO_TEST_CASE(a_solid_inside_counts_as_contact) {
+  // A small cube standing still inside a closed box, touching nothing: a
+  // collision when the box is solid (at the start, with the interior as
+  // the witness's feature), safe when it is a surface.
+  auto box = [](const std::string& r) {
+    const std::string m = "-" + r;
+    auto p = [&](int x, int y, int z) {
+      return "[\"" + (x ? r : m) + "\",\"" + (y ? r : m) + "\",\"" + (z ? r : m) + "\"]";
+    };
+    return "[" + p(0, 0, 0) + "," + p(0, 1, 0) + "," + p(0, 1, 1) + "," + p(0, 0, 1) + "],[" + p(1, 0, 0) + "," +
+           p(1, 0, 1) + "," + p(1, 1, 1) + "," + p(1, 1, 0) + "],[" + p(0, 0, 0) + "," + p(0, 0, 1) + "," + p(1, 0, 1) +
+           "," + p(1, 0, 0) + "],[" + p(0, 1, 0) + "," + p(1, 1, 0) + "," + p(1, 1, 1) + "," + p(0, 1, 1) + "],[" +
+           p(0, 0, 0) + "," + p(1, 0, 0) + "," + p(1, 1, 0) + "," + p(0, 1, 0) + "],[" + p(0, 0, 1) + "," + p(0, 1, 1) +
+           "," + p(1, 1, 1) + "," + p(1, 0, 1) + "]";
+  };
+  for (const bool solid : {true, false}) {
+    const Scene scene = parse_scene_text(
+        std::string("{\"format\": \"tmcert-scene/1\", \"bodies\": [{\"name\": \"room\", \"solid\": ") +
+            (solid ? "true" : "false") + ", \"polygons\": [" + box("1") + "]}, {\"name\": \"cube\", \"polygons\": [" +
+            box("1/10") + "]}]}",
+        "solid_room");
+    VerifyOptions options;
+    options.epsilon = Exact(1, 1000);
+    const FixedEnvironment env(scene.bodies[0], {scene.bodies[1]}, {}, options);
+    MotionSegment seg;
+    seg.t0 = 0;
+    seg.t1 = 1;
+    seg.from.translation = {Exact(-1, 2), Exact(0), Exact(0)};
+    seg.to.translation = {Exact(1, 2), Exact(0), Exact(0)};
+    seg.rational = rational_keyframe_segment(seg.from, seg.to, Interpolation::Slerp, seg.t0, seg.t1);
+    const MotionCheck got = env.check({Trajectory{{seg}}});
+    BOOST_TEST(got.verdict == (solid ? Verdict::Collision : Verdict::Safe));
+    const std::optional<Witness> still = env.static_contact({*exact_pose(seg.from)});
+    BOOST_TEST(still.has_value() == solid);
+    if (solid) {
+      BOOST_REQUIRE(got.witness);
+      BOOST_TEST(got.witness->features[1] == "room interior");
+      BOOST_REQUIRE(got.safe_until);
+      BOOST_TEST(*got.safe_until == 0);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(rejects_what_it_cannot_certify) {
   const Scene scene = cube_and_slab();
   VerifyOptions options;
   options.epsilon = Exact(1, 1000);
-  Body solid = scene.bodies[1];
-  solid.solid = true;
-  BOOST_CHECK_THROW(FixedEnvironment(scene.bodies[0], {solid}, {}, options), InputError);
+  Body tolerant = scene.bodies[1];
+  tolerant.tolerance = Exact(1, 100);
+  BOOST_CHECK_THROW(FixedEnvironment(scene.bodies[0], {tolerant}, {}, options), InputError);
   BOOST_CHECK_THROW(FixedEnvironment(scene.bodies[0], {}, {}, options), InputError);
   VerifyOptions no_epsilon;
   BOOST_CHECK_THROW(FixedEnvironment(scene.bodies[0], {scene.bodies[1]}, {}, no_epsilon), InputError);
