@@ -337,13 +337,24 @@ struct Containment {
   std::optional<Witness> witness;
 };
 
-Containment start_containment(const Body& solid, const StartPose& ps, const Body& other, const StartPose& po,
-                              bool solid_first) {
+Vec3E apply(const Mat34E& m, const Vec3E& x) {
+  Vec3E r;
+  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+  return r;
+}
+
+// `solid_vertices`: every vertex of the solid, `other_reps`: one vertex per
+// connected component of the other body, both in their bodies' own frames
+// (computed once per body).
+Containment start_containment(const Body& solid, const std::vector<Vec3E>& solid_vertices, const StartPose& ps,
+                              const Body& other, const std::vector<std::pair<std::string, Vec3E>>& other_reps,
+                              const StartPose& po, bool solid_first) {
   Containment out;
   if (ps.exact && po.exact) {
     const std::unique_ptr<ClosedSurface> surface = placed_surface(solid, *ps.exact);
     if (!surface) return out;  // a singular pose: the solid is its surface there
-    for (const auto& [part, point] : component_representatives(other, *po.exact))
+    for (const auto& [part, rep] : other_reps) {
+      const Vec3E point = apply(*po.exact, rep);
       if (surface->contains(point)) {
         const std::string inside = solid.name + " interior", at = other.name + " " + part;
         out.kind = Containment::Kind::Hit;
@@ -351,15 +362,15 @@ Containment start_containment(const Body& solid, const StartPose& ps, const Body
                               std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
         return out;
       }
+    }
     return out;
   }
   std::array<double, 3> lo, hi;
-  if (!placed_box(all_vertices(solid), ps.map, lo, hi)) {
+  if (!placed_box(solid_vertices, ps.map, lo, hi)) {
     out.kind = Containment::Kind::Unknown;
     return out;
   }
-  const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-  for (const auto& rep : component_representatives(other, identity)) {
+  for (const auto& rep : other_reps) {
     std::array<double, 3> rlo, rhi;
     if (!placed_box({rep.second}, po.map, rlo, rhi) || EnvironmentIndex::overlap(lo, hi, rlo, rhi)) {
       out.kind = Containment::Kind::Unknown;
@@ -396,6 +407,14 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
   // its Body.
   for (const Body& b : bodies_) prepared_.push_back(std::make_unique<PreparedBody>(b));
   index_ = std::make_unique<EnvironmentIndex>(prepared_[0]->parts);
+  // For the containment of solids: every body's vertices and one vertex per
+  // connected component, in its own frame (the environment's: the frame
+  // its fixed pose applies to).
+  const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  for (const Body& b : bodies_) {
+    vertices_.push_back(all_vertices(b));
+    representatives_.push_back(component_representatives(b, identity));
+  }
 }
 
 FixedEnvironment::~FixedEnvironment() = default;
@@ -456,7 +475,9 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
       Containment c;
       for (int side = 0; side < 2 && c.kind == Containment::Kind::Free; ++side) {
         const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
-        if (bodies_[sb].solid) c = start_containment(bodies_[sb], start[sb], bodies_[ob], start[ob], side == 0);
+        if (bodies_[sb].solid)
+          c = start_containment(bodies_[sb], vertices_[sb], start[sb], bodies_[ob], representatives_[ob], start[ob],
+                                side == 0);
       }
       if (c.kind != Containment::Kind::Free) {
         CheckResult r;
@@ -523,7 +544,8 @@ std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E
     for (int side = 0; side < 2; ++side) {
       const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
       if (!bodies_[sb].solid) continue;
-      const Containment c = start_containment(bodies_[sb], at[sb], bodies_[ob], at[ob], side == 0);
+      const Containment c = start_containment(bodies_[sb], vertices_[sb], at[sb], bodies_[ob], representatives_[ob],
+                                              at[ob], side == 0);
       if (c.kind == Containment::Kind::Hit) return c.witness;
     }
   for (std::size_t k = 0; k < poses.size(); ++k) {

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <mutex>
+#include <string>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -78,6 +79,10 @@ class FixedEnvironment {
   // static test of a mover's configuration against it (the start of every
   // motion, static_contact) touches only the simplices near the mover.
   std::unique_ptr<EnvironmentIndex> index_;
+  // Per body, in its own frame: its vertices, and one vertex per connected
+  // component with its feature name (the containment of solids).
+  std::vector<std::vector<Vec3E>> vertices_;
+  std::vector<std::vector<std::pair<std::string, Vec3E>>> representatives_;
   mutable std::mutex mutex_;
 };
 
