@@ -15,7 +15,15 @@
 //    0.7 (OBBRSS models built once; a yes/no collide per state) as the
 //    state validity checker: what a planner runs today.
 //
-// Each edge is timed once per method (one run).  The table gives medians and
+// Arm case: the 6-joint arm of examples/ompl/arm6.urdf (7 box links) with
+// its base at (0.32, 0.06, 0) beside the same fixture, planned in joint
+// space (RealVectorStateSpace with the URDF limits): the certified
+// validator (tmcert::use_certified_arm, linear joint motion, epsilon 1/2000)
+// against DiscreteMotionValidator with FCL (every link's OBBRSS model
+// placed by forward kinematics in doubles); the same RRT extension edges.
+// Links against the fixture only (no self-collision), for both.
+//
+// Each edge is timed once per method (one run), in thread CPU time.  The table gives medians and
 // maxima per edge, and their ratios; then the edges the discrete validator
 // accepted that tmcert proves colliding, with their witnesses.
 //
