@@ -4,11 +4,13 @@
 #define BOOST_TEST_MODULE tmcert_ompl
 #include <boost/test/unit_test.hpp>
 
+#include "src/ompl/certified_arm.h"
 #include "src/ompl/certified_motion_validator.h"
 #include "src/scene/parse.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
@@ -217,4 +219,49 @@ BOOST_AUTO_TEST_CASE(bad_states_are_never_valid) {
   const auto turned = f.state(-2, 0, 0, 0, 0, 0, 1);
   BOOST_TEST(!f.validator->checkMotion(a.get(), turned.get()));
   BOOST_TEST(f.validator->certify(a.get(), turned.get()).problem.find("180") != std::string::npos);
+}
+
+// ---------------------------------------------------------------- joint space
+
+BOOST_AUTO_TEST_CASE(joint_space_edge_with_known_first_contact) {
+  // One revolute joint about z; the link a bar from x = 0 to 1 (|y|, |z| <=
+  // 1/20).  A post [0.6, 0.7] x [0.6, 0.7] (|z| <= 1/2): turning from 0 to
+  // 90 degrees, the bar's face y' = 1/20 first meets the post's corner
+  // (0.7, 0.6), at theta = atan2(0.6, 0.7) - asin(0.05 / |(0.7, 0.6)|).
+  const std::string urdf = R"(<robot name="one"><link name="base"/>
+    <link name="bar"><collision><origin xyz="0.5 0 0"/><geometry><box size="1 0.1 0.1"/></geometry></collision></link>
+    <joint name="q" type="revolute"><parent link="base"/><child link="bar"/><axis xyz="0 0 1"/>
+      <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>)";
+  const auto robot = std::make_shared<const PlacedRobot>(load_urdf_text(urdf, "one.urdf", "."), "one", Pose{});
+  const auto [unused, post] =
+      bodies(kCube, box_polygons({"0.6", "0.6", "-0.5"}, {"0.7", "0.7", "0.5"}));
+  auto space = std::make_shared<ob::RealVectorStateSpace>(1);
+  space->setBounds(-3, 3);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  VerifyOptions options;
+  options.epsilon = Exact(1, 10000);
+  const auto validator = use_certified_arm(si, robot, {"q"}, post, false, {}, options);
+  si->setup();
+  ob::ScopedState<ob::RealVectorStateSpace> a(space), b(space), c(space), last_state(space);
+  a[0] = 0;
+  b[0] = M_PI / 2;
+  c[0] = 0.5;
+  BOOST_TEST(validator->checkMotion(a.get(), c.get()));  // up to about 29 degrees: clear
+  const EdgeCertificate edge = validator->certify(a.get(), b.get());
+  BOOST_TEST(edge.check.verdict == Verdict::Collision);
+  BOOST_REQUIRE(edge.check.first_contact);
+  const double theta = std::atan2(0.6, 0.7) - std::asin(0.05 / std::hypot(0.7, 0.6));
+  const double fraction = theta / b[0];
+  BOOST_TEST(CGAL::to_double(edge.check.first_contact->first) <= fraction + 1e-9);
+  BOOST_TEST(fraction - 1e-9 <= CGAL::to_double(edge.check.first_contact->second));
+  std::pair<ob::State*, double> last{last_state.get(), -1};
+  BOOST_TEST(!validator->checkMotion(a.get(), b.get(), last));
+  BOOST_TEST(last.second > 0.0);
+  BOOST_TEST(last.second < fraction);
+  BOOST_TEST(validator->certify(a.get(), last_state.get()).check.verdict == Verdict::Safe);
+  // Outside the joint's limits: never valid.
+  ob::ScopedState<ob::RealVectorStateSpace> out(space);
+  out[0] = 3.5;
+  BOOST_TEST(!validator->checkMotion(a.get(), out.get()));
+  BOOST_TEST(!validator->certify(a.get(), out.get()).problem.empty());
 }
