@@ -15,6 +15,7 @@
 #include <ompl/util/Console.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 
 namespace ob = ompl::base;
@@ -264,4 +265,63 @@ BOOST_AUTO_TEST_CASE(joint_space_edge_with_known_first_contact) {
   out[0] = 3.5;
   BOOST_TEST(!validator->checkMotion(a.get(), out.get()));
   BOOST_TEST(!validator->certify(a.get(), out.get()).problem.empty());
+}
+
+BOOST_AUTO_TEST_CASE(joint_space_agrees_with_the_verifier_on_the_robot_scene) {
+  // The 6-joint arm of examples/ompl/arm6.urdf beside a post, random edges:
+  // the validator's verdict against verify_scene on a scene with the same
+  // joint path (add_robot, the robot's default checks with
+  // self-collision).  The Verifier settles a solid link's start
+  // containment at an enclosed pose only by disjoint whole-body boxes, the
+  // validator by the component vertices' boxes (finer, the same exact
+  // criterion): so they must never contradict (safe against collision),
+  // and agree whenever the Verifier decides.  Seeded.
+  const auto robot = std::make_shared<const PlacedRobot>(load_urdf(TMCERT_SOURCE_DIR "/examples/ompl/arm6.urdf"), "arm",
+                                                         Pose{});
+  const std::vector<std::string> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+  const auto [unused, post] = bodies(kCube, box_polygons({"0.25", "-0.05", "0"}, {"0.35", "0.05", "0.35"}));
+  auto space = std::make_shared<ob::RealVectorStateSpace>(6);
+  space->setBounds(-2, 2);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  VerifyOptions options;
+  options.epsilon = Exact(1, 2000);
+  const auto validator = use_certified_arm(si, robot, joints, post, true, {}, options);
+  si->setup();
+  const unsigned seed = 20261127;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> q(-1.5, 1.5);
+  int decided = 0, safe = 0, collision = 0;
+  for (int k = 0; k < 16; ++k) {
+    ob::ScopedState<ob::RealVectorStateSpace> a(space), b(space);
+    // The arm leaning towards the post (j1 near 0, j2 and j3 forward).
+    const double lo[6] = {-0.6, 0.3, 0.0, -1.5, -1.5, -1.5}, hi[6] = {0.6, 1.2, 1.2, 1.5, 1.5, 1.5};
+    for (int j = 0; j < 6; ++j) {
+      a[j] = lo[j] + (hi[j] - lo[j]) * (q(rng) + 1.5) / 3;
+      b[j] = std::max(-2.0, std::min(2.0, a[j] + 0.5 * q(rng)));
+    }
+    const Verdict got = validator->certify(a.get(), b.get()).check.verdict;
+    Scene scene;
+    scene.source = "arm";
+    scene.bodies.push_back(post);
+    JointPath path{joints, {Exact(0), Exact(1)}, {{}, {}}};
+    for (int j = 0; j < 6; ++j) {
+      path.positions[0].push_back(Exact(a[j]));
+      path.positions[1].push_back(Exact(b[j]));
+    }
+    const RobotBodies rb = add_robot(scene, *robot, path);
+    scene.checks = robot_default_checks(*robot, rb, {0}, true, {});
+    const Verdict expected = verify_scene(scene, options).verdict;
+    BOOST_TEST(!(got == Verdict::Safe && expected == Verdict::Collision), "seed " << seed << ", edge " << k);
+    BOOST_TEST(!(got == Verdict::Collision && expected == Verdict::Safe), "seed " << seed << ", edge " << k);
+    if (expected != Verdict::Undecided) {
+      ++decided;
+      BOOST_TEST(got == expected, "seed " << seed << ", edge " << k);
+    }
+    BOOST_TEST_MESSAGE("edge " << k << ": " << to_string(got) << ", verifier " << to_string(expected));
+    safe += got == Verdict::Safe;
+    collision += got == Verdict::Collision;
+  }
+  BOOST_TEST(decided > 4);
+  BOOST_TEST(safe > 0);
+  BOOST_TEST(collision > 0);
 }
