@@ -128,6 +128,22 @@ BOOST_AUTO_TEST_CASE(end_state_in_contact_is_rejected) {
   BOOST_TEST(Exact(64, 65) <= edge.check.first_contact->second);
 }
 
+BOOST_AUTO_TEST_CASE(start_state_in_contact_gives_the_start_back) {
+  // OMPL's precondition (s1 valid) violated: nothing of the edge is
+  // certified, lastValid is s1 at fraction 0.
+  Fixture f(kCube, kWall);
+  const auto a = f.state(0, 0, 0), b = f.state(1, 0, 0);
+  const EdgeCertificate edge = f.validator->certify(a.get(), b.get());
+  BOOST_TEST(edge.check.verdict == Verdict::Collision);
+  BOOST_REQUIRE(edge.check.safe_until);
+  BOOST_TEST(*edge.check.safe_until == 0);
+  ob::ScopedState<ob::SE3StateSpace> last_state(f.space);
+  std::pair<ob::State*, double> last{last_state.get(), -1};
+  BOOST_TEST(!f.validator->checkMotion(a.get(), b.get(), last));
+  BOOST_TEST(last.second == 0.0);
+  BOOST_TEST(last_state->getX() == 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(states_are_read_exactly) {
   Fixture f(kCube, kWall);
   // The double nearest -0.2 is -0.2 - 1.1e-17: the cube's face stops just
