@@ -375,8 +375,8 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
     if (b.enlarged.empty()) continue;
     out << "  note: " << b.name << " is an enlarged model: its ";
     for (std::size_t i = 0; i < b.enlarged.size(); ++i) out << (i ? ", " : "") << b.enlarged[i];
-    out << (b.enlarged.size() == 1 ? " is" : " are")
-        << " replaced by circumscribed polyhedra (safe holds for the true shapes; a collision is one of the model)\n";
+    out << (b.enlarged.size() == 1 ? " is replaced by a circumscribed polyhedron" : " are replaced by circumscribed polyhedra")
+        << " (safe holds for the true shapes; a collision is one of the model)\n";
   }
   for (const CheckResult& c : r.checks) {
     out << "  " << scene.bodies[c.bodies[0]].name << " x " << scene.bodies[c.bodies[1]].name << ": "
