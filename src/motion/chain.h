@@ -10,7 +10,7 @@
 // parameter s between two waypoint values.  The pose is enclosed as jets
 // (kernels/jet.h) in one pass from the base: every link's frame is its
 // parent's times one joint, so the parent's enclosure is reused for the
-// child within the pass.  proofs/enclosures.md section 6.
+// child within the pass.  proofs/robot-links.md section 4.
 #pragma once
 
 #include "src/motion/segment.h"

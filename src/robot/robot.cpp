@@ -149,9 +149,9 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
           m.control_points = {*chain->exact_pose(from), *chain->exact_pose(to)};
           m.weights = {1, 1};
           seg.rational = std::move(m);
-        } else {
-          seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
         }
+        // Also beside a rational curve: the segment is known as a link's.
+        seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
         traj.segments.push_back(std::move(seg));
       }
       if (traj.segments.size() == 1 && traj.segments[0].rational) b.motion = traj.segments[0].rational;

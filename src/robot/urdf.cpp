@@ -6,6 +6,7 @@
 #include "src/robot/robot.h"
 
 #include "src/metric/metric.h"
+#include "src/motion/segment.h"
 #include "src/robot/primitives.h"
 #include "src/scene/mesh.h"
 #include "src/scene/parse.h"
@@ -16,6 +17,7 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -229,10 +231,12 @@ class UrdfReader {
 
   // One <collision> element's polygons, in the link frame's axes about the
   // element's origin (not yet translated).
-  PolygonList shape(const TiXmlElement* geometry, const std::string& where, std::vector<std::string>& enlarged) const {
+  PolygonList shape(const TiXmlElement* geometry, const std::string& where, std::vector<std::string>& enlarged,
+                    std::string& kind_out, Exact& radius_out, Exact& length_out) const {
     const TiXmlElement* g = geometry ? geometry->FirstChildElement() : nullptr;
     if (!g) fail(where + ": missing <geometry> shape");
     const std::string kind = g->Value();
+    kind_out = kind;
     auto positive = [&](const Exact& v, const std::string& what) {
       if (!(v > 0)) fail(where + ": " + what + " must be positive, got " + to_string(v));
       return v;
@@ -247,11 +251,14 @@ class UrdfReader {
       const Exact r = positive(number(g, "radius", where + ": cylinder", std::nullopt), "cylinder radius");
       const Exact len = positive(number(g, "length", where + ": cylinder", std::nullopt), "cylinder length");
       enlarged.push_back("cylinder");
+      radius_out = r;
+      length_out = len;
       return cylinder_polyhedron(r, len);
     }
     if (kind == "sphere") {
       const Exact r = positive(number(g, "radius", where + ": sphere", std::nullopt), "sphere radius");
       enlarged.push_back("sphere");
+      radius_out = r;
       return sphere_polyhedron(r);
     }
     if (kind == "mesh") {
@@ -288,7 +295,8 @@ class UrdfReader {
     struct Element {
       Pose origin;
       PolygonList polygons;
-      bool sphere = false;
+      std::string kind;          // box, cylinder, sphere, mesh
+      Exact radius, length;      // cylinder, sphere
       std::string where;
     };
     std::vector<Element> elements;
@@ -298,43 +306,58 @@ class UrdfReader {
       Element el;
       el.where = where + ": collision[" + std::to_string(index) + "]";
       el.origin = origin(c, el.where);
-      const std::size_t before = enlarged.size();
       mesh_files_.clear();
-      el.polygons = shape(c->FirstChildElement("geometry"), el.where, enlarged);
-      el.sphere = enlarged.size() > before && enlarged.back() == "sphere";
+      el.polygons = shape(c->FirstChildElement("geometry"), el.where, enlarged, el.kind, el.radius, el.length);
       if (!mesh_files_.empty()) el.where += " (" + mesh_files_.back() + ")";
       elements.push_back(std::move(el));
     }
     if (elements.empty()) return;
-    // Where the body frame sits: the collision origins are applied to the
-    // vertices exactly when their rotations are the identity (a sphere's
-    // polyhedron may be placed by its centre alone: it is about the centre
-    // and contains the ball for any rotation); a single element, or
-    // elements with the same origin, put the body frame at that origin.
-    auto rotated = [](const Element& el) { return el.origin.rotation.kind != Rotation::Kind::Identity && !el.sphere; };
-    bool any_rotated = false;
-    for (const Element& el : elements) any_rotated = any_rotated || rotated(el);
+    // Where the body frame sits (proofs/robot-links.md section 2).  Elements
+    // with one common origin: that origin (applied exactly as a translation
+    // of the vertices when it has no rotation).  Otherwise the boxes and
+    // meshes decide: rotated ones must share one origin, which becomes the
+    // body frame, else the body frame is the link frame and their origins'
+    // translations move the vertices exactly.  Cylinders and spheres whose
+    // origin is not exact in that frame are circumscribed there with a
+    // rational rotation and centre and a radius enlarged by the proven
+    // error (section 3); a sphere needs its centre only.
+    auto same = [](const Pose& a, const Pose& b) {
+      return a.translation == b.translation && a.rotation.kind == b.rotation.kind && a.rotation.rpy == b.rotation.rpy;
+    };
+    auto rotated = [](const Pose& p) { return p.rotation.kind != Rotation::Kind::Identity; };
     bool same_origin = true;
-    for (const Element& el : elements)
-      same_origin = same_origin && el.origin.translation == elements[0].origin.translation &&
-                    el.origin.rotation.kind == elements[0].origin.rotation.kind &&
-                    el.origin.rotation.rpy == elements[0].origin.rotation.rpy;
-    Body body;
-    std::vector<Vec3E> offsets(elements.size(), Vec3E{Exact(0), Exact(0), Exact(0)});
-    if (any_rotated) {
-      if (!same_origin)
-        fail(where + ": collision elements with different rotated origins (rpy) cannot be placed exactly in one body; "
-                     "give them the same origin, or rpy 0 0 0");
-      link.body_frame = {elements[0].origin};
+    for (const Element& el : elements) same_origin = same_origin && same(el.origin, elements[0].origin);
+    std::optional<Pose> frame;  // the body frame in the link frame; none: the link frame
+    if (same_origin) {
+      if (rotated(elements[0].origin)) frame = elements[0].origin;
     } else {
-      for (std::size_t i = 0; i < elements.size(); ++i) offsets[i] = elements[i].origin.translation;
+      for (const Element& el : elements) {
+        if (el.kind != "box" && el.kind != "mesh") continue;
+        if (!rotated(el.origin)) continue;
+        if (frame && !same(*frame, el.origin))
+          fail(el.where + ": boxes and meshes with different rotated origins (rpy) cannot be placed exactly in one "
+                          "body; give them the same origin, or rpy 0 0 0");
+        frame = el.origin;
+      }
+      if (frame)
+        for (const Element& el : elements)
+          if ((el.kind == "box" || el.kind == "mesh") && !same(*frame, el.origin))
+            fail(el.where + ": a box or mesh whose origin differs from the rotated origin of another cannot be "
+                            "placed exactly in one body; give them the same origin, or rpy 0 0 0");
     }
-    for (std::size_t i = 0; i < elements.size(); ++i) {
-      const Element& el = elements[i];
+    if (frame) link.body_frame = {*frame};
+    Body body;
+    for (Element& el : elements) {
+      // The element's placement in the body frame: exact, or circumscribed.
+      std::optional<Vec3E> offset;
+      if (frame && same(*frame, el.origin)) offset = Vec3E{Exact(0), Exact(0), Exact(0)};
+      else if (!frame && (!rotated(el.origin) || el.kind == "sphere")) offset = el.origin.translation;
+      if (!offset) el.polygons = circumscribed_in_frame(el.kind, el.radius, el.length, frame ? *frame : Pose{}, el.origin, el.where);
       std::size_t f = 0;
       for (const std::vector<Vec3E>& polygon : el.polygons) {
         std::vector<Vec3E> moved;
-        for (const Vec3E& v : polygon) moved.push_back({v[0] + offsets[i][0], v[1] + offsets[i][1], v[2] + offsets[i][2]});
+        for (const Vec3E& v : polygon)
+          moved.push_back(offset ? Vec3E{v[0] + (*offset)[0], v[1] + (*offset)[1], v[2] + (*offset)[2]} : v);
         add_polygon(body, moved, el.where + ": face " + std::to_string(f++));
       }
     }
@@ -347,6 +370,75 @@ class UrdfReader {
     body.solid = solid_problem(body).empty() && shell_intersection_problem(body).empty();
     body.enlarged = enlarged;
     link.geometry = std::move(body);
+  }
+
+  // A cylinder or sphere at `origin` (link frame), circumscribed in the body
+  // frame `frame` (link frame): the relative pose F^-1 O is enclosed; a
+  // rational rotation R~ (from a rational quaternion: exactly orthogonal)
+  // and a rational centre c~ near it, with |R - R~|_F <= eps and
+  // |c - c~| <= gamma proven in intervals, place the shape's polyhedron
+  // with radius (and half-length) enlarged by
+  // delta = eps sqrt(r^2 + h^2) + gamma: every point R x + c of the shape
+  // is R~ x + c~ + e with |e| <= delta (proofs/robot-links.md section 3).
+  PolygonList circumscribed_in_frame(const std::string& kind, const Exact& r, const Exact& length, const Pose& frame,
+                                     const Pose& origin, const std::string& where) const {
+    std::array<Exact, 9> rot;
+    Vec3E centre;
+    Exact delta;
+    {
+      RoundingGuard guard;
+      const PoseInterval f = interval_pose(frame), o = interval_pose(origin);
+      std::array<Interval, 9> rel;
+      std::array<Interval, 3> c;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) rel[3 * i + j] = f[i] * o[j] + f[4 + i] * o[4 + j] + f[8 + i] * o[8 + j];
+        c[i] = f[i] * (o[3] - f[3]) + f[4 + i] * (o[7] - f[7]) + f[8 + i] * (o[11] - f[11]);
+      }
+      // A quaternion of the midpoint matrix (any approximation will do:
+      // the error is bounded below), on a grid of 2^-20.
+      std::array<double, 9> m;
+      for (int i = 0; i < 9; ++i) m[i] = CGAL::to_double(rel[i]);
+      std::array<double, 4> q;
+      const double tr = m[0] + m[4] + m[8];
+      if (tr > 0) q = {1 + tr, m[7] - m[5], m[2] - m[6], m[3] - m[1]};
+      else if (m[0] >= m[4] && m[0] >= m[8]) q = {m[7] - m[5], 1 + m[0] - m[4] - m[8], m[1] + m[3], m[2] + m[6]};
+      else if (m[4] >= m[8]) q = {m[2] - m[6], m[1] + m[3], 1 - m[0] + m[4] - m[8], m[5] + m[7]};
+      else q = {m[3] - m[1], m[2] + m[6], m[5] + m[7], 1 - m[0] - m[4] + m[8]};
+      const double qn = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      std::array<Exact, 4> qe;
+      for (int i = 0; i < 4; ++i) qe[i] = Exact(static_cast<long>(std::llround(q[i] / qn * 1048576.0)), 1048576L);
+      const Exact n2 = qe[0] * qe[0] + qe[1] * qe[1] + qe[2] * qe[2] + qe[3] * qe[3];
+      if (n2 == 0) fail(where + ": cannot place the shape (degenerate rotation)");
+      const Exact &w = qe[0], &x = qe[1], &y = qe[2], &z = qe[3];
+      rot = {(w * w + x * x - y * y - z * z) / n2, 2 * (x * y - w * z) / n2, 2 * (x * z + w * y) / n2,
+             2 * (x * y + w * z) / n2, (w * w - x * x + y * y - z * z) / n2, 2 * (y * z - w * x) / n2,
+             2 * (x * z - w * y) / n2, 2 * (y * z + w * x) / n2, (w * w - x * x - y * y + z * z) / n2};
+      Interval eps2(0), gamma2(0);
+      for (int i = 0; i < 9; ++i) eps2 += CGAL::square(rel[i] - to_interval(rot[i]));
+      for (int i = 0; i < 3; ++i) {
+        centre[i] = Exact(CGAL::to_double(c[i]));
+        gamma2 += CGAL::square(c[i] - to_interval(centre[i]));
+      }
+      const Interval half = to_interval(length) / Interval(2), radius = to_interval(r);
+      const Interval reach = kind == "sphere" ? Interval(0) : CGAL::sqrt(CGAL::square(radius) + CGAL::square(half));
+      const Interval d = CGAL::sqrt(eps2) * reach + CGAL::sqrt(gamma2);
+      if (!std::isfinite(d.sup())) fail(where + ": cannot place the shape (its origin is not finite)");
+      delta = Exact(d.sup());
+    }
+    if (kind == "sphere") {
+      PolygonList out = sphere_polyhedron(r + delta);
+      for (auto& poly : out)
+        for (Vec3E& v : poly) v = {v[0] + centre[0], v[1] + centre[1], v[2] + centre[2]};
+      return out;
+    }
+    PolygonList out = cylinder_polyhedron(r + delta, length + 2 * delta);
+    for (auto& poly : out)
+      for (Vec3E& v : poly) {
+        Vec3E t;
+        for (int i = 0; i < 3; ++i) t[i] = rot[3 * i] * v[0] + rot[3 * i + 1] * v[1] + rot[3 * i + 2] * v[2] + centre[i];
+        v = t;
+      }
+    return out;
   }
 
   static Exact size_of(const std::vector<Vec3E>& v) {

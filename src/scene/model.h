@@ -78,14 +78,14 @@ struct LinkMotion;
 // screw between different rotations, nlerp between rotations not given as
 // exact quaternions), enclosed rigorously wherever it is evaluated
 // (src/motion/segment.h, proofs/enclosures.md).  The segment parameter is
-// s = (t - t0) / (t1 - t0).  A robot link's segment is `link` instead of
-// two poses (when it is not rational).
+// s = (t - t0) / (t1 - t0).  A robot link's segment has `link` instead of
+// two poses (its model when it is not rational; `rational` comes first).
 struct MotionSegment {
   Exact t0, t1;
   std::optional<Motion> rational;
   Pose from, to;                      // when not rational and not a link
   Interpolation interpolation = Interpolation::Slerp;
-  std::shared_ptr<const LinkMotion> link;  // when not rational: a robot link's segment
+  std::shared_ptr<const LinkMotion> link;  // a robot link's segment
 };
 
 // A body's motion when it is not one rational Bezier curve: keyframes with
