@@ -9,7 +9,10 @@ packages=(
   libboost-test-dev librapidcheck-dev
   nlohmann-json3-dev libcli11-dev
   libflint-arb-dev
-  libfcl-dev            # only for bench/planner_path.cpp (FCL, the planners' checker)
+  liburdfdom-dev        # URDF robots (src/robot/urdf.cpp; brings TinyXML and console_bridge)
+  libtinyxml-dev libconsole-bridge-dev
+  libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
+  libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples
 )
 
 missing=()

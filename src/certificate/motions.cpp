@@ -377,6 +377,10 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
       out.exact = restrict(*seg->rational, ta, tb);
       return out;
     }
+    if (seg->link) {  // a robot link in joint space: not modelled by the checker
+      why = "\"" + body.name + "\" is a robot link moving in joint space, which certificates do not model";
+      return std::nullopt;
+    }
     const Exact span = seg->t1 - seg->t0;
     const auto pose = keyframe_pose(*seg, interval((ta - seg->t0) / span, (tb - seg->t0) / span));
     std::optional<PoseBox> box;
@@ -419,6 +423,7 @@ std::optional<Mat34E> exact_pose_at(const Body& body, const Exact& t) {
     const MotionSegment* seg = segment_over(*body.trajectory, t, t);
     if (!seg) return std::nullopt;
     if (seg->rational) return evaluate(*seg->rational, t);
+    if (seg->link) return std::nullopt;
     if (t == seg->t0) return exact_keyframe(seg->from);
     if (t == seg->t1) return exact_keyframe(seg->to);
     return std::nullopt;
@@ -432,7 +437,7 @@ std::optional<PoseBox> pose_box_at(const Body& body, const Exact& t) {
   if (const auto m = exact_pose_at(body, t)) return exact_box(*m);
   if (!body.trajectory) return std::nullopt;
   const MotionSegment* seg = segment_over(*body.trajectory, t, t);
-  if (!seg || seg->rational) return std::nullopt;
+  if (!seg || seg->rational || seg->link) return std::nullopt;
   const Exact s = (t - seg->t0) / (seg->t1 - seg->t0);
   const auto pose = keyframe_pose(*seg, B(s));
   if (!pose) return std::nullopt;

@@ -153,6 +153,8 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.value(scene.bodies[c.bodies[1]].name);
   w.end_array();
   w.member("verdict", to_string(c.verdict));
+  if (!scene.bodies[c.bodies[0]].enlarged.empty() || !scene.bodies[c.bodies[1]].enlarged.empty())
+    w.member("enlarged_model", true);
   if (c.clearance > 0) {
     w.member("clearance", to_string(c.clearance));
     w.member("clearance_violated", c.verdict == Verdict::Collision);
@@ -337,6 +339,25 @@ std::string result_json(const Scene& scene, const SceneResult& r) {
   w.member("kernel", to_string(r.kernel));
   w.member("certified", r.certified);
   w.member("epsilon", to_string(r.epsilon));
+  // Bodies that are enlarged models of their input (robot links' URDF
+  // cylinders and spheres as circumscribed polyhedra): present only then.
+  bool any_enlarged = false;
+  for (const Body& b : scene.bodies) any_enlarged = any_enlarged || !b.enlarged.empty();
+  if (any_enlarged) {
+    w.key("enlarged");
+    w.begin_array();
+    for (const Body& b : scene.bodies) {
+      if (b.enlarged.empty()) continue;
+      w.begin_object();
+      w.member("body", b.name);
+      w.key("shapes");
+      w.begin_array();
+      for (const std::string& shape : b.enlarged) w.value(shape);
+      w.end_array();
+      w.end_object();
+    }
+    w.end_array();
+  }
   w.key("checks");
   w.begin_array();
   for (const CheckResult& c : r.checks) write_check(w, scene, c);
@@ -350,6 +371,13 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
   out << "tmcert: " << to_string(r.verdict);
   if (!r.certified) out << " (kernel fast: NOT CERTIFIED)";
   out << "  [kernel " << to_string(r.kernel) << ", epsilon " << to_string(r.epsilon) << "]\n";
+  for (const Body& b : scene.bodies) {
+    if (b.enlarged.empty()) continue;
+    out << "  note: " << b.name << " is an enlarged model: its ";
+    for (std::size_t i = 0; i < b.enlarged.size(); ++i) out << (i ? ", " : "") << b.enlarged[i];
+    out << (b.enlarged.size() == 1 ? " is replaced by a circumscribed polyhedron" : " are replaced by circumscribed polyhedra")
+        << " (safe holds for the true shapes; a collision is one of the model)\n";
+  }
   for (const CheckResult& c : r.checks) {
     out << "  " << scene.bodies[c.bodies[0]].name << " x " << scene.bodies[c.bodies[1]].name << ": "
         << to_string(c.verdict);

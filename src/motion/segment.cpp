@@ -1,6 +1,7 @@
 #include "src/motion/segment.h"
 
 #include "src/motion/bezier.h"
+#include "src/motion/chain.h"
 
 #include <CGAL/number_utils.h>
 
@@ -447,6 +448,7 @@ std::unique_ptr<SegmentModel> make_bezier_model(const Motion& motion) { return s
 
 std::unique_ptr<SegmentModel> make_segment_model(const MotionSegment& segment) {
   if (segment.rational) return make_bezier_model(*segment.rational);
+  if (segment.link) return make_link_model(*segment.link);
   return std::make_unique<KeyframeModel>(segment.from, segment.to, segment.interpolation);
 }
 

@@ -5,6 +5,7 @@
 
 #include "kernels/number_types.h"
 
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -66,18 +67,25 @@ struct Pose {
 
 enum class Interpolation { Slerp, Screw, Nlerp };
 
+// A robot link's motion over one segment of its joint-space path
+// (src/motion/chain.h): an immutable chain of joint transforms shared by
+// every segment, and the joint values at the segment's two waypoints.
+struct LinkMotion;
+
 // One piece of a body's motion over the scene parameters [t0, t1]: either a
 // rational Bezier curve (exact; `rational`, whose own t0/t1 are these), or
 // the interpolation of two keyframe poses that is not rational (slerp and
 // screw between different rotations, nlerp between rotations not given as
 // exact quaternions), enclosed rigorously wherever it is evaluated
 // (src/motion/segment.h, proofs/enclosures.md).  The segment parameter is
-// s = (t - t0) / (t1 - t0).
+// s = (t - t0) / (t1 - t0).  A robot link's segment has `link` instead of
+// two poses (its model when it is not rational; `rational` comes first).
 struct MotionSegment {
   Exact t0, t1;
   std::optional<Motion> rational;
-  Pose from, to;                      // when not rational
+  Pose from, to;                      // when not rational and not a link
   Interpolation interpolation = Interpolation::Slerp;
+  std::shared_ptr<const LinkMotion> link;  // a robot link's segment
 };
 
 // A body's motion when it is not one rational Bezier curve: keyframes with
@@ -110,6 +118,10 @@ struct Body {
   // The paper's toleranced motion: every affine map within this distance of
   // the nominal pose, in the body's metric, is possible (0: none).
   Exact tolerance = 0;
+  // Shapes of the input replaced by circumscribed polyhedra (a robot link's
+  // URDF cylinders and spheres): the body contains them and is larger, so
+  // `safe` holds for them and a collision is one of the enlarged model.
+  std::vector<std::string> enlarged;
 
   // Moves over a parameter interval (a one-pose motion does not).
   bool moves() const { return trajectory || (motion && motion->degree() >= 1); }

@@ -16,6 +16,7 @@
 #include "src/scene/mesh.h"
 #include "src/scene/read_file.h"
 #include "src/scene/solid.h"
+#include "src/robot/robot.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
@@ -37,6 +38,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <set>
 #include <span>
 #include <sstream>
 #include <string_view>
@@ -783,7 +785,7 @@ class SceneReader {
     if (!format) fail(document.member("format"), std::string("missing required field (expected \"") + kFormat + "\")");
     if (format->kind != Node::Kind::String || text(*format) != kFormat)
       fail(document.member("format"), "unknown format version " + describe(*format) + ", expected \"" + kFormat + "\"");
-    reject_unknown_keys(doc, document, {"format", "epsilon", "max_depth", "bodies", "checks", "clearance"});
+    reject_unknown_keys(doc, document, {"format", "epsilon", "max_depth", "bodies", "checks", "clearance", "robots"});
     if (const Node* c = find(doc, "clearance")) scene.clearance = non_negative(*c, document.member("clearance"));
 
     if (const Node* eps = find(doc, "epsilon")) {
@@ -795,9 +797,11 @@ class SceneReader {
 
     const Path bodies_path = document.member("bodies");
     const Node* bodies = find(doc, "bodies");
-    if (!bodies) fail(bodies_path, "missing required field");
-    const std::span<const Node> list = array(*bodies, bodies_path);
-    if (list.empty()) fail(bodies_path, "at least one body is required");
+    const Node* robots_node = find(doc, "robots");
+    // A scene of robots alone (self-collision) needs no other body.
+    if (!bodies && !robots_node) fail(bodies_path, "missing required field");
+    const std::span<const Node> list = bodies ? array(*bodies, bodies_path) : std::span<const Node>();
+    if (list.empty() && !robots_node) fail(bodies_path, "at least one body is required");
     std::unordered_map<std::string, std::size_t> names;
     names.reserve(list.size());
     scene.bodies.reserve(list.size());
@@ -810,11 +814,15 @@ class SceneReader {
              "duplicate body name " + quote_text(name) + " (also " + index_path("bodies", it->second) + ")");
     }
     assign_masses(scene, bodies_path);
+    const std::size_t plain_bodies = scene.bodies.size();
+    std::vector<RobotInScene> placed;
+    if (robots_node) placed = robots(scene, *robots_node, document.member("robots"), names);
+    if (scene.bodies.empty()) fail(bodies_path, "at least one body is required (the robots have no collision geometry)");
 
     if (const Node* checks = find(doc, "checks"))
       scene.checks = explicit_checks(*checks, document.member("checks"), names, scene.check_clearance);
     else
-      scene.checks = default_checks(scene);
+      scene.checks = default_checks_with_robots(scene, plain_bodies, placed);
     return scene;
   }
 
@@ -1371,6 +1379,144 @@ class SceneReader {
     return out;
   }
 
+  // A robot of the scene after its links were added (for default checks).
+  struct RobotInScene {
+    std::shared_ptr<const PlacedRobot> robot;
+    RobotBodies bodies;
+    bool self_collision = false;
+    std::vector<std::pair<std::string, std::string>> allowed;
+  };
+
+  // "robots" (SCENE_FORMAT.md "Robots from URDF, moving in joint space"):
+  // each adds a body "<robot>/<link>" per link with collision geometry.
+  std::vector<RobotInScene> robots(Scene& scene, const Node& node, const Path& path,
+                                   std::unordered_map<std::string, std::size_t>& names) const {
+    const std::span<const Node> list = array(node, path);
+    std::vector<RobotInScene> out;
+    std::map<std::string, std::shared_ptr<const RobotModel>> loaded;  // by file
+    std::set<std::string> robot_names;
+    for (std::size_t r = 0; r < list.size(); ++r) {
+      const Path rpath = path.index(r);
+      const Members obj = object(list[r], rpath);
+      reject_unknown_keys(obj, rpath, {"name", "urdf", "base", "joints", "path", "self_collision", "allowed_pairs"});
+      auto string_field = [&](const char* key) {
+        const Node* n = find(obj, key);
+        if (!n) fail(rpath.member(key), "missing required field");
+        if (n->kind != Node::Kind::String || text(*n).empty()) fail(rpath.member(key), "expected a non-empty string");
+        return std::string(text(*n));
+      };
+      const std::string name = string_field("name");
+      for (char c : name)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+          fail(rpath.member("name"), "a robot name cannot contain control characters");
+      if (!robot_names.insert(name).second) fail(rpath.member("name"), "duplicate robot name " + quote_text(name));
+      const std::string urdf = string_field("urdf");
+      if (urdf.find('\0') != std::string::npos) fail(rpath.member("urdf"), "file name contains a NUL character");
+      const std::string file = (base_ / std::filesystem::path(urdf)).string();
+      std::shared_ptr<const RobotModel>& model = loaded[file];
+      if (!model) {
+        try {
+          model = load_urdf(file);
+        } catch (const InputError& e) {
+          fail(rpath.member("urdf"), one_line(e.what()));
+        }
+      }
+      Pose base;
+      if (const Node* b = find(obj, "base")) base = pose(*b, rpath.member("base"));
+      JointPath jp;
+      const Path jpath = rpath.member("joints");
+      const Node* joints = find(obj, "joints");
+      if (!joints) fail(jpath, "missing required field");
+      const std::span<const Node> jlist = array(*joints, jpath);
+      for (std::size_t c = 0; c < jlist.size(); ++c) {
+        if (jlist[c].kind != Node::Kind::String) fail(jpath.index(c), "expected a joint name (a string)");
+        jp.joints.emplace_back(text(jlist[c]));
+      }
+      const Path ppath = rpath.member("path");
+      const Node* pnode = find(obj, "path");
+      if (!pnode) fail(ppath, "missing required field");
+      const Members pobj = object(*pnode, ppath);
+      reject_unknown_keys(pobj, ppath, {"times", "positions"});
+      const Path tpath = ppath.member("times"), qpath = ppath.member("positions");
+      const Node* times_node = find(pobj, "times");
+      if (!times_node) fail(tpath, "missing required field");
+      for (std::size_t k = 0; const Node& t : array(*times_node, tpath)) jp.times.push_back(number(t, tpath.index(k++)));
+      const Node* positions = find(pobj, "positions");
+      if (!positions) fail(qpath, "missing required field");
+      const std::span<const Node> rows = array(*positions, qpath);
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const Path row_path = qpath.index(k);
+        std::vector<Exact> row;
+        for (std::size_t c = 0; const Node& v : array(rows[k], row_path)) row.push_back(number(v, row_path.index(c++)));
+        jp.positions.push_back(std::move(row));
+      }
+      RobotInScene placed;
+      placed.robot = std::make_shared<const PlacedRobot>(model, name, base);
+      try {
+        placed.bodies = add_robot(scene, *placed.robot, jp);
+      } catch (const JointPathError& e) {
+        const Path& field = e.field == "joints" ? jpath : e.field == "times" ? tpath : qpath;
+        if (e.index.empty()) fail(field, e.what());
+        const Path first = field.index(e.index[0]);
+        if (e.index.size() == 1) fail(first, e.what());
+        fail(first.index(e.index[1]), e.what());
+      }
+      for (int b : placed.bodies.body) {
+        if (b < 0) continue;
+        const std::string& body_name = scene.bodies[b].name;
+        if (auto [it, fresh] = names.emplace(body_name, static_cast<std::size_t>(b)); !fresh)
+          fail(rpath.member("name"), "the link body " + quote_text(body_name) + " has the name of another body");
+      }
+      if (const Node* sc = find(obj, "self_collision")) {
+        if (sc->kind != Node::Kind::Boolean) fail(rpath.member("self_collision"), "expected true or false");
+        placed.self_collision = sc->boolean;
+      }
+      if (const Node* ap = find(obj, "allowed_pairs")) {
+        const Path apath = rpath.member("allowed_pairs");
+        const std::span<const Node> pairs = array(*ap, apath);
+        for (std::size_t k = 0; k < pairs.size(); ++k) {
+          const Path pair_path = apath.index(k);
+          const std::span<const Node> pair = array(pairs[k], pair_path);
+          if (pair.size() != 2) fail(pair_path, "an allowed pair names exactly 2 links, got " + std::to_string(pair.size()));
+          std::string links[2];
+          for (std::size_t s = 0; s < 2; ++s) {
+            if (pair[s].kind != Node::Kind::String) fail(pair_path.index(s), "expected a link name (a string)");
+            links[s] = std::string(text(pair[s]));
+            if (model->link_index(links[s]) < 0)
+              fail(pair_path.index(s), "unknown link " + quote_text(links[s]) + " (not in " + model->source + ")");
+          }
+          placed.allowed.emplace_back(links[0], links[1]);
+        }
+      }
+      out.push_back(std::move(placed));
+    }
+    return out;
+  }
+
+  // The default checks with robots: the general rule among the bodies
+  // that are not links, then each robot's rule (every link against every
+  // body not of that robot; self-collision pairs), each pair once.
+  static std::vector<std::pair<int, int>> default_checks_with_robots(const Scene& scene, std::size_t plain_bodies,
+                                                                     const std::vector<RobotInScene>& robots) {
+    Scene plain;
+    plain.bodies.assign(scene.bodies.begin(), scene.bodies.begin() + static_cast<std::ptrdiff_t>(plain_bodies));
+    std::vector<std::pair<int, int>> out = default_checks(plain);
+    if (robots.empty()) return out;
+    std::set<std::pair<int, int>> seen;
+    for (const auto& [a, b] : out) seen.insert(std::minmax(a, b));
+    for (const RobotInScene& r : robots) {
+      std::set<int> own;
+      for (int b : r.bodies.body)
+        if (b >= 0) own.insert(b);
+      std::vector<int> environment;
+      for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
+        if (!own.count(b)) environment.push_back(b);
+      for (const auto& [a, b] : robot_default_checks(*r.robot, r.bodies, environment, r.self_collision, r.allowed))
+        if (seen.insert(std::minmax(a, b)).second) out.emplace_back(a, b);
+    }
+    return out;
+  }
+
   // Every pair with at least one moving body, once, in body order.
   static std::vector<std::pair<int, int>> default_checks(const Scene& scene) {
     std::vector<std::pair<int, int>> out;
@@ -1393,6 +1539,11 @@ Scene parse_with_base(const std::string& text, const std::string& source, const 
 }
 
 }  // namespace
+
+std::pair<std::vector<Vec3E>, std::vector<ConvexPiece>> split_scene_polygon(const std::vector<Vec3E>& vertices,
+                                                                            int index) {
+  return split_polygon(vertices, index);
+}
 
 // A user string made safe for a one-line message: quoted, control
 // characters escaped, long strings shortened.

@@ -13,6 +13,7 @@
 
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
+#include "src/verify/prepared_pair.h"
 #include "src/verify/search.h"
 
 #include <chrono>
@@ -131,12 +132,16 @@ void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const 
 }  // namespace
 
 CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const {
+  return detail::check_prepared_pair(prepared(a), prepared(b), {a, b}, clearance, options_);
+}
+
+CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
+                                        const Exact& clearance, const VerifyOptions& options,
+                                        bool start_proven_free) {
   const auto started = std::chrono::steady_clock::now();
   CheckResult result;
-  result.bodies = {a, b};
+  result.bodies = ids;
   result.clearance = clearance;
-  const PreparedBody& pa = prepared(a);
-  const PreparedBody& pb = prepared(b);
   const bool swapped = !pa.moving && pb.moving;
   const PreparedBody& m = swapped ? pb : pa;
   const PreparedBody& o = swapped ? pa : pb;
@@ -194,7 +199,10 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
   // Tubes: each body's tolerance; the clearance as a tolerance of the
   // searched body: a translation by v has norm |v| sqrt(sum w) in its
   // metric, and displaces every point by |v| (proofs/enclosures.md section 6).
-  const Exact wm = mass_sum(mb), wo = mass_sum(ob);
+  // The mass sums only where a tolerance or clearance needs them (a sum
+  // over every mass point: noticeable per check for a large fixed body).
+  const Exact wm = mb.tolerance > 0 || clearance > 0 ? mass_sum(mb) : Exact(1);
+  const Exact wo = ob.tolerance > 0 ? mass_sum(ob) : Exact(1);
   std::array<double, 2> tube = {add_up(to_interval(mb.tolerance).sup(), clearance > 0 ? sqrt_up(clearance * clearance * wm) : 0.0),
                                 o.moving ? to_interval(ob.tolerance).sup() : 0.0};
   const bool two = o.moving;
@@ -202,15 +210,17 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
   CheckExtras<2> e2;
   e1.clearance2 = e2.clearance2 = clearance * clearance;
   e1.reach2 = e2.reach2 = {mb.tolerance * mb.tolerance / wm, ob.tolerance * ob.tolerance / wo};
+  // The first part's start: proven free by the caller, or tested by the search.
+  e1.start_proven_free = e2.start_proven_free = start_proven_free;
 
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const Exact &t0 = cuts[k], &t1 = cuts[k + 1];
     const PartMotion pm = part_motion(mb, t0, t1);
     const PartMotion po = two ? part_motion(ob, t0, t1) : PartMotion{};
     CheckResult part;
-    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options_, tube, e2, part);
-    else run_part<1>(m, o, swapped, pm, po, t0, t1, options_, tube, e1, part);
-    if (options_.record_cover)  // the part's pieces as scene intervals, for certificates
+    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options, tube, e2, part);
+    else run_part<1>(m, o, swapped, pm, po, t0, t1, options, tube, e1, part);
+    if (options.record_cover)  // the part's pieces as scene intervals, for certificates
       for (CoverPiece& c : part.cleared)
         if (!c.timed) {
           CGAL::Gmpz pieces;  // 2^depth

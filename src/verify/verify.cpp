@@ -3,6 +3,7 @@
 #include "kernels/containment.h"
 #include "src/scene/parse.h"
 
+#include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/search.h"
@@ -81,7 +82,17 @@ Exact default_epsilon(const Scene& scene) {
           continue;
         }
         // The keyframe poses (a tolerance, not a bound: the approximate
-        // rotation of an rpy pose will do).
+        // rotation of an rpy pose will do); a link's poses at its waypoints.
+        if (seg.link) {
+          const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
+          for (const Exact s : {Exact(0), Exact(1)}) {
+            const PoseInterval m = enclose_pose(*model, s);
+            Mat34E approx;
+            for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
+            maps.push_back(approx);
+          }
+          continue;
+        }
         for (const Pose* pose : {&seg.from, &seg.to}) {
           if (const auto m = exact_pose(*pose)) {
             maps.push_back(*m);
@@ -222,6 +233,7 @@ std::optional<Mat34E> start_pose(const Body& b) {
   if (b.trajectory) {
     const MotionSegment& first = b.trajectory->segments.front();
     if (first.rational) return first.rational->control_points[0];
+    if (first.link) return make_segment_model(first)->exact_pose(Exact(0));
     return exact_pose(first.from);
   }
   return Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
@@ -235,6 +247,7 @@ PoseInterval start_pose_enclosed(const Body& b) {
     return out;
   }
   const MotionSegment& first = b.trajectory->segments.front();
+  if (first.link) return enclose_pose(*make_segment_model(first), Exact(0));
   RoundingGuard guard;
   return interval_pose(first.from);
 }

@@ -6,7 +6,7 @@
 # 1. Every malformed scene in DATA/bad/EXPECTED ("<file><TAB><substring>")
 #    must give exit code 3, nothing on stdout and the substring on stderr;
 #    so must a file that does not exist.
-# 2. Every scene in DATA/scenes/EXPECTED, EXAMPLES/EXPECTED and EXAMPLES/gripper/EXPECTED
+# 2. Every scene in DATA/scenes/EXPECTED, EXAMPLES/EXPECTED, EXAMPLES/gripper/EXPECTED and EXAMPLES/robot/EXPECTED
 #    ("<file><TAB>safe|collision|undecided"), if those lists exist, must give
 #    the exit code of its verdict (0, 1, 2) and that top-level "verdict" in
 #    the --json output.
@@ -146,7 +146,7 @@ if command -v mkfifo >/dev/null 2>&1 && mkfifo "$work/pipe.json" "$work/pipe.off
   expect_refusal "pipe.off: not a regular file (it is a FIFO)" verify "$work/fifo-mesh.json"
 fi
 
-for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED"; do
+for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED" "$examples/robot/EXPECTED"; do
   if [ -f "$list" ]; then
     for_each_line "$list" expect_verdict
   fi
@@ -230,7 +230,7 @@ expect_round_trip() {
     pass
   fi
 }
-for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED"; do
+for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPECTED" "$examples/robot/EXPECTED"; do
   if [ -f "$list" ]; then
     for_each_line "$list" expect_round_trip
   fi

@@ -1,0 +1,82 @@
+// Link motions of a kinematic chain under linear joint interpolation (URDF
+// arms moving in joint space, SCENE_FORMAT.md "Robots from URDF"): the pose
+// of a link frame is the product
+//     C_0 J_1(q_1) C_1 J_2(q_2) ... J_n(q_n) C_n
+// of constant poses C_k (base pose, joint origins, fixed joints, the
+// collision origin; each a product of Poses with exact translations and
+// exact or rpy rotations) and joint motions J_j: a rotation by q about a
+// unit axis (revolute, continuous) or a translation by q along it
+// (prismatic).  On a motion segment every q_j is linear in the segment
+// parameter s between two waypoint values.  The pose is enclosed as jets
+// (kernels/jet.h) in one pass from the base: every link's frame is its
+// parent's times one joint, so the parent's enclosure is reused for the
+// child within the pass.  proofs/robot-links.md section 4.
+#pragma once
+
+#include "src/motion/segment.h"
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace tmcert {
+
+struct ChainJoint {
+  enum class Kind { Revolute, Prismatic };
+  Kind kind = Kind::Revolute;
+  Vec3E axis;  // as written, nonzero; normalized (exactly or enclosed)
+};
+
+// An immutable chain description, shared by every segment of a link's
+// trajectory.  Build with make_link_chain.
+class LinkChain {
+ public:
+  // constants.size() == joints.size() + 1.  Throws std::invalid_argument
+  // on a zero axis or mismatched counts (callers validate first).
+  LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints);
+
+  std::size_t joint_count() const { return joints_.size(); }
+  const ChainJoint& joint(std::size_t j) const { return joints_[j].joint; }
+
+  // The exact pose at joint values q (one per joint), when it is exact:
+  // every constant exact, every revolute joint at q = 0, every prismatic
+  // axis of rational length.  nullopt otherwise.
+  std::optional<Mat34E> exact_pose(const std::vector<Exact>& q) const;
+
+  // Jets of the pose for joint values q_j = from_j + (to_j - from_j) s,
+  // given as intervals (from, delta).  Call under RoundingGuard.
+  PoseJet pose(const std::vector<Interval>& from, const std::vector<Interval>& delta, const Jet& s) const;
+
+  // True when the pose is affine in the joint values of a segment from
+  // `from` to `to` and exact at both ends (every revolute joint stays at 0):
+  // the segment is then the rational degree-1 motion between its end poses.
+  bool rational_between(const std::vector<Exact>& from, const std::vector<Exact>& to) const;
+
+ private:
+  struct Constant {
+    std::optional<Mat34E> exact;
+    PoseInterval enclosed;
+    bool identity = false;
+  };
+  struct Prepared {
+    ChainJoint joint;
+    std::optional<Vec3E> unit_exact;      // axis / |axis| when |axis| is rational
+    std::array<Interval, 3> unit;         // axis / |axis|, enclosed
+    std::array<Interval, 9> cross;        // [u]x, rows
+    std::array<Interval, 9> cross2;       // [u]x^2 = u u^T - I, from exact axis data
+  };
+  std::vector<Constant> constants_;
+  std::vector<Prepared> joints_;
+};
+
+// One segment of a link's motion: the chain, and the joint values (one per
+// chain joint, in chain order) at s = 0 and s = 1.
+struct LinkMotion {
+  std::shared_ptr<const LinkChain> chain;
+  std::vector<Exact> from, to;
+};
+
+// The model of a link segment.
+std::unique_ptr<SegmentModel> make_link_model(const LinkMotion& motion);
+
+}  // namespace tmcert

@@ -1,0 +1,198 @@
+#include "src/robot/robot.h"
+
+#include "src/scene/parse.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+namespace tmcert {
+
+int RobotModel::link_index(const std::string& link) const {
+  for (std::size_t i = 0; i < links.size(); ++i)
+    if (links[i].name == link) return static_cast<int>(i);
+  return -1;
+}
+
+int RobotModel::joint_index(const std::string& joint) const {
+  for (std::size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].name == joint) return static_cast<int>(i);
+  return -1;
+}
+
+PlacedRobot::PlacedRobot(std::shared_ptr<const RobotModel> model, std::string name, Pose base)
+    : model_(std::move(model)), name_(std::move(name)), base_(std::move(base)) {
+  const RobotModel& m = *model_;
+  chain_joints_.resize(m.links.size());
+  chains_.resize(m.links.size());
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    // The joints from the root to the link (URDF guarantees a tree).
+    std::vector<int> path;
+    for (int j = m.links[l].parent_joint; j >= 0; j = m.links[m.joints[j].parent].parent_joint) {
+      path.push_back(j);
+      if (path.size() > m.joints.size()) throw InputError(m.source + ": the joints form a cycle");
+    }
+    std::reverse(path.begin(), path.end());
+    std::vector<std::vector<Pose>> constants(1, std::vector<Pose>{base_});
+    std::vector<ChainJoint> joints;
+    for (int j : path) {
+      const RobotJoint& joint = m.joints[j];
+      constants.back().push_back(joint.origin);
+      if (!joint.moves()) continue;
+      chain_joints_[l].push_back(j);
+      ChainJoint cj;
+      cj.kind = joint.type == RobotJoint::Type::Prismatic ? ChainJoint::Kind::Prismatic : ChainJoint::Kind::Revolute;
+      cj.axis = joint.axis;
+      joints.push_back(cj);
+      constants.emplace_back();
+    }
+    const RobotLink& link = m.links[l];
+    if (!link.geometry) continue;
+    for (const Pose& p : link.body_frame) constants.back().push_back(p);
+    chains_[l] = std::make_shared<const LinkChain>(std::move(constants), std::move(joints));
+  }
+}
+
+namespace {
+
+std::string quoted(const std::string& s) { return quote_text(s); }
+
+}  // namespace
+
+void validate_joint_path(const RobotModel& model, const JointPath& path) {
+  std::map<std::string, std::size_t> columns;
+  for (std::size_t c = 0; c < path.joints.size(); ++c) {
+    const std::string& name = path.joints[c];
+    const int j = model.joint_index(name);
+    if (j < 0) throw JointPathError("joints", {c}, "unknown joint " + quoted(name) + " (not in " + model.source + ")");
+    if (!model.joints[j].moves()) throw JointPathError("joints", {c}, "joint " + quoted(name) + " is fixed (name only moving joints)");
+    if (auto [it, fresh] = columns.emplace(name, c); !fresh)
+      throw JointPathError("joints", {c}, "joint " + quoted(name) + " named twice (also joints[" + std::to_string(it->second) + "])");
+  }
+  for (const RobotJoint& joint : model.joints)
+    if (joint.moves() && !columns.count(joint.name))
+      throw JointPathError("joints", {}, "the moving joint " + quoted(joint.name) + " is missing (every moving joint must be named)");
+  if (path.times.size() < 2)
+    throw JointPathError("times", {}, "at least 2 times are required, got " + std::to_string(path.times.size()));
+  for (std::size_t k = 1; k < path.times.size(); ++k)
+    if (!(path.times[k - 1] < path.times[k])) throw JointPathError("times", {k}, "times must be strictly increasing");
+  if (path.positions.size() != path.times.size())
+    throw JointPathError("positions", {}, "expected " + std::to_string(path.times.size()) + " waypoints (one per time), got " +
+                                              std::to_string(path.positions.size()));
+  for (std::size_t k = 0; k < path.positions.size(); ++k) {
+    const std::vector<Exact>& row = path.positions[k];
+    if (row.size() != path.joints.size())
+      throw JointPathError("positions", {k}, "waypoint " + std::to_string(k) + ": expected " + std::to_string(path.joints.size()) +
+                                                 " values (one per joint), got " + std::to_string(row.size()));
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const RobotJoint& joint = model.joints[model.joint_index(path.joints[c])];
+      if (joint.type != RobotJoint::Type::Revolute && joint.type != RobotJoint::Type::Prismatic) continue;
+      if (row[c] < *joint.lower || row[c] > *joint.upper)
+        throw JointPathError("positions", {k, c}, "waypoint " + std::to_string(k) + ": joint " + quoted(joint.name) + " at " +
+                                                      to_string(row[c]) + " is outside its limits [" + to_string(*joint.lower) +
+                                                      ", " + to_string(*joint.upper) + "]");
+    }
+  }
+}
+
+RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& path) {
+  const RobotModel& model = robot.model();
+  validate_joint_path(model, path);
+  std::unordered_map<int, std::size_t> column;  // joint index -> column
+  for (std::size_t c = 0; c < path.joints.size(); ++c) column[model.joint_index(path.joints[c])] = c;
+  const Exact t_first = path.times.front(), t_last = path.times.back();
+  RobotBodies out;
+  out.body.assign(model.links.size(), -1);
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const RobotLink& link = model.links[l];
+    if (!link.geometry) continue;
+    const std::shared_ptr<const LinkChain>& chain = robot.chain(static_cast<int>(l));
+    const std::vector<int>& js = robot.chain_joints(static_cast<int>(l));
+    auto values = [&](std::size_t k) {
+      std::vector<Exact> q;
+      q.reserve(js.size());
+      for (int j : js) q.push_back(path.positions[k][column.at(j)]);
+      return q;
+    };
+    Body b = *link.geometry;
+    b.name = robot.name() + "/" + link.name;
+    bool still = true;
+    const std::vector<Exact> first = values(0);
+    for (std::size_t k = 1; k < path.times.size() && still; ++k) still = values(k) == first;
+    if (still) {
+      if (const std::optional<Mat34E> pose = chain->exact_pose(first)) {
+        Motion m;  // one pose: motionless
+        m.t0 = t_first;
+        m.t1 = t_last;
+        m.control_points = {*pose};
+        m.weights = {1};
+        b.motion = std::move(m);
+      } else {
+        MotionSegment seg;
+        seg.t0 = t_first;
+        seg.t1 = t_last;
+        seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, first, first});
+        b.trajectory = Trajectory{{std::move(seg)}};
+      }
+    } else {
+      Trajectory traj;
+      for (std::size_t k = 0; k + 1 < path.times.size(); ++k) {
+        MotionSegment seg;
+        seg.t0 = path.times[k];
+        seg.t1 = path.times[k + 1];
+        std::vector<Exact> from = values(k), to = values(k + 1);
+        if (chain->rational_between(from, to)) {
+          Motion m;
+          m.t0 = seg.t0;
+          m.t1 = seg.t1;
+          m.control_points = {*chain->exact_pose(from), *chain->exact_pose(to)};
+          m.weights = {1, 1};
+          seg.rational = std::move(m);
+        }
+        // Also beside a rational curve: the segment is known as a link's.
+        seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
+        traj.segments.push_back(std::move(seg));
+      }
+      if (traj.segments.size() == 1 && traj.segments[0].rational) b.motion = traj.segments[0].rational;
+      else b.trajectory = std::move(traj);
+    }
+    out.body[l] = static_cast<int>(scene.bodies.size());
+    scene.bodies.push_back(std::move(b));
+  }
+  return out;
+}
+
+std::vector<std::pair<int, int>> robot_default_checks(const PlacedRobot& robot, const RobotBodies& bodies,
+                                                      const std::vector<int>& environment, bool self_collision,
+                                                      const std::vector<std::pair<std::string, std::string>>& allowed_pairs) {
+  const RobotModel& model = robot.model();
+  std::set<std::pair<int, int>> allowed;  // link indices, ordered
+  for (const auto& [a, b] : allowed_pairs) {
+    const int la = model.link_index(a), lb = model.link_index(b);
+    if (la < 0) throw InputError("allowed pair: unknown link " + quote_text(a));
+    if (lb < 0) throw InputError("allowed pair: unknown link " + quote_text(b));
+    allowed.insert(std::minmax(la, lb));
+  }
+  std::vector<std::pair<int, int>> out;
+  const int n = static_cast<int>(model.links.size());
+  for (int l = 0; l < n; ++l) {
+    if (bodies.body[l] < 0) continue;
+    for (int e : environment) out.emplace_back(bodies.body[l], e);
+  }
+  if (self_collision) {
+    auto adjacent = [&](int a, int b) {
+      const int pa = model.links[a].parent_joint, pb = model.links[b].parent_joint;
+      return (pa >= 0 && model.joints[pa].parent == b) || (pb >= 0 && model.joints[pb].parent == a);
+    };
+    for (int a = 0; a < n; ++a)
+      for (int b = a + 1; b < n; ++b) {
+        if (bodies.body[a] < 0 || bodies.body[b] < 0) continue;
+        if (adjacent(a, b) || allowed.count({a, b})) continue;
+        out.emplace_back(bodies.body[a], bodies.body[b]);
+      }
+  }
+  return out;
+}
+
+}  // namespace tmcert

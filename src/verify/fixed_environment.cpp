@@ -1,0 +1,573 @@
+#include "src/verify/fixed_environment.h"
+
+#include "kernels/robust_crossing.h"
+#include "src/motion/segment.h"
+#include "src/verify/prepared.h"
+#include "src/verify/prepared_pair.h"
+#include "src/verify/search.h"
+#include "src/verify/solid_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <tuple>
+
+namespace tmcert {
+
+// ---------------------------------------------------------------- the index
+
+// The environment's simplices (world coordinates), each with its interval
+// enclosure and a box holding it, in a tree of boxes (median splits along
+// the longest side; every node's box holds its simplices' boxes).
+struct EnvironmentIndex {
+  struct Item {
+    int part, index;
+    SimplexI s;
+    std::array<double, 3> lo, hi;
+  };
+  struct Node {
+    std::array<double, 3> lo, hi;
+    std::uint32_t first, count;  // a leaf: items order_[first, first + count)
+    std::int32_t left = -1, right = -1;
+  };
+  std::vector<Item> items;
+  std::vector<std::uint32_t> order;
+  std::vector<Node> nodes;
+
+  static constexpr std::uint32_t kLeaf = 8;
+
+  std::int32_t build(std::uint32_t first, std::uint32_t count) {
+    Node n;
+    n.first = first;
+    n.count = count;
+    n.lo.fill(std::numeric_limits<double>::infinity());
+    n.hi.fill(-std::numeric_limits<double>::infinity());
+    for (std::uint32_t k = first; k < first + count; ++k)
+      for (int c = 0; c < 3; ++c) {
+        n.lo[c] = std::min(n.lo[c], items[order[k]].lo[c]);
+        n.hi[c] = std::max(n.hi[c], items[order[k]].hi[c]);
+      }
+    const auto id = static_cast<std::int32_t>(nodes.size());
+    nodes.push_back(n);
+    if (count <= kLeaf) return id;
+    int axis = 0;
+    double best = -1;
+    for (int c = 0; c < 3; ++c) {
+      const double w = n.hi[c] - n.lo[c];  // infinite boxes: any axis
+      if (w > best) best = w, axis = c;
+    }
+    const std::uint32_t half = count / 2;
+    std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
+                     [&](std::uint32_t x, std::uint32_t y) {
+                       return items[x].lo[axis] + items[x].hi[axis] < items[y].lo[axis] + items[y].hi[axis];
+                     });
+    const std::int32_t l = build(first, half);
+    const std::int32_t r = build(first + half, count - half);
+    nodes[id].left = l;
+    nodes[id].right = r;
+    return id;
+  }
+
+  explicit EnvironmentIndex(const std::vector<StaticPart>& parts) {
+    RoundingGuard guard;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      for (std::size_t k = 0; k < parts[i].simplices.size(); ++k) {
+        const Simplex& x = parts[i].simplices[k];
+        Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
+        it.s.count = x.count;
+        for (int v = 0; v < x.count; ++v)
+          for (int c = 0; c < 3; ++c) it.s.p[v][c] = to_interval(x.p[v][c]);
+        box(it);
+        items.push_back(it);
+      }
+    order.resize(items.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    if (!items.empty()) build(0, static_cast<std::uint32_t>(items.size()));
+  }
+
+  // The box of an enclosure; NaN: unbounded (never separates).
+  static void box(Item& it) {
+    for (int c = 0; c < 3; ++c) {
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int v = 0; v < it.s.count; ++v) {
+        const Interval& x = it.s.p[v][c];
+        if (std::isnan(x.inf()) || std::isnan(x.sup())) {
+          lo = -std::numeric_limits<double>::infinity();
+          hi = -lo;
+          break;
+        }
+        lo = std::min(lo, x.inf());
+        hi = std::max(hi, x.sup());
+      }
+      it.lo[c] = lo;
+      it.hi[c] = hi;
+    }
+  }
+
+  static bool overlap(const std::array<double, 3>& alo, const std::array<double, 3>& ahi,
+                      const std::array<double, 3>& blo, const std::array<double, 3>& bhi) {
+    for (int c = 0; c < 3; ++c)
+      if (ahi[c] < blo[c] || bhi[c] < alo[c]) return false;
+    return true;
+  }
+
+  // Some item's box overlaps [lo, hi].
+  bool any(const std::array<double, 3>& lo, const std::array<double, 3>& hi) const {
+    if (nodes.empty()) return false;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (!overlap(lo, hi, n.lo, n.hi)) continue;
+      if (n.left < 0) {
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k)
+          if (overlap(lo, hi, items[order[k]].lo, items[order[k]].hi)) return true;
+        continue;
+      }
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+    return false;
+  }
+
+  // Items whose boxes overlap [lo, hi] (a strict gap between boxes that
+  // hold the simplices proves them disjoint).
+  template <class F>
+  void query(const std::array<double, 3>& lo, const std::array<double, 3>& hi, F&& f) const {
+    if (nodes.empty()) return;
+    std::int32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (!overlap(lo, hi, n.lo, n.hi)) continue;
+      if (n.left < 0) {
+        for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+          const Item& it = items[order[k]];
+          if (overlap(lo, hi, it.lo, it.hi)) f(it);
+        }
+        continue;
+      }
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+  }
+};
+
+namespace {
+
+// The outcome of the static test of one mover's configuration against the
+// environment.
+struct StaticOutcome {
+  enum class Kind { Free, Hit, Unknown } kind = Kind::Free;
+  int part_mover = 0, part_environment = 0;
+  Vec3E point;  // a Hit at an exact configuration
+};
+
+// The mover's parts placed by the interval map `map` (enclosing the pose),
+// against the index: candidates from the box tree, the separating-axis
+// filter, then the exact test on simplices placed by `exact` (the exact
+// pose) in the order of parts and simplices, as filtered_first_hit does
+// (src/verify/search.h; proofs/static-test.md).  Without an exact pose a
+// hit must be a certain transversal crossing; a pair neither separated nor
+// crossing leaves the outcome Unknown.
+StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array<Interval, 12>& map,
+                          const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
+                          const std::vector<StaticPart>& environment) {
+  struct Candidate {
+    int pi, pj, si, sj;
+    SimplexI x, y;
+  };
+  std::vector<Candidate> candidates;
+  {
+    RoundingGuard guard;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+      for (std::size_t k = 0; k < parts[i].simplices.size(); ++k) {
+        const Simplex& x = parts[i].simplices[k];
+        EnvironmentIndex::Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
+        it.s.count = x.count;
+        for (int v = 0; v < x.count; ++v) {
+          const std::array<Interval, 3> p = {to_interval(x.p[v][0]), to_interval(x.p[v][1]), to_interval(x.p[v][2])};
+          for (int c = 0; c < 3; ++c)
+            it.s.p[v][c] = map[4 * c] * p[0] + map[4 * c + 1] * p[1] + map[4 * c + 2] * p[2] + map[4 * c + 3];
+        }
+        EnvironmentIndex::box(it);
+        index.query(it.lo, it.hi, [&](const EnvironmentIndex::Item& e) {
+          if (!certainly_disjoint(it.s, e.s)) candidates.push_back({it.part, e.part, it.index, e.index, it.s, e.s});
+        });
+      }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(x.pi, x.pj, x.si, x.sj) < std::tie(y.pi, y.pj, y.si, y.sj);
+  });
+  StaticOutcome out;
+  if (candidates.empty()) return out;
+  if (!exact) {
+    RoundingGuard guard;
+    for (const Candidate& c : candidates)
+      if (certain_crossing(c.x, c.y)) {
+        out.kind = StaticOutcome::Kind::Hit;
+        out.part_mover = c.pi;
+        out.part_environment = c.pj;
+        return out;  // no exact point: callers only use the kind
+      }
+    out.kind = StaticOutcome::Kind::Unknown;
+    return out;
+  }
+  for (const Candidate& c : candidates) {
+    Simplex x = parts[c.pi].simplices[c.si];
+    for (int k = 0; k < x.count; ++k) {
+      Vec3E r;
+      for (int i = 0; i < 3; ++i)
+        r[i] = (*exact)[4 * i] * x.p[k][0] + (*exact)[4 * i + 1] * x.p[k][1] + (*exact)[4 * i + 2] * x.p[k][2] +
+               (*exact)[4 * i + 3];
+      x.p[k] = r;
+    }
+    if (auto p = common_point(x, environment[c.pj].simplices[c.sj])) {
+      out.kind = StaticOutcome::Kind::Hit;
+      out.part_mover = c.pi;
+      out.part_environment = c.pj;
+      out.point = *p;
+      return out;
+    }
+  }
+  return out;
+}
+
+std::array<Interval, 12> enclose_map(const Mat34E& m) {
+  std::array<Interval, 12> out;
+  for (int e = 0; e < 12; ++e) out[e] = to_interval(m[e]);
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+// A mover is prepared as a moving body (body frame, metric), which needs a
+// motion at construction: the identity held over [0, 1].  Nothing
+// prepared depends on which motion it is; check() replaces it.
+Trajectory standing_still() {
+  MotionSegment seg;
+  seg.t0 = 0;
+  seg.t1 = 1;
+  Motion still;
+  still.t0 = 0;
+  still.t1 = 1;
+  still.control_points = {kIdentity, kIdentity};
+  still.weights = {Exact(1), Exact(1)};
+  seg.rational = still;
+  return Trajectory{{seg}};
+}
+
+void require_usable(const Body& b, const char* role) {
+  const std::string name = std::string(role) + " \"" + b.name + "\"";
+  if (b.tolerance != 0) throw InputError(name + ": tolerances are not supported here");
+}
+
+}  // namespace
+
+namespace {
+
+// A body's pose at the start of a motion: exact when known, always enclosed.
+struct StartPose {
+  std::optional<Mat34E> exact;
+  std::array<Interval, 12> map;
+};
+
+StartPose start_pose_of(const Trajectory& t) {
+  const std::unique_ptr<SegmentModel> model = make_segment_model(t.segments.front());
+  StartPose out;
+  out.exact = model->exact_pose(Exact(0));
+  if (out.exact) {
+    out.map = enclose_map(*out.exact);
+  } else {
+    RoundingGuard guard;
+    const PoseJet j = model->pose(Jet(Interval(0)));
+    for (int e = 0; e < 12; ++e) out.map[e] = j[e].v;
+  }
+  return out;
+}
+
+StartPose fixed_start(const Body& b) {
+  StartPose out;
+  out.exact = fixed_pose(b);
+  out.map = enclose_map(*out.exact);
+  return out;
+}
+
+// The box of points placed by an interval map (NaN: false).
+bool placed_box(const std::vector<Vec3E>& points, const std::array<Interval, 12>& m, std::array<double, 3>& lo,
+                std::array<double, 3>& hi) {
+  RoundingGuard guard;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (const Vec3E& v : points) {
+    const Interval x[3] = {to_interval(v[0]), to_interval(v[1]), to_interval(v[2])};
+    for (int i = 0; i < 3; ++i) {
+      const Interval y = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+      if (std::isnan(y.inf()) || std::isnan(y.sup())) return false;
+      lo[i] = std::min(lo[i], y.inf());
+      hi[i] = std::max(hi[i], y.sup());
+    }
+  }
+  return true;
+}
+
+std::vector<Vec3E> all_vertices(const Body& b) {
+  std::vector<Vec3E> v;
+  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
+  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
+  v.insert(v.end(), b.points.begin(), b.points.end());
+  return v;
+}
+
+// Whether some connected component of `other` lies inside the solid `solid`
+// at the start (proofs/containment.md: with no such component and no
+// surface contact later, no point of one is ever inside the other).  With
+// both poses exact: exact ray parity of one vertex per component.  Else
+// only the boxes decide: every component vertex's enclosure outside the
+// solid's box means free; anything else is Unknown (never "free").
+struct Containment {
+  enum class Kind { Free, Hit, Unknown } kind = Kind::Free;
+  std::optional<Witness> witness;
+};
+
+Vec3E apply(const Mat34E& m, const Vec3E& x) {
+  Vec3E r;
+  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+  return r;
+}
+
+// `solid_vertices`: every vertex of the solid, `other_reps`: one vertex per
+// connected component of the other body, both in their bodies' own frames
+// (computed once per body).
+Containment start_containment(const Body& solid, const std::vector<Vec3E>& solid_vertices, const StartPose& ps,
+                              const Body& other, const std::vector<std::pair<std::string, Vec3E>>& other_reps,
+                              const StartPose& po, bool solid_first) {
+  Containment out;
+  if (ps.exact && po.exact) {
+    const std::unique_ptr<ClosedSurface> surface = placed_surface(solid, *ps.exact);
+    if (!surface) return out;  // a singular pose: the solid is its surface there
+    for (const auto& [part, rep] : other_reps) {
+      const Vec3E point = apply(*po.exact, rep);
+      if (surface->contains(point)) {
+        const std::string inside = solid.name + " interior", at = other.name + " " + part;
+        out.kind = Containment::Kind::Hit;
+        out.witness = Witness{Exact(0), solid_first ? std::array{inside, at} : std::array{at, inside}, point,
+                              std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+        return out;
+      }
+    }
+    return out;
+  }
+  std::array<double, 3> lo, hi;
+  if (!placed_box(solid_vertices, ps.map, lo, hi)) {
+    out.kind = Containment::Kind::Unknown;
+    return out;
+  }
+  for (const auto& rep : other_reps) {
+    std::array<double, 3> rlo, rhi;
+    if (!placed_box({rep.second}, po.map, rlo, rhi) || EnvironmentIndex::overlap(lo, hi, rlo, rhi)) {
+      out.kind = Containment::Kind::Unknown;
+      return out;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
+                                   std::vector<std::pair<int, int>> mover_pairs, const VerifyOptions& options)
+    : options_(options) {
+  if (!(options.epsilon > 0)) throw InputError("epsilon: must be > 0");
+  require_usable(environment, "environment");
+  if (environment.moves()) throw InputError("environment \"" + environment.name + "\": must not move");
+  if (movers.empty()) throw InputError("movers: at least one body must move");
+  bodies_.reserve(movers.size() + 1);
+  bodies_.push_back(std::move(environment));
+  for (Body& m : movers) {
+    require_usable(m, "mover");
+    m.motion.reset();
+    m.trajectory = standing_still();
+    bodies_.push_back(std::move(m));
+  }
+  const int n = static_cast<int>(bodies_.size()) - 1;
+  for (const auto& [i, j] : mover_pairs) {
+    if (i < 0 || j < 0 || i >= n || j >= n || i == j)
+      throw InputError("mover_pairs: [" + std::to_string(i) + ", " + std::to_string(j) + "]: not two movers");
+    pairs_.push_back({1 + i, 1 + j});
+  }
+  // bodies_ is not resized from here on: PreparedBody keeps a pointer to
+  // its Body.
+  for (const Body& b : bodies_) prepared_.push_back(std::make_unique<PreparedBody>(b));
+  index_ = std::make_unique<EnvironmentIndex>(prepared_[0]->parts);
+  // For the containment of solids: every body's vertices and one vertex per
+  // connected component, in its own frame (the environment's: the frame
+  // its fixed pose applies to).
+  const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  for (const Body& b : bodies_) {
+    vertices_.push_back(all_vertices(b));
+    representatives_.push_back(component_representatives(b, identity));
+  }
+}
+
+FixedEnvironment::~FixedEnvironment() = default;
+
+MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) const {
+  if (motions.size() + 1 != bodies_.size())
+    throw InputError("motions: " + std::to_string(motions.size()) + " given for " + std::to_string(bodies_.size() - 1) +
+                     " movers");
+  for (const Trajectory& t : motions) {
+    if (t.segments.empty()) throw InputError("motions: a motion has no segment");
+    if (t.t0() != motions.front().t0() || t.t1() != motions.front().t1())
+      throw InputError("motions: the movers' motions must share their parameter interval");
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  // The movers' Body objects are ours; only their motion changes.
+  for (std::size_t k = 0; k < motions.size(); ++k) bodies_[k + 1].trajectory = motions[k];
+
+  MotionCheck out;
+  std::vector<std::array<int, 2>> pairs;
+  for (std::size_t k = 1; k < bodies_.size(); ++k) pairs.push_back({static_cast<int>(k), 0});
+  for (const auto& [i, j] : pairs_) pairs.push_back({i, j});
+  const Exact t0 = motions.front().t0();
+  std::size_t decided = pairs.size();
+  // Adds check k's verdict to the motion's.
+  auto record = [&](std::size_t k) {
+    const CheckResult& r = out.checks[k];
+    if (r.verdict == Verdict::Safe) return;
+    // A check that is not safe always has its bracket; without one nothing
+    // after the start would count as certified.
+    const Exact lo = r.first_contact ? r.first_contact->first : t0;
+    if (!out.safe_until || lo < *out.safe_until) out.safe_until = lo;
+    if (r.verdict == Verdict::Collision && out.verdict != Verdict::Collision) {
+      out.verdict = Verdict::Collision;
+      decided = k;
+    } else if (out.verdict == Verdict::Safe) {
+      out.verdict = Verdict::Undecided;
+      decided = k;
+    }
+  };
+  // Certified prefilter (proofs/prefilter.md): a box holding everything a
+  // mover sweeps (swept_box: the hull property for rational pieces, interval
+  // poses over eighths of an enclosed segment) that overlaps no
+  // environment simplex's box, or two movers' disjoint swept boxes, clear
+  // the check without a search.
+  std::vector<SweptBox> swept(bodies_.size());
+  std::vector<StartPose> start(bodies_.size());
+  start[0] = fixed_start(bodies_[0]);
+  for (std::size_t k = 1; k < bodies_.size(); ++k) {
+    swept[k] = swept_box(bodies_[k]);
+    start[k] = start_pose_of(motions[k - 1]);
+  }
+  const Exact t1 = motions.front().t1();
+  for (const auto& [a, b] : pairs) {
+    // A solid's inside counts as contact: at the start, a component of one
+    // body inside the other (solid) body is a collision there; later
+    // contacts go through the surfaces (as Verifier::check does).
+    if (bodies_[a].solid || bodies_[b].solid) {
+      Containment c;
+      for (int side = 0; side < 2 && c.kind == Containment::Kind::Free; ++side) {
+        const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
+        if (bodies_[sb].solid)
+          c = start_containment(bodies_[sb], vertices_[sb], start[sb], bodies_[ob], representatives_[ob], start[ob],
+                                side == 0);
+      }
+      if (c.kind != Containment::Kind::Free) {
+        CheckResult r;
+        r.bodies = {a, b};
+        if (c.kind == Containment::Kind::Hit) {
+          r.verdict = Verdict::Collision;
+          r.witness = c.witness;
+          r.witness->t = t0;
+          r.first_contact = std::pair{t0, t0};
+        } else {
+          r.verdict = Verdict::Undecided;
+          r.undecided.push_back({t0, t1, StopReason::Epsilon});
+          r.first_contact = std::pair{t0, t1};
+        }
+        out.checks.push_back(r);
+        record(out.checks.size() - 1);
+        continue;
+      }
+    }
+    // With the start containment settled, a swept box that meets no
+    // environment simplex's box, or two movers' disjoint swept boxes, clear
+    // the check without a search.
+    const bool cleared = b == 0 ? swept[a].valid && !index_->any(swept[a].lo, swept[a].hi)
+                                : disjoint(swept[a], swept[b]);
+    if (cleared) {
+      CheckResult r;
+      r.bodies = {a, b};
+      r.verdict = Verdict::Safe;
+      r.stats.prefiltered = true;
+      out.checks.push_back(r);
+      continue;
+    }
+    // A mover's start against the environment through the index (the
+    // search's own start test would enclose every environment simplex
+    // again); proven free, the search skips its start test.  A hit or an
+    // unknown outcome leaves the start test to the search, which then
+    // reports the collision with its witness, or stops undecided.
+    const bool start_free =
+        b == 0 && static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts).kind ==
+                      StaticOutcome::Kind::Free;
+    out.checks.push_back(
+        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_, start_free));
+    record(out.checks.size() - 1);
+  }
+  if (decided < out.checks.size()) {
+    out.witness = out.checks[decided].witness;
+    out.first_contact = out.checks[decided].first_contact;
+  }
+  return out;
+}
+
+std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E>& poses) const {
+  if (poses.size() + 1 != bodies_.size())
+    throw InputError("poses: " + std::to_string(poses.size()) + " given for " + std::to_string(bodies_.size() - 1) +
+                     " movers");
+  // A solid's inside counts as contact (exact poses: exact ray parity).
+  std::vector<StartPose> at(bodies_.size());
+  at[0] = fixed_start(bodies_[0]);
+  for (std::size_t k = 0; k < poses.size(); ++k) at[k + 1] = StartPose{poses[k], enclose_map(poses[k])};
+  std::vector<std::array<int, 2>> pairs;
+  for (std::size_t k = 1; k < bodies_.size(); ++k) pairs.push_back({static_cast<int>(k), 0});
+  for (const auto& [i, j] : pairs_) pairs.push_back({i, j});
+  for (const auto& [a, b] : pairs)
+    for (int side = 0; side < 2; ++side) {
+      const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
+      if (!bodies_[sb].solid) continue;
+      const Containment c = start_containment(bodies_[sb], vertices_[sb], at[sb], bodies_[ob], representatives_[ob],
+                                              at[ob], side == 0);
+      if (c.kind == Containment::Kind::Hit) return c.witness;
+    }
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const StaticOutcome o =
+        static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts);
+    if (o.kind == StaticOutcome::Kind::Hit)
+      return Witness{Exact(0),
+                     {bodies_[k + 1].name + " " + prepared_[k + 1]->parts[o.part_mover].name,
+                      bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
+                     o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+  }
+  // Mover pairs: both placed exactly, the filtered test of the search.
+  for (const auto& [i, j] : pairs_) {
+    const std::vector<StaticPart> pi = transformed_parts(*prepared_[i], poses[i - 1]);
+    const std::vector<StaticPart> pj = transformed_parts(*prepared_[j], poses[j - 1]);
+    CheckStats stats;
+    if (const auto hit = detail::first_hit(pi, pj, nullptr, stats))
+      return Witness{Exact(0),
+                     {bodies_[i].name + " " + pi[hit->part_moving].name, bodies_[j].name + " " + pj[hit->part_other].name},
+                     hit->point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+  }
+  return std::nullopt;
+}
+
+}  // namespace tmcert
