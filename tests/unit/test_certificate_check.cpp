@@ -448,7 +448,7 @@ BOOST_AUTO_TEST_CASE(malformed_certificates_are_input_errors) {
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = "nan"; }, "not a rational"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = nullptr; }, "expected a rational"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"] = {{"sep", {0, 0, 1}}, {"split", 0}}; },
-       "expected exactly one of \"sep\" and \"split\""},
+       "expected exactly one of \"sep\", \"split\" and \"exact\""},
       {[](json& d) { d["checks"][0]["pieces"][1]["proof"]["split"] = 2; }, "proof.split: 2 is out of range (0 or 1)"},
       {[](json& d) { d["checks"][0]["pieces"][1]["proof"]["split"] = -1; }, "out of range"},
       {[](json& d) { d["checks"][0]["pieces"][1]["proof"].erase("parts"); }, "proof.parts: missing required field"},
