@@ -9,6 +9,7 @@
 #include "kernels/real_roots.h"
 
 #include <array>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -35,10 +36,21 @@ struct Contact {
 
 // Earliest contacts in the closed interval [u0, u1], or nothing when the
 // features never touch there.  Throws ExactLimit (never a wrong answer)
-// when a loop passes its cap.
+// when a loop passes its cap.  One solver remembers the roots it isolated
+// (and refined) per contact polynomial: features sharing a polynomial
+// (a vertex against coplanar faces) isolate its roots once.  Not for use
+// by several threads at once.
 class ContactSolver {
  public:
   ContactSolver(Exact u0, Exact u1) : u0_(std::move(u0)), u1_(std::move(u1)) {}
+  // `positive`: a polynomial the caller knows to be positive on [u0, u1]
+  // (the points' common weight w(u)).  Contact polynomials are divided by
+  // it as often as it divides them exactly: the same roots and signs on the
+  // piece, and a lower degree (a fixed body's points are w(u) y, so a
+  // moving vertex against a fixed face gives w(u)^2 times the polynomial
+  // that matters).
+  ContactSolver(Exact u0, Exact u1, PolyZ positive)
+      : u0_(std::move(u0)), u1_(std::move(u1)), positive_(std::move(positive)) {}
 
   std::optional<Contact> vertex_vertex(const MovingPoint& a, const MovingPoint& b) const;
   std::optional<Contact> vertex_edge(const MovingPoint& v, const MovingPoint& e0, const MovingPoint& e1) const;
@@ -61,6 +73,8 @@ class ContactSolver {
 
  private:
   Exact u0_, u1_;
+  PolyZ positive_;  // empty: none known
+  mutable std::map<PolyZ, std::vector<RealRoot>> roots_;  // square-free polynomial -> its roots in [u0, u1]
 };
 
 // The earlier of two optional contacts (the first on a tie).

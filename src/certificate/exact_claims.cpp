@@ -153,7 +153,7 @@ std::string no_contact_error(const CheckMotions& motions, const std::vector<Vec3
   }
   // No vertex-element or edge-edge contact in the piece (before the witness
   // time, with `before`).
-  const ContactSolver solver(u0, u1);
+  const ContactSolver solver(u0, u1, primitive(motions.weight()));
   auto feature = [](const std::vector<MovingPoint>& e, const MovingPoint& v, const ContactSolver& s) {
     if (e.size() == 1) return s.vertex_vertex(v, e[0]);
     if (e.size() == 2) return s.vertex_edge(v, e[0], e[1]);
