@@ -189,8 +189,13 @@ std::optional<std::vector<int>> meet(const Points& p, RealRoot& r, const PolyZ& 
 
 class Solver {
  public:
-  Solver(const Exact& u0, const Exact& u1, const PolyZ& positive, std::map<PolyZ, std::vector<RealRoot>>& cache)
-      : u0_(u0), u1_(u1), positive_(positive), cache_(cache) {}
+  Solver(const Exact& u0, const Exact& u1, const PolyZ& positive, std::map<PolyZ, std::vector<RealRoot>>& cache,
+         std::optional<RealRoot>& bound)
+      : u0_(u0), u1_(u1), positive_(positive), cache_(cache), bound_(bound) {}
+
+  // r (a root, in increasing order) is after the caller's bound: it and
+  // the later roots need no containment test.
+  bool past_bound(RealRoot& r) const { return bound_ && compare(r, *bound_) == CGAL::LARGER; }
 
   // The roots of p (nonzero) in [u0, u1], isolated once per polynomial (the
   // cache keeps them refined as far as they were).
@@ -226,8 +231,10 @@ class Solver {
     }
     const PolyZ g = reduced(common(c));
     if (degree(g) <= 0) return std::nullopt;
-    for (RealRoot& r : roots(g))
+    for (RealRoot& r : roots(g)) {
+      if (past_bound(r)) break;
       if (on_segment(p[v], p[e0], p[e1], r, positive_)) return Found{r, {v}};
+    }
     return std::nullopt;
   }
 
@@ -245,8 +252,10 @@ class Solver {
       for (int k = 0; k < m; ++k) best = first(std::move(best), vertex_edge(p, 0, 1 + k, 1 + (k + 1) % m));
       return best;
     }
-    for (RealRoot& r : roots(d))
+    for (RealRoot& r : roots(d)) {
+      if (past_bound(r)) break;
       if (in_polygon(p[0], poly, r, positive_)) return Found{r, {0}};
+    }
     return std::nullopt;
   }
 
@@ -263,8 +272,10 @@ class Solver {
       best = first(std::move(best), vertex_edge(p, 2, 0, 1));
       return first(std::move(best), vertex_edge(p, 3, 0, 1));
     }
-    for (RealRoot& r : roots(d))
+    for (RealRoot& r : roots(d)) {
+      if (past_bound(r)) break;
       if (auto where = meet(p, r, positive_)) return Found{r, std::move(*where)};
+    }
     return std::nullopt;
   }
 
@@ -272,6 +283,7 @@ class Solver {
   Exact u0_, u1_;
   const PolyZ& positive_;
   std::map<PolyZ, std::vector<RealRoot>>& cache_;
+  std::optional<RealRoot>& bound_;
 };
 
 // The contact with the caller's points (not the scaled ones) locating it.
@@ -364,27 +376,27 @@ bool ContactSolver::touch(const std::vector<MovingPoint>& a, const std::vector<M
 std::optional<Contact> ContactSolver::vertex_vertex(const MovingPoint& a, const MovingPoint& b) const {
   const std::vector<MovingPoint> all{a, b};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_, positive_, roots_).vertex_vertex(s.points, 0, 1), {&all});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).vertex_vertex(s.points, 0, 1), {&all});
 }
 
 std::optional<Contact> ContactSolver::vertex_edge(const MovingPoint& v, const MovingPoint& e0,
                                                   const MovingPoint& e1) const {
   const std::vector<MovingPoint> all{v, e0, e1};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_, positive_, roots_).vertex_edge(s.points, 0, 1, 2), {&all});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).vertex_edge(s.points, 0, 1, 2), {&all});
 }
 
 std::optional<Contact> ContactSolver::vertex_face(const MovingPoint& v, const std::vector<MovingPoint>& poly) const {
   const std::vector<MovingPoint> vertex{v};
   const Scaled s = scaled({&vertex, &poly});
-  return contact_of(Solver(u0_, u1_, positive_, roots_).vertex_face(s.points), {&vertex, &poly});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).vertex_face(s.points), {&vertex, &poly});
 }
 
 std::optional<Contact> ContactSolver::edge_edge(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                                 const MovingPoint& b1) const {
   const std::vector<MovingPoint> all{a0, a1, b0, b1};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_, positive_, roots_).edge_edge(s.points), {&all});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).edge_edge(s.points), {&all});
 }
 
 namespace {

@@ -59,6 +59,12 @@ class ContactSolver {
   std::optional<Contact> edge_edge(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                    const MovingPoint& b1) const;
 
+  // Contacts after `bound` are of no interest from now on: a method may
+  // then report nothing for features whose earliest contact is later (the
+  // caller keeps the earliest over many pairs).  Roots are still isolated
+  // on the whole [u0, u1].
+  void set_bound(const RealRoot& bound) const { bound_ = bound; }
+
   // The same predicates at one parameter (rational or an isolated root),
   // exactly: does the vertex lie on the closed segment, the coplanar vertex
   // in the closed polygon, do the coplanar segments meet?
@@ -75,6 +81,7 @@ class ContactSolver {
   Exact u0_, u1_;
   PolyZ positive_;  // empty: none known
   mutable std::map<PolyZ, std::vector<RealRoot>> roots_;  // square-free polynomial -> its roots in [u0, u1]
+  mutable std::optional<RealRoot> bound_;
 };
 
 // The earlier of two optional contacts (the first on a tie).

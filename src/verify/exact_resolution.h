@@ -136,6 +136,7 @@ PieceResolution resolve_piece(const PreparedBody& moving, const PreparedBody& ot
           continue;
       }
       out.first = PairContact{p, pm, po, std::move(*c)};
+      solver.set_bound(out.first->contact.t);  // later contacts cannot be the first
     }
   } catch (const ExactLimit&) {
     out.first.reset();
