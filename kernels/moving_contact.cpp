@@ -54,11 +54,55 @@ PolyZ dot(const V3& a, const V3& b) { return add(add(mul(a[0], b[0]), mul(a[1], 
 
 bool is_zero(const V3& a) { return a[0].empty() && a[1].empty() && a[2].empty(); }
 
-CGAL::Sign sign(const PolyZ& p, RealRoot& r) { return p.empty() ? CGAL::ZERO : sign_at(p, r); }
+// p / w when w (degree >= 1) divides p exactly, else nothing.  Integer
+// long division: w is primitive, so by Gauss's lemma w | p in Q[u] only
+// with an integer quotient; a leading coefficient not divisible by lc(w)
+// means w does not divide p.
+std::optional<PolyZ> divided(const PolyZ& p, const PolyZ& w) {
+  const int dw = degree(w);
+  if (dw < 1 || degree(p) < dw) return std::nullopt;
+  PolyZ rem = p, q(p.size() - w.size() + 1);
+  for (int k = degree(p) - dw; k >= 0; --k) {
+    const Integer& top = rem[k + dw];
+    if (top == 0) continue;
+    if (!mpz_divisible_p(top.mpz(), w.back().mpz())) return std::nullopt;
+    Integer c;
+    mpz_divexact(c.mpz(), top.mpz(), w.back().mpz());
+    for (int i = 0; i <= dw; ++i) {
+      Integer t;  // fresh: Gmpz copies share their value
+      mpz_mul(t.mpz(), c.mpz(), w[i].mpz());
+      rem[k + i] = rem[k + i] - t;
+    }
+    q[k] = c;
+  }
+  for (int i = 0; i < dw; ++i)
+    if (rem[i] != 0) return std::nullopt;
+  trim(q);
+  return q;
+}
 
-bool zero_at(const V3& a, RealRoot& r) {
+const PolyZ kNoFactor;
+
+// p without the factors of w (a primitive polynomial positive on the
+// piece, or empty: none): p = w^k q with w > 0 gives q the same roots and
+// signs there.
+PolyZ reduced(PolyZ p, const PolyZ& w) {
+  if (w.empty() || p.empty()) return p;
+  while (std::optional<PolyZ> q = divided(p, w)) p = std::move(*q);
+  return p;
+}
+
+CGAL::Sign sign(const PolyZ& p, RealRoot& r, const PolyZ& w = kNoFactor) {
+  if (p.empty()) return CGAL::ZERO;
+  if (w.empty() || r.is_rational()) return sign_at(p, r);
+  // The cheap enclosure first; the division by w only when it is needed.
+  if (const CGAL::Sign s = enclosure_sign(p, r.lo, r.hi); s != CGAL::ZERO) return s;
+  return sign_at(reduced(p, w), r);
+}
+
+bool zero_at(const V3& a, RealRoot& r, const PolyZ& w = kNoFactor) {
   for (const PolyZ& p : a)
-    if (sign(p, r) != CGAL::ZERO) return false;
+    if (sign(p, r, w) != CGAL::ZERO) return false;
   return true;
 }
 
@@ -97,46 +141,46 @@ std::optional<Found> first(std::optional<Found> a, std::optional<Found> b) {
   return compare(b->t, a->t) == CGAL::SMALLER ? b : a;
 }
 
-bool on_segment(const ZPoint& v, const ZPoint& e0, const ZPoint& e1, RealRoot& r) {
+bool on_segment(const ZPoint& v, const ZPoint& e0, const ZPoint& e1, RealRoot& r, const PolyZ& w = kNoFactor) {
   const V3 d = diff(e1, e0), q = diff(v, e0);
-  if (zero_at(d, r)) return zero_at(q, r);  // the segment is a point at r
-  if (!zero_at(cross(q, d), r)) return false;
-  return sign(dot(q, d), r) != CGAL::NEGATIVE && sign(dot(diff(v, e1), diff(e0, e1)), r) != CGAL::NEGATIVE;
+  if (zero_at(d, r, w)) return zero_at(q, r, w);  // the segment is a point at r
+  if (!zero_at(cross(q, d), r, w)) return false;
+  return sign(dot(q, d), r, w) != CGAL::NEGATIVE && sign(dot(diff(v, e1), diff(e0, e1)), r, w) != CGAL::NEGATIVE;
 }
 
 // Vertex v (coplanar with the polygon at r) in the closed convex polygon.
-bool in_polygon(const ZPoint& v, const Points& poly, RealRoot& r) {
+bool in_polygon(const ZPoint& v, const Points& poly, RealRoot& r, const PolyZ& w = kNoFactor) {
   const V3 n = area_vector(poly);
   const std::size_t m = poly.size();
-  if (zero_at(n, r)) {  // collapsed: the polygon is the union of its edges
+  if (zero_at(n, r, w)) {  // collapsed: the polygon is the union of its edges
     for (std::size_t k = 0; k < m; ++k)
-      if (on_segment(v, poly[k], poly[(k + 1) % m], r)) return true;
+      if (on_segment(v, poly[k], poly[(k + 1) % m], r, w)) return true;
     return false;
   }
   for (std::size_t k = 0; k < m; ++k) {
     const V3 e = diff(poly[(k + 1) % m], poly[k]);
-    if (sign(dot(cross(e, diff(v, poly[k])), n), r) == CGAL::NEGATIVE) return false;
+    if (sign(dot(cross(e, diff(v, poly[k])), n), r, w) == CGAL::NEGATIVE) return false;
   }
   return true;
 }
 
 // Where two coplanar segments (points 0 1 and 2 3 of p) meet at r: the
 // indices of the points that locate it, or nothing.
-std::optional<std::vector<int>> meet(const Points& p, RealRoot& r) {
+std::optional<std::vector<int>> meet(const Points& p, RealRoot& r, const PolyZ& w = kNoFactor) {
   const V3 da = diff(p[1], p[0]), db = diff(p[3], p[2]);
   const V3 n = cross(da, db);
-  if (zero_at(n, r)) {
+  if (zero_at(n, r, w)) {
     // Parallel (or a segment reduced to a point): they meet exactly when an
     // endpoint of one lies on the other.
-    if (on_segment(p[0], p[2], p[3], r)) return std::vector<int>{0};
-    if (on_segment(p[1], p[2], p[3], r)) return std::vector<int>{1};
-    if (on_segment(p[2], p[0], p[1], r)) return std::vector<int>{2};
-    if (on_segment(p[3], p[0], p[1], r)) return std::vector<int>{3};
+    if (on_segment(p[0], p[2], p[3], r, w)) return std::vector<int>{0};
+    if (on_segment(p[1], p[2], p[3], r, w)) return std::vector<int>{1};
+    if (on_segment(p[2], p[0], p[1], r, w)) return std::vector<int>{2};
+    if (on_segment(p[3], p[0], p[1], r, w)) return std::vector<int>{3};
     return std::nullopt;
   }
   // In their common plane (normal n != 0): each segment's ends on opposite
   // sides of (or on) the other's line.
-  auto side = [&](const V3& d, const ZPoint& x, const ZPoint& o) { return sign(dot(cross(d, diff(x, o)), n), r); };
+  auto side = [&](const V3& d, const ZPoint& x, const ZPoint& o) { return sign(dot(cross(d, diff(x, o)), n), r, w); };
   auto opposite_or_on = [](CGAL::Sign x, CGAL::Sign y) { return static_cast<int>(x) * static_cast<int>(y) <= 0; };
   if (!opposite_or_on(side(db, p[0], p[2]), side(db, p[1], p[2]))) return std::nullopt;
   if (!opposite_or_on(side(da, p[2], p[0]), side(da, p[3], p[0]))) return std::nullopt;
@@ -145,16 +189,35 @@ std::optional<std::vector<int>> meet(const Points& p, RealRoot& r) {
 
 class Solver {
  public:
-  Solver(const Exact& u0, const Exact& u1) : u0_(u0), u1_(u1) {}
+  Solver(const Exact& u0, const Exact& u1, const PolyZ& positive, std::map<PolyZ, std::vector<RealRoot>>& cache,
+         std::optional<RealRoot>& bound)
+      : u0_(u0), u1_(u1), positive_(positive), cache_(cache), bound_(bound) {}
+
+  // r (a root, in increasing order) is after the caller's bound: it and
+  // the later roots need no containment test.
+  bool past_bound(RealRoot& r) const { return bound_ && compare(r, *bound_) == CGAL::LARGER; }
+
+  // The roots of p (nonzero) in [u0, u1], isolated once per polynomial (the
+  // cache keeps them refined as far as they were).
+  std::vector<RealRoot>& roots(const PolyZ& p) const {
+    const PolyZ key = primitive(p);
+    auto it = cache_.find(key);
+    if (it == cache_.end()) it = cache_.emplace(key, real_roots(square_free(key), u0_, u1_)).first;
+    return it->second;
+  }
+
+  // p without the factors of the positive polynomial (same roots and signs
+  // on the piece: p = w^k q with w > 0 there).
+  PolyZ reduced(PolyZ p) const { return ::tmcert::reduced(std::move(p), positive_); }
 
   std::optional<Found> vertex_vertex(const Points& p, int a, int b) const {
     const V3 d = diff(p[a], p[b]);
     if (is_zero(d)) return Found{rational_root(u0_), {a}};  // the same point throughout
     const PolyZ g = common(d);
     if (degree(g) <= 0) return std::nullopt;
-    std::vector<RealRoot> roots = real_roots(square_free(g), u0_, u1_);
-    if (roots.empty()) return std::nullopt;
-    return Found{roots.front(), {a}};
+    const std::vector<RealRoot>& found = roots(g);
+    if (found.empty()) return std::nullopt;
+    return Found{found.front(), {a}};
   }
 
   std::optional<Found> vertex_edge(const Points& p, int v, int e0, int e1) const {
@@ -163,55 +226,64 @@ class Solver {
       // On the segment's line throughout (or the segment is a point): the
       // vertex first meets the segment at the start or at an endpoint.
       RealRoot start = rational_root(u0_);
-      if (on_segment(p[v], p[e0], p[e1], start)) return Found{start, {v}};
+      if (on_segment(p[v], p[e0], p[e1], start, positive_)) return Found{start, {v}};
       return first(vertex_vertex(p, v, e0), vertex_vertex(p, v, e1));
     }
-    const PolyZ g = common(c);
+    const PolyZ g = reduced(common(c));
     if (degree(g) <= 0) return std::nullopt;
-    for (RealRoot& r : real_roots(square_free(g), u0_, u1_))
-      if (on_segment(p[v], p[e0], p[e1], r)) return Found{r, {v}};
+    for (RealRoot& r : roots(g)) {
+      if (past_bound(r)) break;
+      if (on_segment(p[v], p[e0], p[e1], r, positive_)) return Found{r, {v}};
+    }
     return std::nullopt;
   }
 
   // Vertex p[0] and the polygon p[1..].
   std::optional<Found> vertex_face(const Points& p) const {
     const Points poly(p.begin() + 1, p.end());
-    const PolyZ d = dot(area_vector(poly), diff(p[0], poly[0]));
+    const PolyZ d = reduced(dot(area_vector(poly), diff(p[0], poly[0])));
     if (d.empty()) {
       // In the polygon's plane throughout (or the polygon is collapsed): the
       // vertex first meets it at the start or on an edge.
       RealRoot start = rational_root(u0_);
-      if (in_polygon(p[0], poly, start)) return Found{start, {0}};
+      if (in_polygon(p[0], poly, start, positive_)) return Found{start, {0}};
       std::optional<Found> best;
       const int m = static_cast<int>(poly.size());
       for (int k = 0; k < m; ++k) best = first(std::move(best), vertex_edge(p, 0, 1 + k, 1 + (k + 1) % m));
       return best;
     }
-    for (RealRoot& r : real_roots(square_free(d), u0_, u1_))
-      if (in_polygon(p[0], poly, r)) return Found{r, {0}};
+    for (RealRoot& r : roots(d)) {
+      if (past_bound(r)) break;
+      if (in_polygon(p[0], poly, r, positive_)) return Found{r, {0}};
+    }
     return std::nullopt;
   }
 
   // Edges p[0] p[1] and p[2] p[3].
   std::optional<Found> edge_edge(const Points& p) const {
-    const PolyZ d = dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0]));
+    const PolyZ d = reduced(dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0])));
     if (d.empty()) {
       // In one plane throughout (parallel, coplanar or degenerate): the
       // segments first meet at the start or with an endpoint on the other.
       RealRoot start = rational_root(u0_);
-      if (auto where = meet(p, start)) return Found{start, std::move(*where)};
+      if (auto where = meet(p, start, positive_)) return Found{start, std::move(*where)};
       std::optional<Found> best = vertex_edge(p, 0, 2, 3);
       best = first(std::move(best), vertex_edge(p, 1, 2, 3));
       best = first(std::move(best), vertex_edge(p, 2, 0, 1));
       return first(std::move(best), vertex_edge(p, 3, 0, 1));
     }
-    for (RealRoot& r : real_roots(square_free(d), u0_, u1_))
-      if (auto where = meet(p, r)) return Found{r, std::move(*where)};
+    for (RealRoot& r : roots(d)) {
+      if (past_bound(r)) break;
+      if (auto where = meet(p, r, positive_)) return Found{r, std::move(*where)};
+    }
     return std::nullopt;
   }
 
  private:
   Exact u0_, u1_;
+  const PolyZ& positive_;
+  std::map<PolyZ, std::vector<RealRoot>>& cache_;
+  std::optional<RealRoot>& bound_;
 };
 
 // The contact with the caller's points (not the scaled ones) locating it.
@@ -304,27 +376,27 @@ bool ContactSolver::touch(const std::vector<MovingPoint>& a, const std::vector<M
 std::optional<Contact> ContactSolver::vertex_vertex(const MovingPoint& a, const MovingPoint& b) const {
   const std::vector<MovingPoint> all{a, b};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_).vertex_vertex(s.points, 0, 1), {&all});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).vertex_vertex(s.points, 0, 1), {&all});
 }
 
 std::optional<Contact> ContactSolver::vertex_edge(const MovingPoint& v, const MovingPoint& e0,
                                                   const MovingPoint& e1) const {
   const std::vector<MovingPoint> all{v, e0, e1};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_).vertex_edge(s.points, 0, 1, 2), {&all});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).vertex_edge(s.points, 0, 1, 2), {&all});
 }
 
 std::optional<Contact> ContactSolver::vertex_face(const MovingPoint& v, const std::vector<MovingPoint>& poly) const {
   const std::vector<MovingPoint> vertex{v};
   const Scaled s = scaled({&vertex, &poly});
-  return contact_of(Solver(u0_, u1_).vertex_face(s.points), {&vertex, &poly});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).vertex_face(s.points), {&vertex, &poly});
 }
 
 std::optional<Contact> ContactSolver::edge_edge(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                                 const MovingPoint& b1) const {
   const std::vector<MovingPoint> all{a0, a1, b0, b1};
   const Scaled s = scaled({&all});
-  return contact_of(Solver(u0_, u1_).edge_edge(s.points), {&all});
+  return contact_of(Solver(u0_, u1_, positive_, roots_, bound_).edge_edge(s.points), {&all});
 }
 
 namespace {

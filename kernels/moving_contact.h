@@ -9,6 +9,7 @@
 #include "kernels/real_roots.h"
 
 #include <array>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -35,10 +36,21 @@ struct Contact {
 
 // Earliest contacts in the closed interval [u0, u1], or nothing when the
 // features never touch there.  Throws ExactLimit (never a wrong answer)
-// when a loop passes its cap.
+// when a loop passes its cap.  One solver remembers the roots it isolated
+// (and refined) per contact polynomial: features sharing a polynomial
+// (a vertex against coplanar faces) isolate its roots once.  Not for use
+// by several threads at once.
 class ContactSolver {
  public:
   ContactSolver(Exact u0, Exact u1) : u0_(std::move(u0)), u1_(std::move(u1)) {}
+  // `positive`: a polynomial the caller knows to be positive on [u0, u1]
+  // (the points' common weight w(u)).  Contact polynomials are divided by
+  // it as often as it divides them exactly: the same roots and signs on the
+  // piece, and a lower degree (a fixed body's points are w(u) y, so a
+  // moving vertex against a fixed face gives w(u)^2 times the polynomial
+  // that matters).
+  ContactSolver(Exact u0, Exact u1, PolyZ positive)
+      : u0_(std::move(u0)), u1_(std::move(u1)), positive_(std::move(positive)) {}
 
   std::optional<Contact> vertex_vertex(const MovingPoint& a, const MovingPoint& b) const;
   std::optional<Contact> vertex_edge(const MovingPoint& v, const MovingPoint& e0, const MovingPoint& e1) const;
@@ -46,6 +58,12 @@ class ContactSolver {
   std::optional<Contact> vertex_face(const MovingPoint& v, const std::vector<MovingPoint>& polygon) const;
   std::optional<Contact> edge_edge(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
                                    const MovingPoint& b1) const;
+
+  // Contacts after `bound` are of no interest from now on: a method may
+  // then report nothing for features whose earliest contact is later (the
+  // caller keeps the earliest over many pairs).  Roots are still isolated
+  // on the whole [u0, u1].
+  void set_bound(const RealRoot& bound) const { bound_ = bound; }
 
   // The same predicates at one parameter (rational or an isolated root),
   // exactly: does the vertex lie on the closed segment, the coplanar vertex
@@ -61,6 +79,9 @@ class ContactSolver {
 
  private:
   Exact u0_, u1_;
+  PolyZ positive_;  // empty: none known
+  mutable std::map<PolyZ, std::vector<RealRoot>> roots_;  // square-free polynomial -> its roots in [u0, u1]
+  mutable std::optional<RealRoot> bound_;
 };
 
 // The earlier of two optional contacts (the first on a tie).

@@ -344,6 +344,10 @@ void refine_to(RealRoot& r, const Exact& width) {
   }
 }
 
+CGAL::Sign enclosure_sign(const PolyZ& q, const Exact& lo, const Exact& hi) {
+  return q.empty() ? CGAL::ZERO : range_sign_double(q, lo, hi);
+}
+
 CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   if (q.empty()) return CGAL::ZERO;
   if (r.is_rational()) return sign_at(q, r.lo);

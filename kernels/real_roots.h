@@ -76,6 +76,10 @@ void refine(RealRoot& r);
 // Refines r until hi - lo <= width (or r is found rational).
 void refine_to(RealRoot& r, const Exact& width);
 
+// The sign of q on all of [lo, hi] when a double interval enclosure proves
+// it, else ZERO (meaning: not proven; q may still not vanish there).
+CGAL::Sign enclosure_sign(const PolyZ& q, const Exact& lo, const Exact& hi);
+
 // The exact sign of q at r (refines r as needed).
 CGAL::Sign sign_at(const PolyZ& q, RealRoot& r);
 

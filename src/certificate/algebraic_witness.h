@@ -38,6 +38,8 @@ class CheckMotions {
   // Vertex x (body frame) of body `side` (0: a, 1: b) as a moving point in
   // world coordinates over the common weight.
   MovingPoint place(int side, const Vec3E& x) const;
+  // The common weight w_a(s) w_b(s) of the placed points, positive on [0, 1].
+  PolyQ weight() const { return mul(weight_[0], weight_[1]); }
 
  private:
   std::vector<PolyQ> numerator_[2];  // 12 entries [A | a] times the body's weight

@@ -14,6 +14,7 @@
 #include "src/certificate/writer.h"
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/motions.h"
+#include "src/certificate/exact_claims.h"
 #include "src/scene/parse.h"
 #include "src/scene/read_file.h"
 
@@ -803,6 +804,12 @@ struct CheckContext {
   int displaced = 0;
   std::optional<std::array<Vec3E, 2>> points;
   bool enclosed_witness = false;
+  std::size_t exact_claims = 0;
+  std::unique_ptr<CheckMotions> motions;  // for exact claims, built when first needed
+  // A collision's "before_witness": the part of the witness's piece before
+  // the witness time, from `before_from` (exact_claims.h).
+  const json* before_witness = nullptr;
+  Exact before_from;
 };
 
 class Checker {
@@ -989,6 +996,16 @@ class Checker {
       }
     }
     if (first_contact) ctx.first_contact = in_.pair(*first_contact, mem(P, "first_contact"));
+    if (const json* bw = in_.find(c, "before_witness"); bw && !bw->is_null()) {
+      const std::string bp = mem(P, "before_witness");
+      if (verdict != "collision") in_.bad(bp, "only a collision has a witness");
+      if (ctx.general)  // its exact claims use the check's one rational curve
+        reject(ctx.label + ": before_witness is not part of certificates of planner motions, tolerances or clearances");
+      in_.object(*bw, bp);
+      ctx.before_from = in_.rational(in_.member(*bw, "from", bp), mem(bp, "from"));
+      validate_proof(in_.member(*bw, "proof", bp), mem(bp, "proof"));
+      ctx.before_witness = bw;
+    }
     read_start(c, ctx);
   }
 
@@ -1020,8 +1037,12 @@ class Checker {
       if (!node.is_object()) in_.object(node, path(i));
       const json* sep = in_.find(node, "sep");
       const json* split_side = in_.find(node, "split");
+      if (const json* exact = in_.find(node, "exact")) {  // an exact no-contact claim (exact_claims.h)
+        validate_exact_leaf(node, *exact, sep || split_side, path(i));
+        continue;
+      }
       if ((sep != nullptr) == (split_side != nullptr))
-        in_.bad(path(i), "expected exactly one of \"sep\" and \"split\"");
+        in_.bad(path(i), "expected exactly one of \"sep\", \"split\" and \"exact\"");
       if (sep) {
         if (!sep->is_array() || sep->size() != 3) in_.vec3(*sep, path(i) + ".sep");  // throws
         for (int r = 0; r < 3; ++r)
@@ -1248,14 +1269,23 @@ class Checker {
         const Exact& t = ctx.witness_t;
         check_witness(ctx);
         const std::string fc = L + ": first_contact [" + str(lo) + ", " + str(hi) + "]";
-        if (end != lo) reject(fc + ": the pieces end at " + str(end) + ", not at lo = " + str(lo));
+        // With before_witness, the pieces end where it starts and it proves
+        // the rest up to the witness time (the first contact, exactly).
+        const Exact& pieces_end = ctx.before_witness ? ctx.before_from : lo;
+        if (end != pieces_end)
+          reject(fc + ": the pieces end at " + str(end) + ", not at " +
+                 (ctx.before_witness ? "before_witness.from = " : "lo = ") + str(pieces_end));
         if (lo > t) reject(fc + ": lo is after the witness t = " + str(t));
         if (t > hi) reject(fc + ": the witness t = " + str(t) + " is after hi");
+        if (ctx.witness_root && hi < ctx.witness_root->hi && ctx.before_witness)
+          reject(fc + ": hi is before the end of the witness time's interval " + str(ctx.witness_root->hi));
         clear_until = lo;
-        summary = (ctx.witness_root ? "collision proven at an irrational t in (" + str(ctx.witness_root->lo) + ", " +
-                                          str(ctx.witness_root->hi) + ")"
-                                    : "collision proven at t = " + str(t)) +
-                  "; no contact before t = " + str(lo) + " proven";
+        const std::string at = ctx.witness_root ? "an irrational t in (" + str(ctx.witness_root->lo) + ", " +
+                                                      str(ctx.witness_root->hi) + ")"
+                                                : "t = " + str(t);
+        summary = "collision proven at " + at +
+                  (ctx.before_witness ? "; no contact before it proven (the first contact)"
+                                      : "; no contact before t = " + str(lo) + " proven");
       }
     } else {  // undecided
       const std::vector<std::pair<Exact, Exact>>& ut = ctx.undecided;
@@ -1296,15 +1326,18 @@ class Checker {
       }
     }
 
-    const std::size_t start_points = check_start(ctx, !pt.empty());
+    const std::size_t start_points = check_start(ctx, !pt.empty() || ctx.before_witness);
 
     // The separation proofs, piece by piece.
     mpz_mul(ctx.dadb.v, ctx.data[0]->coords.D.v, ctx.data[1]->coords.D.v);
     if (!ctx.general) ctx.curve = joint_curve(*ctx.body[0], *ctx.body[1]);
     for (std::size_t k = 0; k < pt.size(); ++k) check_piece((*ctx.pieces)[k], k, pt[k], ctx);
+    if (ctx.before_witness) check_before_witness(ctx);
 
     std::string counts = std::to_string(pt.size()) + (pt.size() == 1 ? " piece, " : " pieces, ") +
                          std::to_string(ctx.separations) + (ctx.separations == 1 ? " separation" : " separations");
+    if (ctx.exact_claims)
+      counts += ", " + std::to_string(ctx.exact_claims) + (ctx.exact_claims == 1 ? " exact claim" : " exact claims");
     if (start_points)
       counts += ", " + std::to_string(start_points) + (start_points == 1 ? " start point" : " start points");
     const std::string who = ctx.body[0]->name + " x " + ctx.body[1]->name + ": ";
@@ -1555,6 +1588,8 @@ class Checker {
     // sum_i |n_i| penalty_i to spare (penalty: the pose boxes' radii).
     bool margins = false;
     std::array<Exact, 3> penalty{Exact(0), Exact(0), Exact(0)};
+    Exact ua, ub;                     // the piece in curve parameters
+    const RealRoot* before = nullptr;  // before_witness: the claims hold before this time only
   };
 
   void check_piece(const json& piece, std::size_t k, const std::pair<Exact, Exact>& t, CheckContext& ctx) {
@@ -1568,6 +1603,8 @@ class Checker {
       const Exact span = ctx.t1 - ctx.t0;
       const Exact ua = (t.first - ctx.t0) / span, ub = (t.second - ctx.t0) / span;
       pc.ints = integer_control_points(restrict_curve(ctx.curve, ua, ub));
+      pc.ua = ua;
+      pc.ub = ub;
     }
     std::vector<int> trail;
     prove(piece.at("proof"), 0, 0, trail, pc, ctx);
@@ -1604,6 +1641,79 @@ class Checker {
     pc.margins = ctx.margin > 0 || sgn(pc.penalty[0]) != 0 || sgn(pc.penalty[1]) != 0 || sgn(pc.penalty[2]) != 0;
   }
 
+  // ------------------------------------------------------------ exact claims
+
+  void validate_exact_leaf(const json& node, const json& exact, bool other_keys, const std::string& path) {
+    if (other_keys) in_.bad(path, "expected exactly one of \"sep\", \"split\" and \"exact\"");
+    if (!(exact.is_string() && exact.get_ref<const std::string&>() == "no_contact"))
+      in_.bad(path + ".exact", std::string("expected \"no_contact\", got ") + describe(exact));
+    (void)node;
+  }
+
+  // Elements reachable from group g of one side.
+  static std::vector<std::uint32_t> group_elements(const GroupSet& gs, std::uint32_t g) {
+    std::vector<std::uint32_t> out, stack{g};
+    std::vector<char> seen_group(gs.items.size(), 0), seen_element(gs.body->elems.size(), 0);
+    seen_group[g] = 1;
+    while (!stack.empty()) {
+      const std::uint32_t k = stack.back();
+      stack.pop_back();
+      for (std::uint32_t x : gs.items[k]) {
+        std::vector<char>& seen = gs.leaf[k] ? seen_element : seen_group;
+        if (seen[x]) continue;
+        seen[x] = 1;
+        if (gs.leaf[k]) out.push_back(x);
+        else stack.push_back(x);
+      }
+    }
+    return out;
+  }
+
+  // The claim "no element of g touches an element of h on the piece"
+  // (before pc.before when set): empty when it holds.
+  std::string exact_leaf_error(std::uint32_t g, std::uint32_t h, const PieceContext& pc, CheckContext& ctx) {
+    if (!ctx.motions) ctx.motions = std::make_unique<CheckMotions>(*ctx.body[0], *ctx.body[1]);
+    for (std::uint32_t ea : group_elements(ctx.groups[0], g))
+      for (std::uint32_t eb : group_elements(ctx.groups[1], h)) {
+        const std::string error =
+            no_contact_error(*ctx.motions, ctx.data[0]->elems[ea], ctx.data[1]->elems[eb], pc.ua, pc.ub, pc.before);
+        if (!error.empty()) return "elements " + std::to_string(ea) + " and " + std::to_string(eb) + ": " + error;
+      }
+    return {};
+  }
+
+  // before_witness: a proof tree for the part [from, T) of the witness's
+  // piece, T the witness time.  Its separations are checked on the closed
+  // [from, T] (rational T) or [from, hi] (T in (lo, hi)), its exact claims
+  // on [from, T).
+  void check_before_witness(CheckContext& ctx) {
+    const json& bw = *ctx.before_witness;
+    const std::string L = ctx.label + ": before_witness";
+    const Exact span = ctx.t1 - ctx.t0;
+    RealRoot root = ctx.witness_root ? check_parameter_root(*ctx.witness_root, ctx.t0, ctx.t1)
+                                     : rational_root((ctx.witness_t - ctx.t0) / span);
+    const Exact end = ctx.witness_root ? ctx.witness_root->hi : ctx.witness_t;
+    RealRoot start = rational_root((ctx.before_from - ctx.t0) / span);
+    bool before;
+    try {
+      before = compare(start, root) == CGAL::SMALLER;
+    } catch (const ExactLimit& e) {
+      throw ResourceLimit(std::string("before_witness: ") + e.what());
+    }
+    if (ctx.before_from < ctx.t0 || !before)
+      reject(L + ": from = " + str(ctx.before_from) + " is not before the witness time (or not in the check's interval)");
+    PieceContext pc;
+    pc.index = ctx.pt.size();
+    pc.path = mem(ctx.path, "before_witness");
+    pc.label = L + " [" + str(ctx.before_from) + ", witness)";
+    pc.ua = (ctx.before_from - ctx.t0) / span;
+    pc.ub = (end - ctx.t0) / span;
+    pc.ints = integer_control_points(restrict_curve(ctx.curve, pc.ua, pc.ub));
+    pc.before = &root;
+    std::vector<int> trail;
+    prove(bw.at("proof"), 0, 0, trail, pc, ctx);
+  }
+
   static std::string trail_path(const std::vector<int>& trail) {
     std::string s = "proof";
     for (int i : trail) s += ".parts[" + std::to_string(i) + "]";
@@ -1620,10 +1730,21 @@ class Checker {
     if (!node.is_object()) in_.object(node, path());
     const json* sep = in_.find(node, "sep");
     const json* split_side = in_.find(node, "split");
-    if ((sep != nullptr) == (split_side != nullptr)) in_.bad(path(), "expected exactly one of \"sep\" and \"split\"");
     auto here = [&] {
       return pc.label + ": " + trail_path(trail) + " (groups " + std::to_string(g) + ", " + std::to_string(h) + ")";
     };
+    if (const json* exact = in_.find(node, "exact")) {
+      validate_exact_leaf(node, *exact, sep || split_side, path());
+      if (ctx.general)  // exact claims decide the check's one rational curve, which a general check has not
+        reject(here() + ": exact no-contact claims are not part of certificates of planner motions, tolerances or "
+                        "clearances");
+      ++ctx.exact_claims;
+      if (const std::string error = exact_leaf_error(g, h, pc, ctx); !error.empty())
+        reject(here() + ": exact no-contact claim fails: " + error);
+      return;
+    }
+    if ((sep != nullptr) == (split_side != nullptr))
+      in_.bad(path(), "expected exactly one of \"sep\", \"split\" and \"exact\"");
     if (sep) {
       if (!sep->is_array() || sep->size() != 3) in_.vec3(*sep, path() + ".sep");  // throws
       Vec3E n;

@@ -3,6 +3,7 @@
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/check.h"
 #include "src/certificate/motions.h"
+#include "src/certificate/exact_claims.h"
 #include "src/scene/solid.h"
 #include "kernels/separation.h"
 #include "src/motion/bezier.h"
@@ -195,6 +196,9 @@ struct Prover {
   std::array<std::vector<std::array<Interval, 3>>, 2> vertex_box;  // enclosures of the exact vertices
   WriteStats& stats;
   mutable std::array<int, 2> failed{-1, -1};  // the last two elements found inseparable
+  // For the current piece: does the exact "no contact" claim hold for two
+  // elements (exact_claims.h)?  Tried where no separating plane is found.
+  mutable std::function<bool(int, int)> no_contact;
 
   Prover(const BodyGroups& a, const BodyGroups& b, WriteStats& s) : groups{&a, &b}, stats(s) {
     for (int k = 0; k < 2; ++k) {
@@ -421,6 +425,10 @@ struct Prover {
         ++stats.exact_separations;
         return json{{"sep", vec(*n)}};
       }
+      if (no_contact && no_contact(A.element[g], B.element[h])) {
+        ++stats.exact_claims;
+        return json{{"exact", "no_contact"}};
+      }
       failed = {A.element[g], B.element[h]};
       return std::nullopt;
     }
@@ -564,6 +572,28 @@ struct CheckWriter {
     return interval.first + u * (interval.second - interval.first);
   }
 
+  Exact curve_u(std::uint64_t index, int depth) const {
+    CGAL::Gmpz den;
+    mpz_setbit(den.mpz(), static_cast<mp_bitcnt_t>(depth));
+    return Exact(CGAL::Gmpz(static_cast<unsigned long>(index)), den);
+  }
+
+  // Exact claims for the piece [u0, u1] of the curve (before `before` when
+  // given): the scene's motions as polynomials, built once per check.
+  mutable std::unique_ptr<CheckMotions> motions;
+  void set_no_contact(const Prover& prover, const Exact& u0, const Exact& u1, const RealRoot* before) const {
+    if (!motions) motions = std::make_unique<CheckMotions>(a, b);
+    prover.no_contact = [this, &prover, u0, u1, before](int ea, int eb) {
+      try {
+        return no_contact_error(*motions, prover.groups[0]->elements[ea], prover.groups[1]->elements[eb], u0, u1,
+                                before)
+            .empty();
+      } catch (const ResourceLimit&) {
+        return false;  // not proven: the writer bisects or fails as without the claim
+      }
+    };
+  }
+
   [[noreturn]] void fail(const std::string& what) const {
     throw ResourceLimit("certificate: " + a.name + " x " + b.name + ": " + what);
   }
@@ -702,6 +732,7 @@ struct CheckWriter {
       if (!exact) exact = exact_piece(index, depth);
       return *exact;
     };
+    set_no_contact(prover, curve_u(index, depth), curve_u(index + 1, depth), nullptr);
     if (std::optional<json> proof = prover.prove(im, exact_of, 0, 0)) {
       ++stats.pieces;
       pieces.push_back({{"t", json::array({rational(scene_t(index, depth)), rational(scene_t(index + 1, depth))})},
@@ -855,6 +886,68 @@ struct CheckWriter {
     fail("no two sub-features of the witness's elements meet at its time " + at.approx);
   }
 
+  // The part [from, T) before the witness time T of an exact first contact:
+  // a proof tree (separations on [from, T] or [from, hi], exact claims
+  // before T); on success, before_witness is set and the bracket becomes
+  // [T, T] (rational T) or the witness's interval, narrowed.
+  void before_witness(const Prover& prover, const Exact& from, json& out) const {
+    const Witness& w = *r.witness;
+    const Exact length = interval.second - interval.first;
+    const Exact u0 = (from - interval.first) / length;
+    RealRoot root;
+    Exact u1;
+    try {
+      if (w.root) {
+        root = check_parameter_root(ClaimedRoot{w.root->root_of, w.root->lo, w.root->hi}, interval.first,
+                                    interval.second);
+        RealRoot start = rational_root(u0);
+        if (compare(start, root) != CGAL::SMALLER) return;
+        // Narrow the root's interval to a small fraction of [from, root).
+        for (int k = 0; k < 200 && !root.is_rational() && (root.lo <= u0 || (root.hi - root.lo) * 64 > root.lo - u0);
+             ++k)
+          refine(root);
+        if (root.is_rational() || root.lo <= u0) return;
+        u1 = root.hi;
+      } else {
+        u1 = (w.t - interval.first) / length;
+        if (!(u0 < u1)) return;
+        root = rational_root(u1);
+      }
+    } catch (const ExactLimit&) {
+      return;
+    }
+    // The exact control points on [u0, u1] (de Casteljau at u1, then at
+    // u0 / u1 on the left part).
+    auto split_at = [](const CurveE& c, const Exact& s, bool keep_left) {
+      CurveE p = c, left;
+      const std::size_t n = p.size();
+      left.reserve(n);
+      CurveE right(n);
+      for (std::size_t j = 0; j < n; ++j) {
+        left.push_back(p[0]);
+        right[n - 1 - j] = p[n - 1 - j];
+        for (std::size_t i = 0; i + 1 < n - j; ++i)
+          for (std::size_t e = 0; e < p[i].size(); ++e) p[i][e] = (1 - s) * p[i][e] + s * p[i + 1][e];
+      }
+      return keep_left ? left : right;
+    };
+    const CurveE piece = split_at(u1 == 1 ? joint : split_at(joint, u1, true), u0 / u1, false);
+    const PieceImages im = prover.images(enclose(piece));
+    const std::function<const CurveE&()> exact_of = [&]() -> const CurveE& { return piece; };
+    set_no_contact(prover, u0, u1, &root);
+    std::optional<json> proof = prover.prove(im, exact_of, 0, 0);
+    prover.no_contact = nullptr;
+    if (!proof) return;
+    out["before_witness"] = {{"from", rational(from)}, {"proof", std::move(*proof)}};
+    if (w.root) {
+      const Exact lo = interval.first + root.lo * length, hi = interval.first + root.hi * length;
+      out["witness"]["t"]["interval"] = json::array({rational(lo), rational(hi)});
+      out["first_contact"] = json::array({rational(lo), rational(hi)});
+    } else {
+      out["first_contact"] = json::array({rational(w.t), rational(w.t)});
+    }
+  }
+
   // Start claims: one outside point per component of the other body for
   // each solid body with a regular pose at t0.
   json start() const {
@@ -904,9 +997,12 @@ struct CheckWriter {
     json pieces = json::array();
     const bool gen = general();
     const std::vector<CoverPiece> cover_pieces = gen ? std::vector<CoverPiece>{} : cover();
+    if (!gen) joint = joint_curve(motion_or_identity(a), motion_or_identity(b));
+    const Prover prover(ga, gb, stats);
     if (gen) {
       // Margins: the clearance, and each tolerance times how far a point of
-      // its body can move per unit of metric (motions.h).
+      // its body can move per unit of metric (motions.h).  (No exact
+      // no-contact claims: they decide the check's one rational curve.)
       Exact margin = r.clearance;
       std::array<Exact, 4> bounds[2];
       const Body* bodies[2] = {&a, &b};
@@ -915,14 +1011,11 @@ struct CheckWriter {
         if (bodies[k]->tolerance > 0)
           margin += bodies[k]->tolerance * displacement_bound(*bodies[k], elements(*bodies[k]));
       }
-      const Prover prover(ga, gb, stats);
       const bool partial = r.verdict == Verdict::Collision;
       for (const auto& [ta, tb] : general_cover())
         if (!prove_general(prover, ta, tb, 0, margin, bounds, partial, pieces)) break;
     } else if (!cover_pieces.empty()) {
-      joint = joint_curve(motion_or_identity(a), motion_or_identity(b));
       const CurveI root = enclose(joint);
-      const Prover prover(ga, gb, stats);
       for (const CoverPiece& c : cover_pieces) {
         CurveI piece = root, left, right;
         {
@@ -936,14 +1029,13 @@ struct CheckWriter {
       }
     }
     out["pieces"] = std::move(pieces);
-    out["start"] = out["pieces"].empty() ? json::array() : start();
     if (r.verdict == Verdict::Collision) {
       out["witness"] = witness();
       // The bracket the certificate proves: from the end of its pieces
       // (contiguous from t0).  An exact first contact (exact resolution)
       // also rests on "no contact between the piece's start and the
-      // witness", which certificates do not carry yet: its bracket starts
-      // at that piece's start.
+      // witness": carried as before_witness when its proof is found, and
+      // then the bracket is the witness time itself.
       Exact clear_until = interval.first;
       if (gen) {
         for (const json& p : out["pieces"]) {
@@ -955,7 +1047,9 @@ struct CheckWriter {
         if (scene_t(c.index, c.depth) == clear_until) clear_until = scene_t(c.index + 1, c.depth);
       if (clear_until > r.first_contact->first) clear_until = r.first_contact->first;
       out["first_contact"] = json::array({rational(clear_until), rational(r.first_contact->second)});
+      if (r.first_contact_exact && !gen) before_witness(prover, clear_until, out);
     }
+    out["start"] = out["pieces"].empty() && !out.contains("before_witness") ? json::array() : start();
     json undecided = json::array();
     for (const UndecidedInterval& u : r.undecided) undecided.push_back(json::array({rational(u.t0), rational(u.t1)}));
     out["undecided"] = r.verdict == Verdict::Undecided ? std::move(undecided) : json::array();

@@ -2,8 +2,9 @@
 // verification, every piece the search cleared is given a proof made of
 // separating planes between the swept control points of groups of elements,
 // found in double precision and confirmed with interval arithmetic on
-// enclosures of the exact control points; a piece whose proof fails is
-// bisected.  The checker (check.h) re-verifies the document exactly.
+// enclosures of the exact control points, or, for two elements no plane
+// separates, an exact "no contact" claim (exact_claims.h); a piece whose
+// proof fails is bisected.  The checker (check.h) re-verifies the document exactly.
 #pragma once
 
 #include "src/scene/model.h"
@@ -18,6 +19,7 @@ struct WriteStats {
   std::size_t pieces = 0;       // pieces written
   std::size_t separations = 0;  // separation claims written
   std::size_t exact_separations = 0;  // of which found in exact arithmetic (clearance below doubles)
+  std::size_t exact_claims = 0;  // exact "no contact" claims (where no separating plane was found)
   std::size_t bisections = 0;   // cleared pieces that needed smaller pieces
   double seconds = 0;
 };

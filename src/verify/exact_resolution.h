@@ -11,6 +11,8 @@
 #include "src/verify/pairs.h"
 #include "src/verify/verify.h"
 
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <tuple>
 #include <vector>
@@ -21,28 +23,33 @@ namespace tmcert::detail {
 // Bernstein control points.
 template <int B>
 std::vector<PolyQ> power_basis(const HomogeneousCurve<Exact, B>& curve) {
+  // sum_k b_k B_k(u) = sum_i C(n, i) (Delta^i b)_0 u^i (forward differences:
+  // subtractions and one integer product per coefficient, no divisions).
   const int n = static_cast<int>(curve.size()) - 1;
   std::vector<Exact> binom(n + 1);
   binom[0] = 1;
   for (int k = 1; k <= n; ++k) binom[k] = binom[k - 1] * (n - k + 1) / k;
   std::vector<PolyQ> out(kHomogeneousSize<B>);
+  std::vector<Exact> d(n + 1);
   for (std::size_t e = 0; e < kHomogeneousSize<B>; ++e) {
+    for (int k = 0; k <= n; ++k) d[k] = curve[k][e];
     PolyQ p(n + 1);
-    // B_k(u) = C(n,k) u^k (1-u)^(n-k) = sum_i C(n,k) C(n-k, i-k) (-1)^(i-k) u^i.
-    for (int k = 0; k <= n; ++k) {
-      const Exact& b = curve[k][e];
-      if (b == 0) continue;
-      Exact c = binom[k] * b;  // times C(n-k, i-k) (-1)^(i-k), for i = k..n
-      for (int i = k; i <= n; ++i) {
-        p[i] += ((i - k) % 2 == 0) ? c : -c;
-        c = c * (n - i) / (i - k + 1);
-      }
+    for (int i = 0; i <= n; ++i) {
+      if (d[0] != 0) p[i] = d[0] * binom[i];
+      for (int j = 0; j + i < n; ++j) d[j] = d[j + 1] - d[j];
     }
     trim(p);
     out[e] = std::move(p);
   }
   return out;
 }
+
+// A check's curve in the power basis, computed once (the search's forks
+// share it across threads).
+struct PowerBasisCache {
+  std::once_flag once;
+  std::vector<PolyQ> power;
+};
 
 // The moving points of one body's feature: block `block` of the curve in
 // power basis (or, block < 0, a fixed body: w(u) times its world points).
@@ -102,7 +109,9 @@ PieceResolution resolve_piece(const PreparedBody& moving, const PreparedBody& ot
   for (const PairRef& p : alive)
     if (p.nodes) return out;
   (void)curve;
-  const ContactSolver solver(u0, u1);
+  // The common weight w(u) > 0 on [0, 1] (positive weights): its factors
+  // are divided out of the contact polynomials.
+  const ContactSolver solver(u0, u1, primitive(power.back()));
   const int other_block = B == 2 ? 1 : -1;
   try {
     for (const PairRef& p : alive) {
@@ -127,6 +136,7 @@ PieceResolution resolve_piece(const PreparedBody& moving, const PreparedBody& ot
           continue;
       }
       out.first = PairContact{p, pm, po, std::move(*c)};
+      solver.set_bound(out.first->contact.t);  // later contacts cannot be the first
     }
   } catch (const ExactLimit&) {
     out.first.reset();
@@ -146,7 +156,9 @@ enum class ExactOutcome { Cleared, Witness, Undecided };
 template <int B, class CheckT, class NodeT>
 ExactOutcome decide_piece(CheckT& check, const NodeT& node) {
   CheckStats& stats = check.result.stats;
-  const std::vector<PolyQ> power = power_basis<B>(check.curve);
+  PowerBasisCache& cache = *check.exact_power;
+  std::call_once(cache.once, [&] { cache.power = power_basis<B>(check.curve); });
+  const std::vector<PolyQ>& power = cache.power;
   PieceResolution r = resolve_piece<B>(check.moving, check.other, check.curve, power, node.u0(), node.u1(), node.alive);
   if (!r.decided) {
     ++stats.exact_unknown;

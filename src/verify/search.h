@@ -437,10 +437,13 @@ struct Check {
   const VerifyOptions& options;
   CheckResult& result;
   CheckExtras<B> extras = {};
+  // The curve in the power basis for exact resolution (exact_resolution.h),
+  // computed once when first needed, shared with the forks.
+  std::shared_ptr<PowerBasisCache> exact_power = std::make_shared<PowerBasisCache>();
 
   // The same check writing into `part`.
   Check fork(CheckResult& part) const {
-    return Check{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, part, extras};
+    return Check{moving, other, swapped, curve, root_interval, motion, eps2, rho2_sum, options, part, extras, exact_power};
   }
 
   Exact scene_t(const Exact& u) const { return motion.t0 + u * (motion.t1 - motion.t0); }

@@ -242,6 +242,15 @@ sed -E '0,/"sep":\[/s/"sep":\["([^"]*)","([^"]*)","([^"]*)"\]/"sep":["-\1","-\2"
   sed 's/"--/"/g' >"$work/tampered.json"
 if cmp -s "$work/cert.json" "$work/tampered.json"; then fail "the tampering did not change the certificate"; fi
 expect_check 1 "separation fails" "$work/tampered.json" "$examples/octagons-near.json"
+# Exact "no contact" claims (docs/certificate-format.md): the hover at 1e-17
+# (no plane separates at double precision or among the exact candidates)
+# and the first contact at a root of a cubic (before_witness) are written
+# and re-checked; the hand-built coplanar slide into the face is rejected.
+run 60 "$tmcert" verify "$data/scenes/hover-1e-17.json" --certificate "$work/cert.json"
+expect_check 0 "exact claim" "$work/cert.json" "$data/scenes/hover-1e-17.json"
+run 60 "$tmcert" verify "$data/scenes/cubic-crossing-irrational.json" --certificate "$work/cert.json"
+expect_check 0 "no contact before it proven (the first contact)" "$work/cert.json" "$data/scenes/cubic-crossing-irrational.json"
+expect_check 1 "exact no-contact claim fails" "$certs/slide-exact.cert.json" "$certs/slide-into.json"
 
 # 5. The result documents of planner scenes (SCENE_FORMAT.md "Tolerance and
 #    clearance", docs/scene-format.md "Results of enclosed motions"): the

@@ -78,7 +78,8 @@ const std::vector<std::pair<std::string, std::string>> kValid = {
     {"probe-safe", "probe-safe"},       {"drop", "drop-collision"},
     {"drop", "drop-undecided"},         {"two-moving", "two-moving"},
     {"solid-outside", "solid-outside"}, {"solid-inside", "solid-inside-collision"},
-    {"solid-singular", "solid-singular"}};
+    {"solid-singular", "solid-singular"}, {"drop", "drop-exact"},
+    {"slide-beside", "slide-exact"}};
 
 }  // namespace
 
@@ -395,6 +396,76 @@ BOOST_AUTO_TEST_CASE(tampered_start_claims_are_rejected) {
   }
 }
 
+// Exact "no contact" claims (src/certificate/exact_claims.h,
+// proofs/exact-resolution.md §6): they hold where the elements never touch,
+// also when the contact polynomial vanishes identically (sliding in the
+// face's plane), and are rejected where the pair touches inside the piece,
+// at its closed end, only in a coplanar slide, or overlaps from the start
+// without any vertex or edge contact.
+BOOST_AUTO_TEST_CASE(exact_no_contact_claims) {
+  BOOST_TEST(check(load("slide-beside", "slide-exact")).ok);
+  BOOST_TEST(check(load("drop", "drop-exact")).ok);
+  // The same claim where the point slides into the triangle (t = 5/12).
+  expect_rejected(load("slide-into", "slide-exact"),
+                  "pieces[0] [0, 1]: proof (groups 0, 0): exact no-contact claim fails: elements 0 and 0: vertex 0 of "
+                  "the a element touches the polygon at u ~ 0.41666");
+  // A rod through the triangle's interior all along: no vertex-element or
+  // edge-edge contact ever, but the elements meet at the piece's start.
+  expect_rejected(load("pierce", "pierce-exact-false-safe"), "the elements meet at the start of the piece");
+  {  // A safe claim over the drop's contact at t = 1/2.
+    Case c = load("drop", "drop-exact");
+    json& ch = check0(c);
+    ch = {{"bodies", ch["bodies"]}, {"verdict", "safe"}, {"interval", ch["interval"]}, {"groups", ch["groups"]},
+          {"pieces", json::array({{{"t", {"0", "1"}}, {"proof", {{"exact", "no_contact"}}}}})}};
+    expect_rejected(c, "exact no-contact claim fails: elements 0 and 0: vertex 0 of the a element touches the polygon at u ~ 0.5");
+  }
+  {  // The piece widened to the contact time (touching at its closed end).
+    Case c = load("drop", "drop-exact");
+    check0(c)["pieces"][0]["t"][1] = "1/2";
+    check0(c)["before_witness"]["from"] = "1/2";
+    expect_rejected(c, "pieces[0] [0, 1/2]: proof (groups 0, 0): exact no-contact claim fails");
+  }
+  {  // ... and past it.
+    Case c = load("drop", "drop-exact");
+    check0(c)["pieces"][0]["t"][1] = "5/8";
+    check0(c)["before_witness"]["from"] = "5/8";
+    expect_rejected(c, "pieces[0] [0, 5/8]: proof (groups 0, 0): exact no-contact claim fails");
+  }
+  {  // Pieces up to the witness time, before_witness from there: the pieces fail.
+    Case c = load("drop", "drop-exact");
+    check0(c)["pieces"][0] = {{"t", {"0", "1/4"}}, {"proof", {{"sep", {"0", "0", "1"}}}}};
+    check0(c)["pieces"].push_back({{"t", {"1/4", "1/2"}}, {"proof", {{"sep", {"0", "0", "1"}}}}});
+    check0(c)["before_witness"]["from"] = "1/2";
+    expect_rejected(c, "separation fails at control point 1");
+  }
+  {  // A separation on [3/8, 1/2] is checked on the closed piece: it fails at 1/2.
+    Case c = load("drop", "drop-exact");
+    check0(c)["before_witness"]["proof"] = {{"sep", {"0", "0", "1"}}};
+    expect_rejected(c, "before_witness [3/8, witness): proof (groups 0, 0): separation fails at control point 1");
+  }
+  {  // The pieces must end where before_witness starts.
+    Case c = load("drop", "drop-exact");
+    check0(c)["before_witness"]["from"] = "1/4";
+    expect_rejected(c, "the pieces end at 3/8, not at before_witness.from = 1/4");
+  }
+  {  // Without before_witness the bracket [1/2, 1/2] is not proven.
+    Case c = load("drop", "drop-exact");
+    check0(c).erase("before_witness");
+    expect_rejected(c, "the pieces end at 3/8, not at lo = 1/2");
+  }
+  {  // Malformed leaves.
+    Case c = load("drop", "drop-exact");
+    check0(c)["pieces"][0]["proof"]["exact"] = "yes";
+    expect_malformed(c, "checks[0].pieces[0].proof.exact: expected \"no_contact\"");
+    Case d = load("drop", "drop-exact");
+    check0(d)["pieces"][0]["proof"]["sep"] = {"0", "0", "1"};
+    expect_malformed(d, "checks[0].pieces[0].proof: expected exactly one of \"sep\", \"split\" and \"exact\"");
+    Case e = load("drop", "drop-exact");
+    check0(e)["before_witness"].erase("from");
+    expect_malformed(e, "checks[0].before_witness.from: missing required field");
+  }
+}
+
 BOOST_AUTO_TEST_CASE(another_scene_is_rejected) {
   {
     Case c = load("drop", "probe-safe");  // same shape of scene, other bodies
@@ -450,7 +521,7 @@ BOOST_AUTO_TEST_CASE(malformed_certificates_are_input_errors) {
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = "nan"; }, "not a rational"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"]["sep"][0] = nullptr; }, "expected a rational"},
       {[](json& d) { d["checks"][0]["pieces"][0]["proof"] = {{"sep", {0, 0, 1}}, {"split", 0}}; },
-       "expected exactly one of \"sep\" and \"split\""},
+       "expected exactly one of \"sep\", \"split\" and \"exact\""},
       {[](json& d) { d["checks"][0]["pieces"][1]["proof"]["split"] = 2; }, "proof.split: 2 is out of range (0 or 1)"},
       {[](json& d) { d["checks"][0]["pieces"][1]["proof"]["split"] = -1; }, "out of range"},
       {[](json& d) { d["checks"][0]["pieces"][1]["proof"].erase("parts"); }, "proof.parts: missing required field"},
@@ -597,6 +668,7 @@ BOOST_AUTO_TEST_CASE(fuzzed_certificates_never_crash_nor_prove_false_claims) {
                                    "1/0", "0.5", "1e-3", "abc", "", 0.5, json::array(), json::object(),
                                    json::array({"0", "0", "1"}), json::array({0, 1}),
                                    json::array({"0", "1"}), json::object({{"sep", {"0", "0", "1"}}}),
+                                   json::object({{"exact", "no_contact"}}),
                                    json::object({{"elements", {0}}}), json::object({{"children", {1, 2}}}),
                                    "safe", "collision", "undecided", "a", "b", "123456789012345678901234567890/7"};
   int ok = 0, rejected = 0, malformed = 0;

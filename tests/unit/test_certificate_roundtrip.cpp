@@ -208,6 +208,44 @@ BOOST_AUTO_TEST_CASE(algebraic_witnesses_are_checked_exactly) {
   BOOST_TEST(rejected == tried);
 }
 
+// Exact first contacts (exact resolution) are certified with before_witness
+// (exact "no contact" claims before the witness time): the bracket is the
+// witness time itself (a rational t: [t, t]; an algebraic one: its
+// interval); the safe hover at 1e-17 needs an exact claim.  Without
+// before_witness, or with the bracket moved, they are rejected.
+BOOST_AUTO_TEST_CASE(exact_first_contacts_are_certified) {
+  int algebraic = 0, rational = 0;
+  for (const char* name : {"cubic-crossing-irrational", "crossing-at-one-third", "parallel-edges-sliding",
+                           "vertex-sliding-into-face", "edges-cross-at-sqrt-half", "grazing-touch-half"}) {
+    BOOST_TEST_CONTEXT(name) {
+      const Verified v = verified(data(std::string("scenes/") + name + ".json"));
+      BOOST_REQUIRE(v.result.checks[0].verdict == Verdict::Collision && v.result.checks[0].first_contact_exact);
+      BOOST_TEST(accepted(v, v.certificate));
+      const json& c = v.certificate["checks"][0];
+      BOOST_REQUIRE(c.contains("before_witness"));
+      const json& t = c["witness"]["t"];
+      if (t.is_object()) {
+        ++algebraic;
+        BOOST_TEST(c["first_contact"] == t["interval"]);
+      } else {
+        ++rational;
+        BOOST_TEST(c["first_contact"] == json::array({t, t}));
+      }
+      json altered = v.certificate;
+      altered["checks"][0].erase("before_witness");
+      BOOST_TEST(!accepted(v, altered));
+      altered = v.certificate;
+      altered["checks"][0]["before_witness"]["from"] = altered["checks"][0]["first_contact"][1];
+      BOOST_TEST(!accepted(v, altered));
+    }
+  }
+  BOOST_TEST(algebraic >= 2);
+  BOOST_TEST(rational >= 2);
+  const Verified hover = verified(data("scenes/hover-1e-17.json"));
+  BOOST_TEST(hover.certificate.dump().find("\"exact\":\"no_contact\"") != std::string::npos);
+  BOOST_TEST(accepted(hover, hover.certificate));
+}
+
 BOOST_AUTO_TEST_CASE(altered_certificates_are_rejected) {
   const Verified clear = verified(example("octagons-near.json"));
   // A rational witness (t = 1/3, with its exact point); octagons-collision's
