@@ -1,5 +1,7 @@
 #include "src/certificate/motions.h"
 
+#include "src/motion/chain.h"
+
 #include <gmp.h>
 #include <arb.h>
 #include <flint/fmpq.h>
@@ -109,7 +111,7 @@ std::optional<std::array<Exact, 4>> written_quaternion(const Rotation& r) {
 Q ball_quaternion(const std::array<Exact, 4>& q) { return {B(q[0]), B(q[1]), B(q[2]), B(q[3])}; }
 
 // The unit quaternion of the rotation (either sign).
-Q unit_quaternion(const Rotation& r) {
+Q ball_unit_quaternion(const Rotation& r) {
   if (const auto q = written_quaternion(r)) {
     const Q b = ball_quaternion(*q);
     const B n = bsqrt(qdot(b, b));
@@ -155,11 +157,11 @@ std::optional<BallPose> keyframe_pose(const MotionSegment& seg, const B& s) {
   const auto wa = written_quaternion(a.rotation), wb = written_quaternion(b.rotation);
   Q q0, q1;
   if (how == Interpolation::Nlerp) {
-    q0 = wa ? ball_quaternion(*wa) : unit_quaternion(a.rotation);
-    q1 = wb ? ball_quaternion(*wb) : unit_quaternion(b.rotation);
+    q0 = wa ? ball_quaternion(*wa) : ball_unit_quaternion(a.rotation);
+    q1 = wb ? ball_quaternion(*wb) : ball_unit_quaternion(b.rotation);
   } else {
-    q0 = unit_quaternion(a.rotation);
-    q1 = unit_quaternion(b.rotation);
+    q0 = ball_unit_quaternion(a.rotation);
+    q1 = ball_unit_quaternion(b.rotation);
   }
   // The shorter arc (nlerp's negation rule too): the sign of q0 . q1, exact
   // when both quaternions are, else certain from the balls.
@@ -236,6 +238,71 @@ std::optional<BallPose> keyframe_pose(const MotionSegment& seg, const B& s) {
   const V3 moved = mul(R0, local);
   for (int i = 0; i < 3; ++i) out.translation[i] = p0[i] + moved[i];
   return out;
+}
+
+// ---------------------------------------------------------------- robot links
+
+// [R | p] as balls.
+struct BallMat {
+  M3 r;
+  V3 p;
+};
+
+BallMat compose(const BallMat& a, const BallMat& b) {
+  BallMat out;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) out.r[3 * i + j] = a.r[3 * i] * b.r[j] + a.r[3 * i + 1] * b.r[3 + j] + a.r[3 * i + 2] * b.r[6 + j];
+    out.p[i] = a.r[3 * i] * b.p[0] + a.r[3 * i + 1] * b.p[1] + a.r[3 * i + 2] * b.p[2] + a.p[i];
+  }
+  return out;
+}
+
+BallMat pose_matrix(const Pose& pose) {
+  BallMat m;
+  if (pose.rotation.kind == Rotation::Kind::Matrix) {
+    for (int e = 0; e < 9; ++e) m.r[e] = B(pose.rotation.matrix[e]);
+  } else {
+    const Q q = ball_unit_quaternion(pose.rotation);
+    m.r = rotation_times_norm2(q);  // |q| = 1
+  }
+  for (int i = 0; i < 3; ++i) m.p[i] = B(pose.translation[i]);
+  return m;
+}
+
+// The link's pose C_0 J_1(q_1) C_1 ... J_n(q_n) C_n (src/motion/chain.h,
+// proofs/robot-links.md) with q_j = from_j + (to_j - from_j) s: each
+// constant the product of its poses, a revolute joint Rodrigues' rotation
+// I + sin(q) K + (1 - cos q) K^2 about the unit axis (K = [u]x), a
+// prismatic joint the translation q u.
+BallPose link_pose(const LinkMotion& link, const B& s) {
+  const LinkChain& chain = *link.chain;
+  const auto& constants = chain.constant_poses();
+  auto constant = [&](std::size_t k) {
+    BallMat c{{B(1), B(0), B(0), B(0), B(1), B(0), B(0), B(0), B(1)}, {B(0), B(0), B(0)}};
+    for (const Pose& p : constants[k]) c = compose(c, pose_matrix(p));
+    return c;
+  };
+  BallMat m = constant(0);
+  for (std::size_t j = 0; j < chain.joint_count(); ++j) {
+    const ChainJoint& joint = chain.joint(j);
+    const B q = B(link.from[j]) + (B(link.to[j]) - B(link.from[j])) * s;
+    const B n = bsqrt(B(joint.axis[0]) * B(joint.axis[0]) + B(joint.axis[1]) * B(joint.axis[1]) +
+                      B(joint.axis[2]) * B(joint.axis[2]));
+    const V3 u{B(joint.axis[0]) / n, B(joint.axis[1]) / n, B(joint.axis[2]) / n};
+    BallMat J{{B(1), B(0), B(0), B(0), B(1), B(0), B(0), B(0), B(1)}, {B(0), B(0), B(0)}};
+    if (joint.kind == ChainJoint::Kind::Prismatic) {
+      for (int i = 0; i < 3; ++i) J.p[i] = q * u[i];
+    } else {
+      const M3 K{B(0), -u[2], u[1], u[2], B(0), -u[0], -u[1], u[0], B(0)};
+      M3 K2;
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) K2[3 * i + k] = u[i] * u[k] - B(i == k ? 1 : 0);  // [u]x^2 = u u^T - I
+      const B sn = bsin(q), vc = B(1) - bcos(q);
+      for (int e = 0; e < 9; ++e) J.r[e] = J.r[e] + sn * K[e] + vc * K2[e];
+    }
+    m = compose(compose(m, J), constant(j + 1));
+  }
+  return BallPose{m.r, m.p};
 }
 
 // The box of a ball pose: the ends rounded outward to doubles, the center
@@ -377,12 +444,9 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
       out.exact = restrict(*seg->rational, ta, tb);
       return out;
     }
-    if (seg->link) {  // a robot link in joint space: not modelled by the checker
-      why = "\"" + body.name + "\" is a robot link moving in joint space, which certificates do not model";
-      return std::nullopt;
-    }
     const Exact span = seg->t1 - seg->t0;
-    const auto pose = keyframe_pose(*seg, interval((ta - seg->t0) / span, (tb - seg->t0) / span));
+    const B s = interval((ta - seg->t0) / span, (tb - seg->t0) / span);
+    const auto pose = seg->link ? std::optional<BallPose>(link_pose(*seg->link, s)) : keyframe_pose(*seg, s);
     std::optional<PoseBox> box;
     if (pose) box = to_box(*pose);
     if (!box) {
@@ -423,7 +487,11 @@ std::optional<Mat34E> exact_pose_at(const Body& body, const Exact& t) {
     const MotionSegment* seg = segment_over(*body.trajectory, t, t);
     if (!seg) return std::nullopt;
     if (seg->rational) return evaluate(*seg->rational, t);
-    if (seg->link) return std::nullopt;
+    if (seg->link) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
+      if (t == seg->t0) return seg->link->chain->exact_pose(seg->link->from);
+      if (t == seg->t1) return seg->link->chain->exact_pose(seg->link->to);
+      return std::nullopt;
+    }
     if (t == seg->t0) return exact_keyframe(seg->from);
     if (t == seg->t1) return exact_keyframe(seg->to);
     return std::nullopt;
@@ -437,9 +505,9 @@ std::optional<PoseBox> pose_box_at(const Body& body, const Exact& t) {
   if (const auto m = exact_pose_at(body, t)) return exact_box(*m);
   if (!body.trajectory) return std::nullopt;
   const MotionSegment* seg = segment_over(*body.trajectory, t, t);
-  if (!seg || seg->rational || seg->link) return std::nullopt;
+  if (!seg || seg->rational) return std::nullopt;
   const Exact s = (t - seg->t0) / (seg->t1 - seg->t0);
-  const auto pose = keyframe_pose(*seg, B(s));
+  const auto pose = seg->link ? std::optional<BallPose>(link_pose(*seg->link, B(s))) : keyframe_pose(*seg, B(s));
   if (!pose) return std::nullopt;
   return to_box(*pose);
 }

@@ -1060,13 +1060,6 @@ struct CheckWriter {
 }  // namespace
 
 std::string uncertifiable(const Scene& scene) {
-  // Robot links moving in joint space (src/motion/chain.h) are enclosed
-  // motions the checker does not model yet (a segment where only prismatic
-  // joints move is rational and is covered).
-  for (const Body& b : scene.bodies)
-    if (b.trajectory && std::any_of(b.trajectory->segments.begin(), b.trajectory->segments.end(),
-                                    [](const MotionSegment& seg) { return seg.link != nullptr && !seg.rational; }))
-      return "body \"" + b.name + "\" is a robot link moving in joint space (an enclosed motion, not one rational Bezier curve)";
   // Start claims place the other body's vertices exactly at the start: a
   // check with a solid body needs exact poses of both bodies there (a
   // keyframe motion starting at an rpy rotation has none).

@@ -44,7 +44,7 @@ void sincos(const Jet& a, Jet& s, Jet& one_minus_c) {
 
 }  // namespace
 
-LinkChain::LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints) {
+LinkChain::LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints) : constant_poses_(constants) {
   if (constants.size() != joints.size() + 1) throw std::invalid_argument("LinkChain: constants.size() != joints + 1");
   RoundingGuard guard;
   for (const std::vector<Pose>& list : constants) {

@@ -36,6 +36,9 @@ class LinkChain {
   LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints);
 
   std::size_t joint_count() const { return joints_.size(); }
+  // The constant poses as given (C_k is the product of its list, left to
+  // right), for independent evaluations (the certificate checker).
+  const std::vector<std::vector<Pose>>& constant_poses() const { return constant_poses_; }
   const ChainJoint& joint(std::size_t j) const { return joints_[j].joint; }
 
   // The exact pose at joint values q (one per joint), when it is exact:
@@ -65,6 +68,7 @@ class LinkChain {
     std::array<Interval, 9> cross;        // [u]x, rows
     std::array<Interval, 9> cross2;       // [u]x^2 = u u^T - I, from exact axis data
   };
+  std::vector<std::vector<Pose>> constant_poses_;
   std::vector<Constant> constants_;
   std::vector<Prepared> joints_;
 };

@@ -196,16 +196,24 @@ fi
 # 4. Round trip: every scene with a known verdict, verified with
 #    --certificate (same verdict and exit code as without), and the
 #    certificate re-checked by `tmcert check` (exit 0, same verdict proven).
-# Scenes listed in DATA/scenes/UNCERTIFIABLE ("<file><TAB><substring>"):
+# Scenes listed in DATA/scenes/UNCERTIFIABLE or EXAMPLES/robot/UNCERTIFIABLE ("<file><TAB><substring>"):
 # `verify --certificate` must be refused (exit 3, nothing on stdout, the
 # substring on stderr); they take no part in the round trip.
-uncertifiable="$data/scenes/UNCERTIFIABLE"
+uncertifiable_lists=("$data/scenes/UNCERTIFIABLE" "$examples/robot/UNCERTIFIABLE")
 expect_no_certificate() { expect_refusal "$2" verify "$1" --certificate "$work/refused.cert.json"; }
-if [ -f "$uncertifiable" ]; then
-  for_each_line "$uncertifiable" expect_no_certificate
-fi
+for list in "${uncertifiable_lists[@]}"; do
+  if [ -f "$list" ]; then for_each_line "$list" expect_no_certificate; fi
+done
 is_uncertifiable() {
-  [ -f "$uncertifiable" ] && cut -f1 "$uncertifiable" | grep -qxF -- "$(basename "$1")"
+  local scene=$1 list entry rest
+  for list in "${uncertifiable_lists[@]}"; do
+    [ -f "$list" ] || continue
+    while IFS=$'\t' read -r entry rest || [ -n "$entry" ]; do
+      case "$entry" in '' | '#'*) continue ;; esac
+      if [ "$scene" = "$(dirname "$list")/$entry" ]; then return 0; fi
+    done <"$list"
+  done
+  return 1
 }
 
 expect_round_trip() {

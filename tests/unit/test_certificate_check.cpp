@@ -8,6 +8,7 @@
 // evaluation paths are checked against hand values and brute force.
 #include "src/certificate/check.h"
 #include "src/certificate/motions.h"
+#include "src/motion/chain.h"
 #include "src/motion/segment.h"
 #include "src/scene/parse.h"
 
@@ -814,6 +815,65 @@ BOOST_AUTO_TEST_CASE(screw_enclosure_matches_the_verifiers) {
     }
   }
   BOOST_TEST(compared == 3 * 3 * 5 * 12);
+}
+
+// The same for robot links: the checker's product of Rodrigues rotations
+// and the verifier's sparse chain jets (src/motion/chain.*) on a chain with
+// rpy and quaternion constants, two revolute joints (one axis not of unit
+// length) and a prismatic one.
+BOOST_AUTO_TEST_CASE(link_enclosure_matches_the_verifiers) {
+  auto pose = [&](const char* x, const char* y, const char* z, std::array<const char*, 3> rpy) {
+    Pose p;
+    p.translation = v(x, y, z);
+    p.rotation.kind = Rotation::Kind::Rpy;
+    p.rotation.rpy = {q(rpy[0]), q(rpy[1]), q(rpy[2])};
+    return p;
+  };
+  Pose quat;
+  quat.translation = v("0", "0.1", "0.3");
+  quat.rotation.kind = Rotation::Kind::Quaternion;
+  quat.rotation.quaternion = {q("3"), q("1"), q("0"), q("-2")};
+  std::vector<std::vector<Pose>> constants = {{pose("0", "0", "0.8", {"0", "0", "0.4"})},
+                                              {pose("0.2", "0", "0.5", {"0.1", "-0.3", "0"}), quat},
+                                              {pose("0.6", "0", "0", {"0", "0", "0"})},
+                                              {pose("0", "0.05", "0.2", {"0.7", "0", "-0.2"})}};
+  std::vector<ChainJoint> joints(3);
+  joints[0].axis = v("0", "0", "1");
+  joints[1].axis = v("0", "2", "1");  // length sqrt 5
+  joints[2].kind = ChainJoint::Kind::Prismatic;
+  joints[2].axis = v("1", "0", "0");
+  auto link = std::make_shared<LinkMotion>();
+  link->chain = std::make_shared<const LinkChain>(constants, joints);
+  link->from = {q("-0.5"), q("0.25"), q("0")};
+  link->to = {q("1.2"), q("-0.75"), q("0.3")};
+  MotionSegment seg;
+  seg.t0 = 0;
+  seg.t1 = 1;
+  seg.link = link;
+  Body body;
+  body.name = "link";
+  body.trajectory = Trajectory{{seg}};
+  const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
+  int compared = 0;
+  for (const char* st : {"0", "1/3", "0.5", "0.77", "1"}) {
+    const Exact s = q(st);
+    const std::optional<cert::PoseBox> box = cert::pose_box_at(body, s);
+    BOOST_REQUIRE(box);
+    PoseJet jet;
+    {
+      RoundingGuard guard;
+      jet = model->pose(Jet(to_interval(s)));
+    }
+    for (int e = 0; e < 12; ++e) {
+      const double lo = CGAL::to_double(box->center[e] - box->radius[e]);
+      const double hi = CGAL::to_double(box->center[e] + box->radius[e]);
+      BOOST_TEST(hi - lo < 1e-12);
+      BOOST_TEST((jet[e].v.inf() <= hi && lo <= jet[e].v.sup()),
+                 "s = " << st << " entry " << e << ": checker [" << lo << ", " << hi << "], verifier " << jet[e].v);
+      ++compared;
+    }
+  }
+  BOOST_TEST(compared == 5 * 12);
 }
 
 BOOST_AUTO_TEST_CASE(joint_curve_by_hand) {
