@@ -760,6 +760,29 @@ BOOST_AUTO_TEST_CASE(scenes_that_cannot_be_certified) {
   expect_malformed(c, "two moving bodies must share their motion interval");
 }
 
+// The checker's pose box of `body` at scene time t and the verifier's jet
+// of `model` at segment parameter s: both tight, overlapping in every
+// entry; returns the entries compared.
+int compare_pose_enclosures(const Body& body, const SegmentModel& model, const Exact& t, const Exact& s,
+                            const std::string& what) {
+  const std::optional<cert::PoseBox> box = cert::pose_box_at(body, t);
+  BOOST_REQUIRE(box);
+  PoseJet jet;
+  {
+    RoundingGuard guard;
+    jet = model.pose(Jet(to_interval(s)));
+  }
+  for (int e = 0; e < 12; ++e) {
+    const double lo = CGAL::to_double(box->center[e] - box->radius[e]);
+    const double hi = CGAL::to_double(box->center[e] + box->radius[e]);
+    BOOST_TEST(hi - lo < 1e-12);
+    BOOST_TEST(jet[e].v.sup() - jet[e].v.inf() < 1e-9);
+    BOOST_TEST((jet[e].v.inf() <= hi && lo <= jet[e].v.sup()),
+               what << " entry " << e << ": checker [" << lo << ", " << hi << "], verifier " << jet[e].v);
+  }
+  return 12;
+}
+
 // The checker's pose boxes (src/certificate/motions.cpp, Arb from the
 // interpolations' definitions; the screw through V(phi)^-1) and the
 // verifier's jets (src/motion/segment.cpp; the screw through a point on its
@@ -792,26 +815,10 @@ BOOST_AUTO_TEST_CASE(screw_enclosure_matches_the_verifiers) {
       body.name = "b";
       body.trajectory = Trajectory{{seg}};
       const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
-      for (const char* st : {"0", "1/7", "1/2", "0.9", "1"}) {
-        const Exact s = q(st);
-        const std::optional<cert::PoseBox> box = cert::pose_box_at(body, s * 2);
-        BOOST_REQUIRE(box);
-        PoseJet jet;
-        {
-          RoundingGuard guard;
-          jet = model->pose(Jet(to_interval(s)));
-        }
-        for (int e = 0; e < 12; ++e) {
-          const double lo = CGAL::to_double(box->center[e] - box->radius[e]);
-          const double hi = CGAL::to_double(box->center[e] + box->radius[e]);
-          BOOST_TEST(hi - lo < 1e-12);
-          BOOST_TEST(jet[e].v.sup() - jet[e].v.inf() < 1e-9);
-          BOOST_TEST((jet[e].v.inf() <= hi + 1e-15 && lo - 1e-15 <= jet[e].v.sup()),
-                     "interpolation " << static_cast<int>(how) << " variant " << variant << " s = " << st << " entry "
-                                      << e << ": checker [" << lo << ", " << hi << "], verifier " << jet[e].v);
-          ++compared;
-        }
-      }
+      for (const char* st : {"0", "1/7", "1/2", "0.9", "1"})
+        compared += compare_pose_enclosures(body, *model, q(st) * 2, q(st),
+                                            "interpolation " + std::to_string(static_cast<int>(how)) + " variant " +
+                                                std::to_string(variant) + " s = " + st);
     }
   }
   BOOST_TEST(compared == 3 * 3 * 5 * 12);
@@ -855,24 +862,8 @@ BOOST_AUTO_TEST_CASE(link_enclosure_matches_the_verifiers) {
   body.trajectory = Trajectory{{seg}};
   const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
   int compared = 0;
-  for (const char* st : {"0", "1/3", "0.5", "0.77", "1"}) {
-    const Exact s = q(st);
-    const std::optional<cert::PoseBox> box = cert::pose_box_at(body, s);
-    BOOST_REQUIRE(box);
-    PoseJet jet;
-    {
-      RoundingGuard guard;
-      jet = model->pose(Jet(to_interval(s)));
-    }
-    for (int e = 0; e < 12; ++e) {
-      const double lo = CGAL::to_double(box->center[e] - box->radius[e]);
-      const double hi = CGAL::to_double(box->center[e] + box->radius[e]);
-      BOOST_TEST(hi - lo < 1e-12);
-      BOOST_TEST((jet[e].v.inf() <= hi && lo <= jet[e].v.sup()),
-                 "s = " << st << " entry " << e << ": checker [" << lo << ", " << hi << "], verifier " << jet[e].v);
-      ++compared;
-    }
-  }
+  for (const char* st : {"0", "1/3", "0.5", "0.77", "1"})
+    compared += compare_pose_enclosures(body, *model, q(st), q(st), std::string("link s = ") + st);
   BOOST_TEST(compared == 5 * 12);
 }
 
