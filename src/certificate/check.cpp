@@ -721,6 +721,7 @@ struct PieceInts {
   std::vector<Z> v;  // 24 per control point
   std::size_t count = 0;
   std::vector<Exact> q, w;  // Q_l and W_l per control point
+  std::vector<Z> qz;        // Q_l as integers
 };
 
 PieceInts integer_control_points(const std::vector<CP>& c) {
@@ -735,6 +736,7 @@ PieceInts integer_control_points(const std::vector<CP>& c) {
     mpz_set_ui(q.v, 1);
     for (int e = 0; e < 24; ++e) mpz_lcm(q.v, q.v, den(c[l][e]));
     out.q.push_back(from_z(q.v, Z(1).v));
+    out.qz.push_back(q);
     out.w.push_back(c[l][24]);
     for (int e = 0; e < 24; ++e) {
       mpz_divexact(f.v, q.v, den(c[l][e]));
@@ -1588,6 +1590,10 @@ class Checker {
     // sum_i |n_i| penalty_i to spare (penalty: the pose boxes' radii).
     bool margins = false;
     std::array<Exact, 3> penalty{Exact(0), Exact(0), Exact(0)};
+    // The penalty as integers over one positive denominator (the integer
+    // path when there is no margin).
+    std::array<Z, 3> penalty_num;
+    Z penalty_den{1};
     Exact ua, ub;                     // the piece in curve parameters
     const RealRoot* before = nullptr;  // before_witness: the claims hold before this time only
   };
@@ -1639,6 +1645,12 @@ class Checker {
     }
     pc.ints = integer_control_points(curve);
     pc.margins = ctx.margin > 0 || sgn(pc.penalty[0]) != 0 || sgn(pc.penalty[1]) != 0 || sgn(pc.penalty[2]) != 0;
+    for (int i = 0; i < 3; ++i) mpz_lcm(pc.penalty_den.v, pc.penalty_den.v, den(pc.penalty[i]));
+    Z f;
+    for (int i = 0; i < 3; ++i) {
+      mpz_divexact(f.v, pc.penalty_den.v, den(pc.penalty[i]));
+      mpz_mul(pc.penalty_num[i].v, num(pc.penalty[i]), f.v);
+    }
   }
 
   // ------------------------------------------------------------ exact claims
@@ -1819,6 +1831,20 @@ class Checker {
       mpz_mul(lhs.v, t.v, ctx.dadb.v);
       mpz_addmul(lhs.v, cb.D.v, mina.v);
       mpz_addmul(lhs.v, ca.D.v, minb.v);
+      if (pc.margins && sgn(ctx.margin) == 0) {
+        // Only the penalty, in integers: lhs den > D_a D_b Q_l sum_r |ñ_r| num_r
+        // (the rational condition below, times den > 0).
+        mpz_set_ui(t.v, 0);
+        for (int r = 0; r < 3; ++r) {
+          mpz_abs(f.v, nn[r].v);
+          mpz_addmul(t.v, f.v, pc.penalty_num[r].v);
+        }
+        mpz_mul(t.v, t.v, ctx.dadb.v);
+        mpz_mul(t.v, t.v, pc.ints.qz[l].v);
+        mpz_mul(f.v, lhs.v, pc.penalty_den.v);
+        if (mpz_cmp(f.v, t.v) <= 0) return static_cast<int>(l);
+        continue;
+      }
       if (pc.margins) {
         // lhs = D_a D_b L Q_l (gap); the claim needs
         // gap > W_l |n| margin + sum_i |n_i| penalty_i, i.e.
