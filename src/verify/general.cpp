@@ -130,7 +130,7 @@ void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const 
 
 }  // namespace
 
-CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const {
+CheckResult Verifier::check_general(int a, int b, const Exact& clearance, const VerifyOptions& options) const {
   const auto started = std::chrono::steady_clock::now();
   CheckResult result;
   result.bodies = {a, b};
@@ -208,8 +208,15 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const 
     const PartMotion pm = part_motion(mb, t0, t1);
     const PartMotion po = two ? part_motion(ob, t0, t1) : PartMotion{};
     CheckResult part;
-    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options_, tube, e2, part);
-    else run_part<1>(m, o, swapped, pm, po, t0, t1, options_, tube, e1, part);
+    if (past_deadline(options)) {
+      // Time limit: the parts not yet searched are undecided, not cleared.
+      part.undecided.push_back({t0, interval.second, StopReason::Limit});
+      part.first_contact = std::pair{t0, interval.second};
+      detail::merge_result(result, part);
+      break;
+    }
+    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options, tube, e2, part);
+    else run_part<1>(m, o, swapped, pm, po, t0, t1, options, tube, e1, part);
     // A part cleared entirely proves the join after it free: the next part
     // needs no start check there.
     e1.start_proven_free = e2.start_proven_free = part.undecided.empty() && !part.witness;
