@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages tmcert needs, and only those that are missing.
 # Idempotent; needs root (or sudo) only when something is missing.
+#   bash scripts/deps.sh        what make, make test and make demo need
+#   bash scripts/deps.sh fuzz   also clang and its libFuzzer runtime (make fuzz,
+#                               tests/fuzz/README.md)
 set -euo pipefail
 
 packages=(
@@ -11,6 +14,10 @@ packages=(
   libflint-arb-dev
   libfcl-dev            # only for bench/planner_path.cpp (FCL, the planners' checker)
 )
+if [ "${1:-}" = "fuzz" ]; then
+  # libFuzzer (-fsanitize=fuzzer) comes with clang's compiler-rt.
+  packages+=(clang libclang-rt-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
