@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages tmcert needs, and only those that are missing.
 # Idempotent; needs root (or sudo) only when something is missing.
+#   bash scripts/deps.sh        what make, make test and make demo need
+#   bash scripts/deps.sh fuzz   also clang and its libFuzzer runtime (make fuzz,
+#                               tests/fuzz/README.md)
 set -euo pipefail
 
 packages=(
@@ -14,6 +17,10 @@ packages=(
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples
 )
+if [ "${1:-}" = "fuzz" ]; then
+  # libFuzzer (-fsanitize=fuzzer) comes with clang's compiler-rt.
+  packages+=(clang libclang-rt-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

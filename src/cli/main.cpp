@@ -1,5 +1,6 @@
 // tmcert command line (SCENE_FORMAT.md): exit 0 safe, 1 collision,
 // 2 undecided, 3 bad input or usage, 4 internal error or resource limit.
+#include "kernels/allocation.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/report.h"
@@ -10,8 +11,11 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -46,6 +50,7 @@ struct VerifyArgs {
   std::string certificate;
   int threads = 1;
   bool all_pairs = false;
+  std::string time_limit;  // seconds per check; empty: none
 };
 
 // Progress on stderr for runs longer than about two seconds, only when
@@ -91,6 +96,17 @@ int run_verify(const VerifyArgs& args) {
   }
   options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
   options.hierarchy = !args.all_pairs;
+  if (!args.time_limit.empty()) {
+    // A positive, finite number of seconds, at most 10^9 (about 31 years).
+    const char* text = args.time_limit.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double seconds = std::strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(seconds) || !(seconds > 0) ||
+        seconds > 1e9)
+      throw InputError("--time-limit: must be a number of seconds, > 0 and at most 1e9, got '" + args.time_limit + "'");
+    options.time_limit = seconds;
+  }
   options.record_cover = !args.certificate.empty();
   if (options.record_cover && options.kernel == KernelKind::Fast)
     throw InputError("--certificate: the fast kernel is not certified; use --kernel filtered or exact");
@@ -146,6 +162,7 @@ int run_certificate_check(const std::string& certificate_file, const std::string
 }  // namespace
 
 int main(int argc, char** argv) {
+  tmcert::install_allocation_failure_handlers();
   CLI::App app{"tmcert: certified collision checks of moving polyhedra"};
   app.set_version_flag("--version", "tmcert 0.1.0");
   app.require_subcommand(1);
@@ -160,6 +177,9 @@ int main(int argc, char** argv) {
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
   verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
+  verify->add_option("--time-limit", args.time_limit,
+                     "seconds per check; when a check runs past it, the rest of its interval is undecided "
+                     "(reason limit), never safe");
   verify->add_flag("--all-pairs", args.all_pairs,
                    "carry every feature pair from the start instead of the bounding-volume hierarchies "
                    "(the reference the hierarchy is tested against; slow for large bodies)");
@@ -168,6 +188,11 @@ int main(int argc, char** argv) {
   std::string cert_file, cert_scene;
   check->add_option("certificate", cert_file, "certificate file (tmcert-certificate/1)")->required();
   check->add_option("scene", cert_scene, "the scene it certifies (tmcert-scene/1)")->required();
+  unsigned long long memory_limit = 0;
+  for (CLI::App* sub : {verify, check})
+    sub->add_option("--memory-limit", memory_limit,
+                    "address space of the process in MiB; beyond it: out of memory, exit 4, no verdict")
+        ->check(CLI::Range(1ull, 1ull << 40));
 
   try {
     app.parse(argc, argv);
@@ -178,6 +203,10 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
+  if (memory_limit && !tmcert::limit_address_space(memory_limit)) {
+    std::cerr << "tmcert: --memory-limit: the system refuses a limit of " << memory_limit << " MiB\n";
+    return kExitBadInput;
+  }
   try {
     if (check->parsed()) return run_certificate_check(cert_file, cert_scene);
     return run_verify(args);

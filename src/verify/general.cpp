@@ -131,8 +131,8 @@ void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const 
 
 }  // namespace
 
-CheckResult Verifier::check_general(int a, int b, const Exact& clearance) const {
-  return detail::check_prepared_pair(prepared(a), prepared(b), {a, b}, clearance, options_);
+CheckResult Verifier::check_general(int a, int b, const Exact& clearance, const VerifyOptions& options) const {
+  return detail::check_prepared_pair(prepared(a), prepared(b), {a, b}, clearance, options);
 }
 
 CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
@@ -218,6 +218,13 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
     const PartMotion pm = part_motion(mb, t0, t1);
     const PartMotion po = two ? part_motion(ob, t0, t1) : PartMotion{};
     CheckResult part;
+    if (past_deadline(options)) {
+      // Time limit: the parts not yet searched are undecided, not cleared.
+      part.undecided.push_back({t0, interval.second, StopReason::Limit});
+      part.first_contact = std::pair{t0, interval.second};
+      detail::merge_result(result, part);
+      break;
+    }
     if (two) run_part<2>(m, o, false, pm, po, t0, t1, options, tube, e2, part);
     else run_part<1>(m, o, swapped, pm, po, t0, t1, options, tube, e1, part);
     if (options.record_cover)  // the part's pieces as scene intervals, for certificates

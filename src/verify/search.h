@@ -1017,7 +1017,8 @@ struct Check {
     while (!stack.empty()) {
       Item<Policy> item = std::move(stack.back());
       stack.pop_back();
-      if (result.stats.nodes >= limit || result.stats.stops >= stop_limit) {  // resource limit: not cleared
+      if (result.stats.nodes >= limit || result.stats.stops >= stop_limit ||
+          past_deadline(options)) {  // resource limit (nodes, stops, time): not cleared
         record(item.node, StopReason::Limit);
         continue;
       }
@@ -1063,7 +1064,7 @@ struct Check {
         Item<Policy> item = std::move(stack.back());
         stack.pop_back();
         if (item.node.depth >= kTaskDepth || result.stats.nodes >= options.max_nodes ||
-            result.stats.stops >= options.max_stops) {
+            result.stats.stops >= options.max_stops || past_deadline(options)) {
           entries.push_back({std::move(item), {}});
           continue;
         }

@@ -344,6 +344,12 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
                      "\"]: two moving bodies must share their motion interval");
   const Body& x = scene_.bodies[a];
   const Body& y = scene_.bodies[b];
+  // The time limit counts from here, per check.
+  VerifyOptions options = options_;
+  if (options.time_limit > 0)
+    options.deadline = std::chrono::steady_clock::now() +
+                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(options.time_limit));
   const bool general = x.trajectory || y.trajectory || x.tolerance > 0 || y.tolerance > 0 || clearance > 0;
   // The boxes hold everything the bodies sweep (keyframe motions included);
   // tolerances have none, and a clearance needs more than disjointness.
@@ -401,8 +407,8 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
       }
     }
   }
-  if (general) return check_general(a, b, clearance);
-  return run_check(a, b, prepared(a), prepared(b), options_);
+  if (general) return check_general(a, b, clearance, options);
+  return run_check(a, b, prepared(a), prepared(b), options);
 }
 
 

@@ -5,6 +5,7 @@
 #include "kernels/filtered.h"
 #include "src/scene/model.h"
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <ostream>
@@ -40,6 +41,14 @@ struct VerifyOptions {
   // everywhere; the verdict is undecided from the first stop on anyway, and
   // the first-contact bracket comes from the first stop.
   std::uint64_t max_stops = 256;
+  // Per check, in seconds (0: none; `tmcert verify --time-limit`).  When a
+  // check runs past it, the pieces not yet searched are undecided "limit",
+  // never cleared: the search looks at the clock where it counts its node
+  // budget.  With a time limit the result depends on the machine's speed.
+  double time_limit = 0;
+  // The running check's deadline (set by Verifier from time_limit when the
+  // check starts; max(): none).
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   // Bounding-volume hierarchies over the features (false: every feature pair
   // is carried from the root, the reference the hierarchy is checked against).
   bool hierarchy = true;
@@ -66,6 +75,12 @@ struct AlgebraicTime {
   Exact lo, hi;
   std::string approx;  // decimal, for people
 };
+
+// The check's deadline has passed (VerifyOptions::time_limit).
+inline bool past_deadline(const VerifyOptions& options) {
+  return options.deadline != std::chrono::steady_clock::time_point::max() &&
+         std::chrono::steady_clock::now() >= options.deadline;
+}
 
 struct Witness {
   Exact t;                                  // scene parameter (with `root`: the lower end of its interval)
@@ -196,7 +211,7 @@ class Verifier {
   // Checks with a keyframe or piecewise motion, a tolerance or a clearance:
   // the parameter interval cut at every segment join, each part searched in
   // order (src/verify/general.cpp).
-  CheckResult check_general(int body_a, int body_b, const Exact& clearance) const;
+  CheckResult check_general(int body_a, int body_b, const Exact& clearance, const VerifyOptions& options) const;
   // A solid body's surface at the start parameter (null when its pose there
   // is singular), built once; the start vertices of a body's components.
   const ClosedSurface* start_surface(int body) const;

@@ -300,5 +300,45 @@ if [ -f "$sc/planner-tolerance-collision.json" ]; then
     "'root_of' in w['t'] and 'point' not in w and F(w['point_box'][0][0]) <= 1 <= F(w['point_box'][0][1]) and c['first_contact']['t'][0] == c['first_contact']['t'][1]"
 fi
 
+# 6. Resource limits (docs/scene-format.md "Limits", "--time-limit"): a
+#    check past its time limit is undecided with reason "limit" (exit 2),
+#    never safe; running out of memory is exit 4 with no verdict.
+expect_refusal "--time-limit" verify "$good" --time-limit 0
+expect_refusal "--time-limit" verify "$good" --time-limit -1
+expect_refusal "--time-limit" verify "$good" --time-limit nan
+expect_refusal "--time-limit" verify "$good" --time-limit inf
+expect_refusal "--time-limit" verify "$good" --time-limit 1e10
+expect_refusal "--time-limit" verify "$good" --time-limit 2s
+expect_refusal "--memory-limit" verify "$good" --memory-limit 0
+slow="$examples/octagons-near.json"
+run 60 "$tmcert" verify "$slow" --json
+base=$?
+run 60 "$tmcert" verify "$slow" --json --time-limit 1e-9
+code=$?
+if [ "$base" -ne 0 ]; then
+  fail "tmcert verify $slow: exit code $base without a time limit, expected 0 (safe)"
+elif [ "$code" -ne 2 ]; then
+  fail "tmcert verify $slow --time-limit 1e-9: exit code $code, expected 2 (undecided)"
+elif ! grep -q '"reason": *"limit"' "$work/out" || ! grep -q '"verdict": *"undecided"' "$work/out"; then
+  fail "tmcert verify $slow --time-limit 1e-9: no undecided interval with reason limit"
+else
+  pass
+fi
+# Address space limits do not work under AddressSanitizer (its shadow
+# memory); the sanitizer stage of make test sets TMCERT_SANITIZED.
+if [ -z "${TMCERT_SANITIZED:-}" ]; then
+  run 60 "$tmcert" verify "$slow" --memory-limit 16
+  code=$?
+  if [ "$code" -ne 4 ]; then
+    fail "tmcert verify $slow --memory-limit 16: exit code $code, expected 4"
+  elif [ -s "$work/out" ]; then
+    fail "tmcert verify $slow --memory-limit 16: output on stdout with exit code 4"
+  elif ! grep -q "out of memory" "$work/err"; then
+    fail "tmcert verify $slow --memory-limit 16: stderr does not say out of memory"
+  else
+    pass
+  fi
+fi
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
