@@ -51,8 +51,6 @@ std::array<double, 3> rounded(const std::array<double, 3>& n) {
 
 const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
-bool moves(const Body& b) { return b.motion && b.motion->degree() >= 1; }
-
 Motion motion_or_identity(const Body& b) {
   if (b.motion) return *b.motion;
   Motion m;
