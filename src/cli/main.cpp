@@ -124,13 +124,14 @@ int run_verify(const VerifyArgs& args) {
   progress.reset();  // erases the progress line before the result is printed
   if (!args.certificate.empty()) {
     // Written before the verdict is printed: a certificate that cannot be
-    // written is an error (exit 4), not a verdict without its proof.
+    // written is bad input (a bad output path, exit 3), not a verdict
+    // without its proof.
     certificate::WriteStats stats;
     const std::string document = certificate::certificate_json(scene, result, &stats);
     std::ofstream out(args.certificate, std::ios::binary);
     out << document;
     out.close();
-    if (!out) throw std::runtime_error("--certificate: cannot write '" + args.certificate + "'");
+    if (!out) throw InputError("--certificate: cannot write '" + args.certificate + "'");
     std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
               << stats.separations << " separations, " << stats.seconds << " s)\n";
   }

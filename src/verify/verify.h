@@ -182,8 +182,9 @@ struct SceneResult {
 // motion, which bounds everything the bodies sweep.
 Exact default_epsilon(const Scene& scene);
 
-// Throws InputError when a check cannot be run by this version (two moving
-// bodies).  Called before any verdict is printed.
+// Throws InputError when the scene cannot be verified as built in code (a
+// solid that is not closed shells, nothing to check).  Called before any
+// verdict is printed.
 void require_supported(const Scene& scene);
 
 class PreparedBody;

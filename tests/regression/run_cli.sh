@@ -191,6 +191,9 @@ if [ -d "$certs" ]; then
   expect_check 3 "does-not-exist.cert.json" "$certs/does-not-exist.cert.json" "$certs/probe-safe.json"
   expect_check 3 "does-not-exist.json" "$certs/probe-safe.cert.json" "$data/bad/does-not-exist.json"
   expect_check 3 "scene" "$certs/probe-safe.cert.json"
+  # A certificate path that cannot be written is bad input (exit 3), never
+  # a verdict printed without its proof.
+  expect_refusal "--certificate: cannot write" verify "$examples/octagons-near.json" --certificate "$work/no-such-dir/near.cert"
 fi
 
 # 4. Round trip: every scene with a known verdict, verified with
