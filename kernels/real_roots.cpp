@@ -99,9 +99,6 @@ std::pair<Exact, Exact> exact_range(const PolyZ& q, const Exact& lo, const Exact
   return {a, b};
 }
 
-// The sign of q over [lo, hi] when it is the same everywhere there and
-// proven so (ZERO when not proven): a double interval filter, then exact
-// rational intervals.
 // The double interval filter of range_sign alone.
 CGAL::Sign range_sign_double(const PolyZ& q, const Exact& lo, const Exact& hi) {
   RoundingGuard guard;
@@ -113,15 +110,11 @@ CGAL::Sign range_sign_double(const PolyZ& q, const Exact& lo, const Exact& hi) {
   return CGAL::ZERO;
 }
 
+// The sign of q over [lo, hi] when it is the same everywhere there and
+// proven so (ZERO when not proven): a double interval filter, then exact
+// rational intervals.
 CGAL::Sign range_sign(const PolyZ& q, const Exact& lo, const Exact& hi) {
-  {
-    RoundingGuard guard;
-    const Interval x(to_interval(lo).inf(), to_interval(hi).sup());  // lo <= hi
-    Interval acc = Interval(CGAL::to_interval(q.back()));
-    for (int i = degree(q) - 1; i >= 0; --i) acc = acc * x + Interval(CGAL::to_interval(q[i]));
-    if (acc.inf() > 0) return CGAL::POSITIVE;
-    if (acc.sup() < 0) return CGAL::NEGATIVE;
-  }
+  if (const CGAL::Sign s = range_sign_double(q, lo, hi); s != CGAL::ZERO) return s;
   const auto [a, b] = exact_range(q, lo, hi);
   if (a > 0) return CGAL::POSITIVE;
   if (b < 0) return CGAL::NEGATIVE;
