@@ -104,6 +104,36 @@ BOOST_AUTO_TEST_CASE(equal_roots_of_different_polynomials) {
   BOOST_TEST(compare(b[1], a[0]) == CGAL::LARGER);
 }
 
+BOOST_AUTO_TEST_CASE(rational_roots_with_huge_denominators) {
+  // (a x - b)(c x - d)(x^2 - 2) with 2100-bit a, b, c, d: settle_rational
+  // must narrow below 1 / (2 lc^2), about 2^-8400, which plain bisection
+  // cannot do within its 4000-step cap (ExactLimit, i.e. undecided, before
+  // the quadratic refinement of refine_to); the irrational root keeps a
+  // valid bracket at any width.
+  Integer a(1), c(1);
+  a <<= 2100;
+  c <<= 2101;
+  a += 12345;
+  c -= 777;
+  const Integer b = a / 3 + 1, d = c / 5 * 4 - 1;  // b/a near 1/3, d/c near 4/5
+  PolyQ f = mul(mul(PolyQ{-Exact(b), Exact(a)}, PolyQ{-Exact(d), Exact(c)}), PolyQ{q(-2), q(0), q(1)});
+  const PolyZ p = primitive(f);
+  std::vector<RealRoot> r = real_roots(p, q(0), q(2));
+  BOOST_REQUIRE_EQUAL(r.size(), 3u);
+  BOOST_TEST(settle_rational(r[0]));
+  BOOST_TEST(r[0].lo == Exact(b, a));
+  BOOST_TEST(settle_rational(r[1]));
+  BOOST_TEST(r[1].lo == Exact(d, c));
+  BOOST_TEST(!settle_rational(r[2]));
+  Integer tiny(1);
+  tiny <<= 9000;
+  refine_to(r[2], Exact(Integer(1), tiny));
+  BOOST_TEST(r[2].hi - r[2].lo <= Exact(Integer(1), tiny));
+  BOOST_TEST(sign_at(p, r[2].lo) == CGAL::NEGATIVE);  // p < 0 just below sqrt 2 (a, c > 0, both roots below)
+  BOOST_TEST(sign_at(p, r[2].hi) == CGAL::POSITIVE);
+  BOOST_TEST(sign_at(z({-2, 0, 1}), r[2]) == CGAL::ZERO);
+}
+
 BOOST_AUTO_TEST_CASE(affine_change_of_variable) {
   // p(u) = u^2 - 1/2 (as 2u^2 - 1); t = 2 + 4u: u = (t - 2) / 4.
   const PolyZ t = compose_affine(z({-1, 0, 2}), q(-1, 2), q(1, 4));
