@@ -7,7 +7,7 @@
 // costs).
 //
 // tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N] [--slowest K]
-// [--cpu-time]: times every
+// [--cpu-time] [--kernel filtered|exact]: times every
 // check of a given scene the same way (one by one, in process, one
 // verifier for the scene), e.g. a set converted by
 // scripts/ccd_csv_to_scene.py, with its --truth-out list for false safe /
@@ -68,6 +68,7 @@ std::size_t g_slowest = 0;  // --slowest K: list the K slowest checks on stderr
 // clock (on a loaded machine, wall times of single checks include the
 // time slices other processes took).
 bool g_cpu_time = false;
+KernelKind g_kernel = KernelKind::Filtered;  // --kernel (--scene only)
 
 double now_us() {
   if (g_cpu_time) {
@@ -142,6 +143,7 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
   const Scene scene = parse_scene_file(scene_file);
   VerifyOptions options;
   options.exact_resolution = exact_resolution_enabled();
+  options.kernel = g_kernel;
   options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   options.max_depth = scene.max_depth;
   options.max_stops = g_max_stops;
@@ -183,9 +185,9 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
       }
     }
   }
-  std::printf("tmcert CCD scene %s: %zu checks, filtered kernel, epsilon %s; %s times per check, one by one;\n"
+  std::printf("tmcert CCD scene %s: %zu checks, %s kernel, epsilon %s; %s times per check, one by one;\n"
               "setup = the verifier's set-up divided by the number of checks\n\n",
-              scene_file.c_str(), scene.checks.size(), to_string(options.epsilon).c_str(),
+              scene_file.c_str(), scene.checks.size(), to_string(options.kernel), to_string(options.epsilon).c_str(),
               g_cpu_time ? "thread CPU" : "wall");
   header("checks");
   for (const auto& [name, r] : groups) print_row(name.c_str(), r, setup_us / scene.checks.size());
@@ -216,12 +218,14 @@ int main(int argc, char** argv) {
       else if (flag == "--truth") truth = argv[i + 1];
       else if (flag == "--max-stops") g_max_stops = std::strtoull(argv[i + 1], nullptr, 10);
       else if (flag == "--slowest") g_slowest = std::strtoull(argv[i + 1], nullptr, 10);
+      else if (flag == "--kernel" && std::string(argv[i + 1]) == "filtered") g_kernel = KernelKind::Filtered;
+      else if (flag == "--kernel" && std::string(argv[i + 1]) == "exact") g_kernel = KernelKind::Exact;
       else ok = false;
     }
     if (!ok) {
       std::fprintf(stderr,
                    "usage: tmcert_ccd_bench --scene SCENE.json [--truth TRUTH.json] [--max-stops N] [--slowest K] "
-                   "[--cpu-time]\n");
+                   "[--cpu-time] [--kernel filtered|exact]\n");
       return 2;
     }
     try {

@@ -658,6 +658,11 @@ def check(tmcert, n, seed, kernels, families):
                     msgs = []
                     for k, (c, truth) in enumerate(zip(checks, truths)):
                         msgs += compare(c, truth, f"{family} {kind} query {k} ({kernel})")
+                        # the comparison can fail: the opposite truth must be a mismatch
+                        if c["verdict"] in ("safe", "collision"):
+                            flipped = None if truth is not None else ([F(0), F(1)], (F(0), F(0)))
+                            if not compare(c, flipped, ""):
+                                msgs.append(f"{family} {kind} query {k} ({kernel}): a flipped truth is not caught")
                     total += len(truths)
                     bad += len(msgs)
                     for m in msgs[:5]:
