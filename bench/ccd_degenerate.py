@@ -2,7 +2,7 @@
 """The held-out degenerate CCD families through tmcert_ccd_bench: a table.
 
   bench/ccd_degenerate.py OUT [--build build] [--n 1000] [--seed 1]
-                          [--kernel filtered] [--kernel exact] [--families a,b]
+                          [--kernel filtered] [--kernel exact] [--families a,b] [--reuse]
 
 Writes the families of scripts/ccd_degenerate_queries.py to OUT (truth from
 its exact oracle), converts each family (its vertex-face and edge-edge files
@@ -31,14 +31,18 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--kernel", action="append", choices=["filtered", "exact"])
     ap.add_argument("--families")
+    ap.add_argument("--reuse", action="store_true", help="time the families already written to OUT (no generation)")
     args = ap.parse_args()
     kernels = args.kernel or ["filtered"]
     gen = [sys.executable, os.path.join(ROOT, "scripts", "ccd_degenerate_queries.py"), args.out,
            "--n", str(args.n), "--seed", str(args.seed)]
     if args.families:
         gen += ["--families", args.families]
-    families = [line.split()[0] for line in subprocess.run(gen, check=True, capture_output=True,
-                                                             text=True).stdout.splitlines()]
+    if args.reuse:
+        families = sorted(f for f in os.listdir(args.out) if os.path.isdir(os.path.join(args.out, f)))
+    else:
+        families = [line.split()[0] for line in subprocess.run(gen, check=True, capture_output=True,
+                                                                 text=True).stdout.splitlines()]
     print(f"held-out degenerate CCD families: {args.n} queries each (seed {args.seed}), truth from the exact oracle; "
           "CPU time per query")
     print()

@@ -141,10 +141,13 @@ std::optional<Found> first(std::optional<Found> a, std::optional<Found> b) {
   return compare(b->t, a->t) == CGAL::SMALLER ? b : a;
 }
 
-bool on_segment(const ZPoint& v, const ZPoint& e0, const ZPoint& e1, RealRoot& r, const PolyZ& w = kNoFactor) {
+// on_line: the caller knows (v - e0) x (e1 - e0) = 0 at r (r is a root of
+// the gcd of its components), so that test is skipped.
+bool on_segment(const ZPoint& v, const ZPoint& e0, const ZPoint& e1, RealRoot& r, const PolyZ& w = kNoFactor,
+                bool on_line = false) {
   const V3 d = diff(e1, e0), q = diff(v, e0);
   if (zero_at(d, r, w)) return zero_at(q, r, w);  // the segment is a point at r
-  if (!zero_at(cross(q, d), r, w)) return false;
+  if (!on_line && !zero_at(cross(q, d), r, w)) return false;
   return sign(dot(q, d), r, w) != CGAL::NEGATIVE && sign(dot(diff(v, e1), diff(e0, e1)), r, w) != CGAL::NEGATIVE;
 }
 
@@ -233,7 +236,8 @@ class Solver {
     if (degree(g) <= 0) return std::nullopt;
     for (RealRoot& r : roots(g)) {
       if (past_bound(r)) break;
-      if (on_segment(p[v], p[e0], p[e1], r, positive_)) return Found{r, {v}};
+      // r is a root of g, which divides every component of c: on the line.
+      if (on_segment(p[v], p[e0], p[e1], r, positive_, true)) return Found{r, {v}};
     }
     return std::nullopt;
   }

@@ -426,6 +426,14 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   if (q.empty()) return CGAL::ZERO;
   if (r.is_rational()) return sign_at(q, r.lo);
   if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  // At low degrees the gcd below costs a few pseudo-remainders, less than
+  // one exact interval enclosure: decide q(r) = 0 first (the contact
+  // predicates of linear motions, often exactly zero at a contact).
+  const bool gcd_first = degree(q) + degree(r.poly) <= 8;
+  if (gcd_first) {
+    const PolyZ g = gcd(q, r.poly);
+    if (degree(g) >= 1 && sign_at(g, r.lo) != sign_at(g, r.hi)) return CGAL::ZERO;
+  }
   // A few bisections first: cheaper than the gcd below when q(r) != 0
   // (high degrees, large coefficients).
   for (int k = 0; k < 24; ++k) {
@@ -436,8 +444,10 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   // q(r) = 0 exactly when r is a root of g = gcd(q, poly): g divides the
   // square-free poly, so r is g's only root in [lo, hi], and g is nonzero
   // at lo and hi; it changes sign there exactly when r is its root.
-  const PolyZ g = gcd(q, r.poly);
-  if (degree(g) >= 1 && sign_at(g, r.lo) != sign_at(g, r.hi)) return CGAL::ZERO;
+  if (!gcd_first) {
+    const PolyZ g = gcd(q, r.poly);
+    if (degree(g) >= 1 && sign_at(g, r.lo) != sign_at(g, r.hi)) return CGAL::ZERO;
+  }
   // q(r) != 0: a small enough interval around r proves q's sign.
   for (int k = 0; k < kMaxBisections; ++k) {
     refine(r);
