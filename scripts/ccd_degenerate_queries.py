@@ -50,9 +50,9 @@ Usage:
   ccd_degenerate_queries.py --list
   ccd_degenerate_queries.py --check TMCERT [--n N] [--seed S] [--kernel K ...]
 
---check writes a sample to a temporary directory, converts every file with
-ccd_csv_to_scene.py, runs `TMCERT verify --json` with each kernel and
-compares: the verdict must be the oracle's (no undecided), a rational first
+--check writes a sample to a temporary directory, converts all its files
+into one scene with ccd_csv_to_scene.py, runs `TMCERT verify --json` with
+each kernel and compares: the verdict must be the oracle's (no undecided), a rational first
 contact must equal the oracle's, an irrational one must be a root of
 tmcert's polynomial inside its interval, and first_contact must be exact.
 Exit 0 when everything agrees. (The long sweep with per-query CPU times
@@ -641,37 +641,42 @@ def check(tmcert, n, seed, kernels, families):
     bad = 0
     total = 0
     with tempfile.TemporaryDirectory() as root:
+        files = []  # (family, csv path, oracle results)
         for family in families:
-            for path, truths in write_family(root, family, generate(family, n, seed)):
-                scene = path[:-4] + ".json"
-                subprocess.run([sys.executable, convert, path, "-o", scene], check=True, capture_output=True)
-                for kernel in kernels:
-                    out = subprocess.run([tmcert, "verify", scene, "--json", "--kernel", kernel],
-                                         capture_output=True, text=True)
-                    if out.returncode not in (0, 1, 2):
-                        print(f"FAIL {family} {path}: tmcert exit {out.returncode}: {out.stderr.strip()}")
-                        bad += 1
-                        continue
-                    checks = json.loads(out.stdout)["checks"]
-                    kind = os.path.basename(os.path.dirname(path))
-                    coll = sum(t is not None for t in truths)
-                    msgs = []
-                    for k, (c, truth) in enumerate(zip(checks, truths)):
-                        msgs += compare(c, truth, f"{family} {kind} query {k} ({kernel})")
-                        # the comparison can fail: the opposite truth must be a mismatch
-                        if c["verdict"] in ("safe", "collision"):
-                            flipped = None if truth is not None else ([F(0), F(1)], (F(0), F(0)))
-                            if not compare(c, flipped, ""):
-                                msgs.append(f"{family} {kind} query {k} ({kernel}): a flipped truth is not caught")
-                    total += len(truths)
-                    bad += len(msgs)
-                    for m in msgs[:5]:
-                        print("MISMATCH", m)
-                    print(f"  {family:20s} {kind:12s} {kernel:8s} {len(truths):4d} queries, {coll:4d} colliding, "
-                          f"{len(msgs)} mismatches")
+            files += [(family, path, truths) for path, truths in write_family(root, family, generate(family, n, seed))]
+        # One scene for all files (one tmcert run per kernel); checks follow the files in order.
+        scene = os.path.join(root, "scene.json")
+        subprocess.run([sys.executable, convert, *[f for _, f, _ in files], "-o", scene], check=True,
+                       capture_output=True)
+        for kernel in kernels:
+            out = subprocess.run([tmcert, "verify", scene, "--json", "--kernel", kernel], capture_output=True, text=True)
+            if out.returncode not in (0, 1, 2):
+                print(f"FAIL {kernel}: tmcert exit {out.returncode}: {out.stderr.strip()}")
+                bad += 1
+                continue
+            checks = iter(json.loads(out.stdout)["checks"])
+            for family, path, truths in files:
+                kind = os.path.basename(os.path.dirname(path))
+                msgs = []
+                for k, truth in enumerate(truths):
+                    c = next(checks)
+                    where = f"{family} {kind} query {k} ({kernel})"
+                    msgs += compare(c, truth, where)
+                    # the comparison can fail: the opposite truth must be a mismatch
+                    if c["verdict"] in ("safe", "collision"):
+                        flipped = None if truth is not None else ([F(0), F(1)], (F(0), F(0)))
+                        if not compare(c, flipped, ""):
+                            msgs.append(f"{where}: a flipped truth is not caught")
+                total += len(truths)
+                bad += len(msgs)
+                for m in msgs[:5]:
+                    print("MISMATCH", m)
+                coll = sum(t is not None for t in truths)
+                print(f"  {family:20s} {kind:12s} {kernel:8s} {len(truths):4d} queries, {coll:4d} colliding, "
+                      f"{len(msgs)} mismatches")
     print(f"ccd_degenerate_queries --check: {total} query runs, {bad} mismatches "
           f"(replay: ccd_degenerate_queries.py --check TMCERT --n {n} --seed {seed})")
-    return 1 if bad else 0
+    return 1 if bad or total == 0 else 0
 
 
 def main():
