@@ -79,7 +79,7 @@ Decimal to_decimal(const Exact& q, int significant) {
   while (s.size() > 1 && s.back() == '0') s.pop_back();
 
   std::string text = sign < 0 ? "-" : "";
-  if (e >= -5 && e < significant) {
+  if (e >= -4 && e < significant) {
     if (e >= 0) {
       const std::size_t int_digits = static_cast<std::size_t>(e) + 1;
       if (s.size() <= int_digits) {

@@ -15,7 +15,7 @@ struct Decimal {
 };
 
 // q rounded to `significant` digits (>= 1), ties away from zero, written
-// as printf's %g writes it: fixed notation for exponents from -5 to
+// as printf's %g writes it: fixed notation for exponents from -4 to
 // significant - 1, otherwise d.ddde[+-]XX; no trailing zeros.
 Decimal to_decimal(const Exact& q, int significant = 6);
 

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -513,6 +514,15 @@ std::vector<UndecidedInterval> merged_undecided(const std::vector<UndecidedInter
 
 constexpr std::size_t kUndecidedShown = 5;
 
+// Seconds for people: two significant digits, whole seconds from 10 on.
+std::string seconds_text(double seconds) {
+  std::ostringstream out;
+  if (seconds >= 10) out << std::fixed << std::setprecision(0);
+  else out << std::setprecision(2);
+  out << seconds;
+  return out.str();
+}
+
 }  // namespace
 
 std::string result_summary(const Scene& scene, const SceneResult& r) {
@@ -545,7 +555,7 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
     out << "  (";
     if (r.epsilon_per_check) out << "epsilon " << to_decimal(c.epsilon).text << ", ";
     out << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls << " tests, "
-        << c.stats.contact.exact_fallbacks << " exact, " << c.stats.seconds << " s)\n";
+        << c.stats.contact.exact_fallbacks << " exact, " << seconds_text(c.stats.seconds) << " s)\n";
     if (wit) {
       out << "    " << (wit->points ? "closest: " : "contact: ") << wit->features[0]
           << (wit->points ? " comes within the clearance of " : " meets ") << wit->features[1];
