@@ -552,10 +552,14 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
       out << ", the exact first contact";
     else if (c.first_contact)
       out << "; no contact before t = " << readable(c.first_contact->first);
-    out << "  (";
-    if (r.epsilon_per_check) out << "epsilon " << to_decimal(c.epsilon).text << ", ";
-    out << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls << " tests, "
-        << c.stats.contact.exact_fallbacks << " exact, " << seconds_text(c.stats.seconds) << " s)\n";
+    if (c.stats.prefiltered) {
+      out << "  (prefilter: the boxes of what the bodies sweep are apart)\n";
+    } else {
+      out << "  (";
+      if (r.epsilon_per_check) out << "epsilon " << to_decimal(c.epsilon).text << ", ";
+      out << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls << " tests, "
+          << c.stats.contact.exact_fallbacks << " exact, " << seconds_text(c.stats.seconds) << " s)\n";
+    }
     if (wit) {
       out << "    " << (wit->points ? "closest: " : "contact: ") << wit->features[0]
           << (wit->points ? " comes within the clearance of " : " meets ") << wit->features[1];
