@@ -69,8 +69,10 @@ Decimal to_decimal(const Exact& q, int significant) {
   }
   mpz_tdiv_qr(m.v, r.v, num.v, den.v);
   const bool exact = mpz_sgn(r.v) == 0;
+  // Round half to even (as printf rounds the exact value of a double).
   mpz_mul_2exp(r.v, r.v, 1);
-  if (mpz_cmp(r.v, den.v) >= 0) mpz_add_ui(m.v, m.v, 1);  // ties away from zero
+  const int half = mpz_cmp(r.v, den.v);
+  if (half > 0 || (half == 0 && mpz_odd_p(m.v))) mpz_add_ui(m.v, m.v, 1);
   std::string s = digits_of(m.v);
   if (static_cast<long>(s.size()) > significant) {  // rounded up to 10^s
     s.pop_back();

@@ -14,7 +14,7 @@ struct Decimal {
   bool exact;        // the text is exactly the value (not rounded)
 };
 
-// q rounded to `significant` digits (>= 1), ties away from zero, written
+// q rounded to `significant` digits (>= 1), ties to even, written
 // as printf's %g writes it: fixed notation for exponents from -4 to
 // significant - 1, otherwise d.ddde[+-]XX; no trailing zeros.
 Decimal to_decimal(const Exact& q, int significant = 6);
