@@ -86,7 +86,9 @@ Row run(const QuerySet& set, double fraction, std::map<std::string, Row>* by_kin
   options.max_stops = g_max_stops;
   char text[64];
   std::snprintf(text, sizeof text, "%.3g", 2 * fraction);
-  parse_exact(text, options.epsilon);
+  Exact epsilon;
+  parse_exact(text, epsilon);
+  options.epsilon = epsilon;
   options.max_depth = 60;
   // One verifier for the whole scene: its set-up (a swept box per body) is
   // reported separately, per query; bodies are prepared lazily inside the
@@ -187,7 +189,7 @@ static int run_scene(const std::string& scene_file, const std::string& truth_fil
   }
   std::printf("tmcert CCD scene %s: %zu checks, %s kernel, epsilon %s; %s times per check, one by one;\n"
               "setup = the verifier's set-up divided by the number of checks\n\n",
-              scene_file.c_str(), scene.checks.size(), to_string(options.kernel), to_string(options.epsilon).c_str(),
+              scene_file.c_str(), scene.checks.size(), to_string(options.kernel), to_string(*options.epsilon).c_str(),
               g_cpu_time ? "thread CPU" : "wall");
   header("checks");
   for (const auto& [name, r] : groups) print_row(name.c_str(), r, setup_us / scene.checks.size());

@@ -274,7 +274,7 @@ std::vector<SpeedRow> run_speed_alternating(const SpeedCase& c, double f, const 
     options[i].kernel = kernels[i];
     options[i].epsilon = decimal(f * c.size);
     options[i].max_depth = 62;
-    row.epsilon = CGAL::to_double(options[i].epsilon);
+    row.epsilon = CGAL::to_double(*options[i].epsilon);
   }
   double spent = 0;
   for (int k = 0; k < reps; ++k) {
@@ -308,7 +308,7 @@ SpeedRow run_speed(const SpeedCase& c, double f, KernelKind kernel, int reps) {
   VerifyOptions options;
   options.kernel = kernel;
   options.epsilon = decimal(f * c.size);
-  row.epsilon = CGAL::to_double(options.epsilon);
+  row.epsilon = CGAL::to_double(*options.epsilon);
   options.max_depth = 62;
   double best = INFINITY, spent = 0;
   for (int k = 0; k < reps; ++k) {
@@ -1181,7 +1181,7 @@ int main(int argc, char** argv) {
           }
           if (wrong && k != KernelKind::Fast) ok = false;
           std::printf("| %.0e | %.3g | %s | %d/%d/%d | %d | %llu | %d | %llu | %.3g |\n", f,
-                      CGAL::to_double(options.epsilon), to_string(k), v[0], v[1], v[2], wrong,
+                      CGAL::to_double(*options.epsilon), to_string(k), v[0], v[1], v[2], wrong,
                       static_cast<unsigned long long>(nodes), depth, static_cast<unsigned long long>(fb), since(start));
           std::fflush(stdout);
         }

@@ -3,6 +3,7 @@
 #include "kernels/allocation.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
+#include "src/cli/output_file.h"
 #include "src/cli/report.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
@@ -21,6 +22,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <optional>
 
 // The scene of `verify`, kept to the end of the process (run_verify).  A
 // global with external linkage, so that the store is not optimised away and
@@ -92,7 +94,7 @@ int run_verify(const VerifyArgs& args) {
       throw InputError("--epsilon: must be a positive number (decimal or p/q), got '" + args.epsilon + "'");
     options.epsilon = e;
   } else {
-    options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
+    options.epsilon = scene.epsilon;  // absent: each check's own default
   }
   options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
   options.hierarchy = !args.all_pairs;
@@ -114,6 +116,11 @@ int run_verify(const VerifyArgs& args) {
   if (!args.certificate.empty())
     if (const std::string why = certificate::uncertifiable(scene); !why.empty())
       throw InputError("--certificate: certificates do not cover this scene: " + why);
+  // Output paths are tried now, before the verification: a path that
+  // cannot be written is bad input (exit 3), never a verdict without its
+  // file.
+  std::optional<OutputFile> certificate_file;
+  if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
   std::shared_ptr<Progress> progress;
   if (isatty(STDERR_FILENO)) {
     progress = std::make_shared<Progress>();
@@ -122,16 +129,12 @@ int run_verify(const VerifyArgs& args) {
   const SceneResult result = verify_scene(scene, options, args.threads);
   options.progress = nullptr;
   progress.reset();  // erases the progress line before the result is printed
-  if (!args.certificate.empty()) {
+  if (certificate_file) {
     // Written before the verdict is printed: a certificate that cannot be
     // written is bad input (a bad output path, exit 3), not a verdict
     // without its proof.
     certificate::WriteStats stats;
-    const std::string document = certificate::certificate_json(scene, result, &stats);
-    std::ofstream out(args.certificate, std::ios::binary);
-    out << document;
-    out.close();
-    if (!out) throw InputError("--certificate: cannot write '" + args.certificate + "'");
+    certificate_file->write(certificate::certificate_json(scene, result, &stats));
     std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
               << stats.separations << " separations, " << stats.seconds << " s)\n";
   }

@@ -1,5 +1,6 @@
 #include "src/cli/report.h"
 
+#include "kernels/decimal.h"
 #include "src/motion/segment.h"
 
 #include <Eigen/Dense>
@@ -9,7 +10,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -57,6 +61,19 @@ class JsonWriter {
     next_item();
     // nlohmann's own shortest round-trip form (e.g. 0.0012, 1e-05, 2.0).
     out_ += nlohmann::json(x).dump();
+  }
+
+  // A JSON number for people beside an exact one (tmcert-result/1's
+  // "<field>_approx" members): the nearest double, or beyond the double
+  // range the 17-digit decimal itself.
+  void approx(const Exact& q) {
+    const double x = approximate(q);
+    if (std::isfinite(x)) {
+      value(x);
+      return;
+    }
+    next_item();
+    out_ += to_decimal(q, 17).text;
   }
 
   template <typename T>
@@ -145,6 +162,19 @@ void write_root(JsonWriter& w, const AlgebraicTime& a) {
   w.end_object();
 }
 
+// The approximation of a parameter: the algebraic number's own decimal, or
+// the rational's.
+void write_time_approx(JsonWriter& w, const Exact& t, const AlgebraicTime* root) {
+  if (root) w.value(std::strtod(root->approx.c_str(), nullptr));
+  else w.approx(t);
+}
+
+void write_point_approx(JsonWriter& w, const Vec3E& p) {
+  w.begin_array();
+  for (const Exact& x : p) w.approx(x);
+  w.end_array();
+}
+
 void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.begin_object();
   w.key("bodies");
@@ -153,10 +183,15 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.value(scene.bodies[c.bodies[1]].name);
   w.end_array();
   w.member("verdict", to_string(c.verdict));
+  w.member("epsilon", to_string(c.epsilon));
+  w.key("epsilon_approx");
+  w.approx(c.epsilon);
   if (!scene.bodies[c.bodies[0]].enlarged.empty() || !scene.bodies[c.bodies[1]].enlarged.empty())
     w.member("enlarged_model", true);
   if (c.clearance > 0) {
     w.member("clearance", to_string(c.clearance));
+    w.key("clearance_approx");
+    w.approx(c.clearance);
     w.member("clearance_violated", c.verdict == Verdict::Collision);
   }
   if (c.first_contact) {
@@ -170,6 +205,11 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     if (root) write_root(w, *root);  // a witness's bracket ends at its time
     else w.value(to_string(c.first_contact->second));
     w.end_array();
+    w.key("t_approx");
+    w.begin_array();
+    write_time_approx(w, c.first_contact->first, root && c.first_contact_exact ? root : nullptr);
+    write_time_approx(w, c.first_contact->second, root);
+    w.end_array();
     w.end_object();
   }
   if (c.witness) {
@@ -182,6 +222,8 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     } else {
       w.member("t", to_string(wit.t));
     }
+    w.key("t_approx");
+    write_time_approx(w, wit.t, wit.root ? &*wit.root : nullptr);
     w.key("features");
     w.begin_array();
     w.value(wit.features[0]);
@@ -199,11 +241,22 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
         w.end_array();
       }
       w.end_array();
+      w.key("point_box_approx");
+      w.begin_array();
+      for (const auto& range : *wit.point_box) {
+        w.begin_array();
+        w.approx(range[0]);
+        w.approx(range[1]);
+        w.end_array();
+      }
+      w.end_array();
     } else {
       w.key("point");
       w.begin_array();
       for (const Exact& x : wit.point) w.value(to_string(x));
       w.end_array();
+      w.key("point_approx");
+      write_point_approx(w, wit.point);
     }
     if (wit.points) {
       w.key("points");
@@ -214,12 +267,18 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
         w.end_array();
       }
       w.end_array();
+      w.key("points_approx");
+      w.begin_array();
+      for (const Vec3E& p : *wit.points) write_point_approx(w, p);
+      w.end_array();
     }
     if (wit.displacement) {
       w.key("displacement");
       w.begin_array();
       for (const Exact& x : *wit.displacement) w.value(to_string(x));
       w.end_array();
+      w.key("displacement_approx");
+      write_point_approx(w, *wit.displacement);
       w.member("displaced", scene.bodies[c.bodies[wit.displaced]].name);
     }
     w.end_object();
@@ -232,6 +291,11 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     w.begin_array();
     w.value(to_string(u.t0));
     w.value(to_string(u.t1));
+    w.end_array();
+    w.key("t_approx");
+    w.begin_array();
+    w.approx(u.t0);
+    w.approx(u.t1);
     w.end_array();
     w.member("reason", to_string(u.reason));
     w.end_object();
@@ -339,6 +403,9 @@ std::string result_json(const Scene& scene, const SceneResult& r) {
   w.member("kernel", to_string(r.kernel));
   w.member("certified", r.certified);
   w.member("epsilon", to_string(r.epsilon));
+  w.key("epsilon_approx");
+  w.approx(r.epsilon);
+  w.member("epsilon_per_check", r.epsilon_per_check);
   // Bodies that are enlarged models of their input (robot links' URDF
   // cylinders and spheres as circumscribed polyhedra): present only then.
   bool any_enlarged = false;
@@ -366,11 +433,106 @@ std::string result_json(const Scene& scene, const SceneResult& r) {
   return std::move(w).take() + "\n";
 }
 
+namespace {
+
+// A parameter for people: "2.06812 (8471/4096)", or for an algebraic
+// number its decimal and where it is exactly (the polynomial is in --json).
+std::string readable_time(const Exact& t, const AlgebraicTime* root) {
+  if (!root) return readable(t);
+  Exact approx;
+  const std::string decimal = parse_exact(root->approx, approx) ? to_decimal(approx).text : root->approx;
+  return decimal + " (a root of a degree-" + std::to_string(root->root_of.size() - 1) + " polynomial in (" +
+         to_string(root->lo) + ", " + to_string(root->hi) + "))";
+}
+
+// "(0.5, 0.333333, 0)", followed by ", exactly (1/2, 1/3, 0)" when a
+// decimal is rounded.
+std::string readable_point(const Vec3E& p) {
+  std::string decimals = "(", exact = "(";
+  bool all_exact = true;
+  for (int i = 0; i < 3; ++i) {
+    const Decimal d = to_decimal(p[i]);
+    decimals += (i ? ", " : "") + d.text;
+    exact += (i ? ", " : "") + to_string(p[i]);
+    all_exact = all_exact && d.exact;
+  }
+  return decimals + ")" + (all_exact ? "" : ", exactly " + exact + ")");
+}
+
+// A rational box holding a point: its centre plus or minus its half-widths.
+std::string readable_box(const std::array<std::array<Exact, 2>, 3>& box) {
+  std::string centre = "(", half = "(";
+  for (int i = 0; i < 3; ++i) {
+    centre += (i ? ", " : "") + to_decimal((box[i][0] + box[i][1]) / 2).text;
+    half += (i ? ", " : "") + to_decimal((box[i][1] - box[i][0]) / 2).text;
+  }
+  return centre + ") ± " + half + ")";
+}
+
+// What to try when a check stops undecided for `reason`.
+std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason) {
+  switch (reason) {
+    case StopReason::Epsilon:
+      return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
+             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(c.epsilon / 10).text;
+    case StopReason::Depth:
+      if (r.max_depth < 62)
+        return "the subdivision reached its depth limit (" + std::to_string(r.max_depth) + "); try --max-depth " +
+               std::to_string(std::min(62, 2 * r.max_depth));
+      return "the subdivision reached its finest depth (62): the bodies are within rounding of contact there";
+    case StopReason::Limit:
+      if (r.max_stops > 0 && c.stats.stops >= r.max_stops)
+        return "the stop budget (" + std::to_string(r.max_stops) +
+               " undecided pieces) was used up, so the rest was not searched: the bodies stay within about "
+               "epsilon over a long stretch; try a smaller --epsilon, e.g. --epsilon " +
+               to_decimal(c.epsilon / 10).text;
+      if (r.max_nodes > 0 && c.stats.nodes >= r.max_nodes)
+        return "the node budget (" + std::to_string(r.max_nodes) +
+               " nodes per check) was used up; try a larger --epsilon, or check shorter pieces of the motion";
+      if (r.time_limit > 0) {
+        std::ostringstream t;
+        t << r.time_limit;
+        return "--time-limit " + t.str() + " was reached; try a larger --time-limit";
+      }
+      return "a budget of the check was used up";
+  }
+  return {};
+}
+
+// The undecided intervals of a check, adjacent ones with the same reason
+// merged (--json lists every one).
+std::vector<UndecidedInterval> merged_undecided(const std::vector<UndecidedInterval>& in) {
+  std::vector<UndecidedInterval> sorted = in;
+  std::sort(sorted.begin(), sorted.end(), [](const UndecidedInterval& x, const UndecidedInterval& y) { return x.t0 < y.t0; });
+  std::vector<UndecidedInterval> out;
+  for (const UndecidedInterval& u : sorted) {
+    if (!out.empty() && out.back().reason == u.reason && out.back().t1 == u.t0) out.back().t1 = u.t1;
+    else out.push_back(u);
+  }
+  return out;
+}
+
+constexpr std::size_t kUndecidedShown = 5;
+
+// Seconds for people: two significant digits, whole seconds from 10 on.
+std::string seconds_text(double seconds) {
+  std::ostringstream out;
+  if (seconds >= 10) out << std::fixed << std::setprecision(0);
+  else out << std::setprecision(2);
+  out << seconds;
+  return out.str();
+}
+
+}  // namespace
+
 std::string result_summary(const Scene& scene, const SceneResult& r) {
   std::ostringstream out;
   out << "tmcert: " << to_string(r.verdict);
   if (!r.certified) out << " (kernel fast: NOT CERTIFIED)";
-  out << "  [kernel " << to_string(r.kernel) << ", epsilon " << to_string(r.epsilon) << "]\n";
+  out << "  [kernel " << to_string(r.kernel) << ", epsilon ";
+  if (r.epsilon_per_check) out << "per check: 1/1000 of its bodies' box";
+  else out << readable(r.epsilon);
+  out << "]\n";
   for (const Body& b : scene.bodies) {
     if (b.enlarged.empty()) continue;
     out << "  note: " << b.name << " is an enlarged model: its ";
@@ -379,34 +541,51 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
         << " (safe holds for the true shapes; a collision is one of the model)\n";
   }
   for (const CheckResult& c : r.checks) {
-    out << "  " << scene.bodies[c.bodies[0]].name << " x " << scene.bodies[c.bodies[1]].name << ": "
-        << to_string(c.verdict);
-    if (c.clearance > 0) out << " (clearance " << to_string(c.clearance) << (c.verdict == Verdict::Collision ? " violated" : "") << ")";
-    if (c.witness) {
-      const Witness& wit = *c.witness;
-      out << " at t = ";
-      if (wit.root) {
-        // The polynomial itself is in --json and in certificates.
-        out << "~" << wit.root->approx << " (the root of a degree-" << wit.root->root_of.size() - 1
-            << " polynomial in (" << to_string(wit.root->lo) << ", " << to_string(wit.root->hi) << "))";
-      } else {
-        out << to_string(wit.t);
-      }
-      out << " (" << wit.features[0] << (wit.points ? " comes within the clearance of " : " meets ") << wit.features[1];
-      if (wit.displacement)
-        out << " when " << scene.bodies[c.bodies[wit.displaced]].name << " is displaced within its tolerance";
-      out << ")";
-    }
-    if (c.first_contact && c.first_contact_exact && c.witness)
-      out << "; the exact first contact";
+    const std::string& name_a = scene.bodies[c.bodies[0]].name;
+    const std::string& name_b = scene.bodies[c.bodies[1]].name;
+    out << "  " << name_a << " x " << name_b << ": " << to_string(c.verdict);
+    if (c.clearance > 0) out << " (clearance " << readable(c.clearance) << (c.verdict == Verdict::Collision ? " violated" : "") << ")";
+    const Witness* wit = c.witness ? &*c.witness : nullptr;
+    const AlgebraicTime* root = wit && wit->root ? &*wit->root : nullptr;
+    if (wit) out << " at t = " << readable_time(wit->t, root);
+    if (c.first_contact && c.first_contact_exact && wit)
+      out << ", the exact first contact";
     else if (c.first_contact)
-      out << "; no contact before t = " << to_string(c.first_contact->first);
-    if (!c.undecided.empty()) out << "; " << c.undecided.size() << " undecided interval(s)";
+      out << "; no contact before t = " << readable(c.first_contact->first);
+    if (c.stats.prefiltered) {
+      out << "  (prefilter: the boxes of what the bodies sweep are apart)\n";
+    } else {
+      out << "  (";
+      if (r.epsilon_per_check) out << "epsilon " << to_decimal(c.epsilon).text << ", ";
+      out << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls << " tests, "
+          << c.stats.contact.exact_fallbacks << " exact, " << seconds_text(c.stats.seconds) << " s)\n";
+    }
+    if (wit) {
+      out << "    " << (wit->points ? "closest: " : "contact: ") << wit->features[0]
+          << (wit->points ? " comes within the clearance of " : " meets ") << wit->features[1];
+      if (wit->points) {
+        out << ": " << readable_point((*wit->points)[0]) << " and " << readable_point((*wit->points)[1]);
+      } else if (wit->point_box) {
+        out << " at " << readable_box(*wit->point_box);
+      } else {
+        out << " at " << readable_point(wit->point);
+      }
+      if (wit->displacement)
+        out << " when " << scene.bodies[c.bodies[wit->displaced]].name << " is displaced by "
+            << readable_point(*wit->displacement) << " (within its tolerance)";
+      out << "\n";
+    }
+    const std::vector<UndecidedInterval> undecided = merged_undecided(c.undecided);
+    for (std::size_t k = 0; k < undecided.size() && k < kUndecidedShown; ++k) {
+      const UndecidedInterval& u = undecided[k];
+      out << "    undecided t in [" << to_decimal(u.t0).text << ", " << to_decimal(u.t1).text << "] ("
+          << to_string(u.reason) << "): " << undecided_hint(r, c, u.reason) << "\n";
+    }
+    if (undecided.size() > kUndecidedShown)
+      out << "    ... and " << undecided.size() - kUndecidedShown << " more undecided intervals (--json lists them all)\n";
     for (int side = 0; side < 2; ++side)
       if (const std::string note = rigidity_note(scene.bodies[c.bodies[side]]); !note.empty())
-        out << "\n    note: " << note;
-    out << "  (" << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls
-        << " tests, " << c.stats.contact.exact_fallbacks << " exact, " << c.stats.seconds << " s)\n";
+        out << "    note: " << note << "\n";
   }
   return out.str();
 }

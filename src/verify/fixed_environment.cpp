@@ -385,7 +385,9 @@ Containment start_containment(const Body& solid, const std::vector<Vec3E>& solid
 FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
                                    std::vector<std::pair<int, int>> mover_pairs, const VerifyOptions& options)
     : options_(options) {
-  if (!(options.epsilon > 0)) throw InputError("epsilon: must be > 0");
+  // No per-check default here: the environment's box is the whole scene's.
+  if (!options.epsilon) throw InputError("epsilon: must be given (an environment has no per-check default)");
+  if (!(*options.epsilon > 0)) throw InputError("epsilon: must be > 0");
   require_usable(environment, "environment");
   if (environment.moves()) throw InputError("environment \"" + environment.name + "\": must not move");
   if (movers.empty()) throw InputError("movers: at least one body must move");
@@ -522,6 +524,7 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
         detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_, start_free));
     record(out.checks.size() - 1);
   }
+  for (CheckResult& r : out.checks) r.epsilon = *options_.epsilon;
   if (decided < out.checks.size()) {
     out.witness = out.checks[decided].witness;
     out.first_contact = out.checks[decided].first_contact;

@@ -48,7 +48,7 @@ class FixedEnvironment {
   // start is a collision (exact when both start poses are exact; with an
   // enclosed start pose, e.g. a robot link, only disjoint boxes settle it,
   // else the check is undecided).  No tolerances.  options.epsilon must be
-  // > 0.  Throws InputError otherwise.
+  // given and > 0.  Throws InputError otherwise.
   FixedEnvironment(Body environment, std::vector<Body> movers, std::vector<std::pair<int, int>> mover_pairs,
                    const VerifyOptions& options);
   ~FixedEnvironment();

@@ -84,7 +84,7 @@ template <int B>
 void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const PartMotion& pm, const PartMotion& po,
               const Exact& t0, const Exact& t1, const VerifyOptions& options, const std::array<double, 2>& tube,
               const CheckExtras<B>& base, CheckResult& part) {
-  const double eps = CGAL::to_double(options.epsilon);
+  const double eps = CGAL::to_double(*options.epsilon);
   const double rho2 = m.max_rho2 + (B == 2 ? o.max_rho2 : 0.0);
   CheckExtras<B> extras = base;
   const bool rational = pm.rational && (B == 1 || po.rational);

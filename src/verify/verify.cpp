@@ -69,55 +69,69 @@ std::vector<Vec3E> body_vertices(const Body& b) {
 
 }  // namespace
 
-Exact default_epsilon(const Scene& scene) {
-  std::optional<Vec3E> lo, hi;
-  for (const Body& b : scene.bodies) {
-    std::vector<Mat34E> maps;
-    if (b.motion) maps = b.motion->control_points;
-    else if (!b.trajectory) maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
-    if (b.trajectory)
-      for (const MotionSegment& seg : b.trajectory->segments) {
-        if (seg.rational) {
-          maps.insert(maps.end(), seg.rational->control_points.begin(), seg.rational->control_points.end());
-          continue;
-        }
-        // The keyframe poses (a tolerance, not a bound: the approximate
-        // rotation of an rpy pose will do); a link's poses at its waypoints.
-        if (seg.link) {
-          const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
-          for (const Exact s : {Exact(0), Exact(1)}) {
-            const PoseInterval m = enclose_pose(*model, s);
-            Mat34E approx;
-            for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
-            maps.push_back(approx);
-          }
-          continue;
-        }
-        for (const Pose* pose : {&seg.from, &seg.to}) {
-          if (const auto m = exact_pose(*pose)) {
-            maps.push_back(*m);
-            continue;
-          }
-          RoundingGuard guard;
-          const PoseInterval m = interval_pose(*pose);
+namespace {
+
+// An axis-aligned box of exact points: its lower and upper corners.
+using ReachBox = std::array<Vec3E, 2>;
+
+// The box of a body's vertices under every control point of its motion
+// (keyframe and link poses at their ends, approximately for enclosed
+// ones: a tolerance, not a bound); nullopt for a body without vertices.
+std::optional<ReachBox> reach_box(const Body& b) {
+  std::vector<Mat34E> maps;
+  if (b.motion) maps = b.motion->control_points;
+  else if (!b.trajectory) maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+  if (b.trajectory)
+    for (const MotionSegment& seg : b.trajectory->segments) {
+      if (seg.rational) {
+        maps.insert(maps.end(), seg.rational->control_points.begin(), seg.rational->control_points.end());
+        continue;
+      }
+      // The keyframe poses (a tolerance, not a bound: the approximate
+      // rotation of an rpy pose will do); a link's poses at its waypoints.
+      if (seg.link) {
+        const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
+        for (const Exact s : {Exact(0), Exact(1)}) {
+          const PoseInterval m = enclose_pose(*model, s);
           Mat34E approx;
           for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
           maps.push_back(approx);
         }
+        continue;
       }
-    for (const Vec3E& v : body_vertices(b))
-      for (const Mat34E& m : maps) {
-        const Vec3E w = apply_map(m, v);
-        if (!lo) { lo = w; hi = w; continue; }
-        for (int i = 0; i < 3; ++i) {
-          if (w[i] < (*lo)[i]) (*lo)[i] = w[i];
-          if (w[i] > (*hi)[i]) (*hi)[i] = w[i];
+      for (const Pose* pose : {&seg.from, &seg.to}) {
+        if (const auto m = exact_pose(*pose)) {
+          maps.push_back(*m);
+          continue;
         }
+        RoundingGuard guard;
+        const PoseInterval m = interval_pose(*pose);
+        Mat34E approx;
+        for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
+        maps.push_back(approx);
       }
-  }
-  if (!lo) return Exact(1, 1000);
+    }
+  std::optional<ReachBox> box;
+  for (const Vec3E& v : body_vertices(b))
+    for (const Mat34E& m : maps) {
+      const Vec3E w = apply_map(m, v);
+      if (!box) {
+        box = ReachBox{w, w};
+        continue;
+      }
+      for (int i = 0; i < 3; ++i) {
+        if (w[i] < (*box)[0][i]) (*box)[0][i] = w[i];
+        if (w[i] > (*box)[1][i]) (*box)[1][i] = w[i];
+      }
+    }
+  return box;
+}
+
+// 1/1000 of the box's diagonal, as a decimal with six significant digits.
+Exact thousandth_of_diagonal(const std::optional<ReachBox>& box) {
+  if (!box) return Exact(1, 1000);
   Exact d2 = 0;
-  for (int i = 0; i < 3; ++i) d2 += ((*hi)[i] - (*lo)[i]) * ((*hi)[i] - (*lo)[i]);
+  for (int i = 0; i < 3; ++i) d2 += ((*box)[1][i] - (*box)[0][i]) * ((*box)[1][i] - (*box)[0][i]);
   const double eps = std::sqrt(CGAL::to_double(d2)) / 1000;
   if (!(eps > 0) || !std::isfinite(eps)) return Exact(1, 1000);
   char text[64];
@@ -125,6 +139,28 @@ Exact default_epsilon(const Scene& scene) {
   Exact out;
   if (!parse_exact(text, out) || !(out > 0)) return Exact(1, 1000);
   return out;
+}
+
+std::optional<ReachBox> merged(std::optional<ReachBox> a, const std::optional<ReachBox>& b) {
+  if (!a) return b;
+  if (b)
+    for (int i = 0; i < 3; ++i) {
+      if ((*b)[0][i] < (*a)[0][i]) (*a)[0][i] = (*b)[0][i];
+      if ((*b)[1][i] > (*a)[1][i]) (*a)[1][i] = (*b)[1][i];
+    }
+  return a;
+}
+
+}  // namespace
+
+Exact default_epsilon(const Scene& scene) {
+  std::optional<ReachBox> box;
+  for (const Body& b : scene.bodies) box = merged(box, reach_box(b));
+  return thousandth_of_diagonal(box);
+}
+
+Exact default_epsilon(const Body& a, const Body& b) {
+  return thousandth_of_diagonal(merged(reach_box(a), reach_box(b)));
 }
 
 void require_supported(const Scene& scene) {
@@ -184,7 +220,7 @@ CheckResult run_check(int a, int b, const PreparedBody& pa, const PreparedBody& 
   }
 
   const Motion& motion = *moving.body->motion;
-  const double eps = CGAL::to_double(options.epsilon);
+  const double eps = CGAL::to_double(*options.epsilon);
   if (!other.moving) {
     Check<1> check{moving, other, swapped, moving.curve, enclose(moving.curve), motion, eps * eps, moving.max_rho2, options, result};
     check.run();
@@ -210,6 +246,7 @@ Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
   std::map<std::pair<Exact, Exact>, int> intervals;
   for (const Body& b : scene.bodies) {
     boxes_.push_back(swept_box(b));
+    if (!options.epsilon) reach_.push_back(reach_box(b));
     if (b.moves())
       interval_.push_back(intervals.emplace(*b.interval(), static_cast<int>(intervals.size())).first->second);
     else
@@ -342,14 +379,23 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   if (interval_[a] >= 0 && interval_[b] >= 0 && interval_[a] != interval_[b])
     throw InputError(scene_.source + ": checks: [\"" + scene_.bodies[a].name + "\", \"" + scene_.bodies[b].name +
                      "\"]: two moving bodies must share their motion interval");
-  const Body& x = scene_.bodies[a];
-  const Body& y = scene_.bodies[b];
   // The time limit counts from here, per check.
   VerifyOptions options = options_;
   if (options.time_limit > 0)
     options.deadline = std::chrono::steady_clock::now() +
                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                            std::chrono::duration<double>(options.time_limit));
+  // Without a given epsilon, the check's own: from the box of its two
+  // bodies (default_epsilon(a, b)), not of the whole scene.
+  if (!options.epsilon) options.epsilon = thousandth_of_diagonal(merged(reach_[a], reach_[b]));
+  CheckResult result = check_with(a, b, clearance, options);
+  result.epsilon = *options.epsilon;
+  return result;
+}
+
+CheckResult Verifier::check_with(int a, int b, const Exact& clearance, const VerifyOptions& options) const {
+  const Body& x = scene_.bodies[a];
+  const Body& y = scene_.bodies[b];
   const bool general = x.trajectory || y.trajectory || x.tolerance > 0 || y.tolerance > 0 || clearance > 0;
   // The boxes hold everything the bodies sweep (keyframe motions included);
   // tolerances have none, and a clearance needs more than disjointness.
@@ -430,7 +476,11 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   SceneResult out;
   out.kernel = options.kernel;
   out.certified = options.kernel != KernelKind::Fast;
-  out.epsilon = options.epsilon;
+  out.epsilon_per_check = !options.epsilon;
+  out.max_depth = options.max_depth;
+  out.max_nodes = options.max_nodes;
+  out.max_stops = options.max_stops;
+  out.time_limit = options.time_limit;
 
   // Threads go to the checks first; when there are fewer checks than
   // threads, each check spreads its pieces over the rest.  Progress: a lone
@@ -470,6 +520,11 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
 
+  // The scene's epsilon: the given one, or the largest of the checks' own.
+  if (options.epsilon) out.epsilon = *options.epsilon;
+  else
+    for (const CheckResult& c : out.checks)
+      if (c.epsilon > out.epsilon) out.epsilon = c.epsilon;
   out.verdict = Verdict::Safe;
   for (const CheckResult& c : out.checks) {
     if (c.verdict == Verdict::Collision) out.verdict = Verdict::Collision;

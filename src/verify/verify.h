@@ -30,7 +30,10 @@ inline std::ostream& operator<<(std::ostream& out, Verdict v) { return out << to
 
 struct VerifyOptions {
   KernelKind kernel = KernelKind::Filtered;
-  Exact epsilon;                  // > 0, a length in scene units
+  // The termination tolerance, > 0, a length in scene units.  Absent: each
+  // check uses default_epsilon of its own two bodies (a scene's "epsilon"
+  // or `--epsilon` sets it for every check).
+  std::optional<Exact> epsilon;
   int max_depth = 40;
   std::uint64_t max_nodes = 2'000'000;  // per check; beyond it: undecided "limit"
   // Per check: after this many undecided stops (pieces that came within
@@ -153,6 +156,9 @@ struct CheckResult {
   // "collision" means the bodies come within it (clearance violated).
   Exact clearance = 0;
   Verdict verdict = Verdict::Undecided;
+  // The termination tolerance this check ran with (VerifyOptions::epsilon,
+  // or the check's default).
+  Exact epsilon = 0;
   std::optional<std::pair<Exact, Exact>> first_contact;
   // The first contact's time is known exactly: it is the witness's time
   // (first_contact then holds it, or with an algebraic witness the
@@ -172,7 +178,16 @@ struct SceneResult {
   Verdict verdict = Verdict::Safe;
   KernelKind kernel = KernelKind::Filtered;
   bool certified = true;
+  // VerifyOptions::epsilon when given; otherwise (epsilon_per_check) the
+  // largest of the checks' default tolerances, each in CheckResult::epsilon.
   Exact epsilon;
+  bool epsilon_per_check = false;
+  // The limits the checks ran under (VerifyOptions), for reports that say
+  // what to change when a check stops undecided.
+  int max_depth = 40;
+  std::uint64_t max_nodes = 0;
+  std::uint64_t max_stops = 0;
+  double time_limit = 0;
   std::vector<CheckResult> checks;
 };
 
@@ -181,6 +196,11 @@ struct SceneResult {
 // The box holds every body's vertices under every control point of its
 // motion, which bounds everything the bodies sweep.
 Exact default_epsilon(const Scene& scene);
+// The same for one check: 1/1000 of the diagonal of the box of its two
+// bodies over their whole motion (what a check uses when neither the scene
+// nor VerifyOptions gives an epsilon), so that bodies far away elsewhere in
+// the scene do not coarsen it.
+Exact default_epsilon(const Body& a, const Body& b);
 
 // Throws InputError when the scene cannot be verified as built in code (a
 // solid that is not closed shells, nothing to check).  Called before any
@@ -209,6 +229,8 @@ class Verifier {
 
  private:
   const PreparedBody& prepared(int body) const;
+  // check() with the check's own options (its deadline and epsilon set).
+  CheckResult check_with(int body_a, int body_b, const Exact& clearance, const VerifyOptions& options) const;
   // Checks with a keyframe or piecewise motion, a tolerance or a clearance:
   // the parameter interval cut at every segment join, each part searched in
   // order (src/verify/general.cpp).
@@ -226,6 +248,9 @@ class Verifier {
   // must share it).  Kept here so that a check the boxes clear touches no
   // exact number.
   std::vector<int> interval_;
+  // Per body, without a given epsilon: the box of its vertices under every
+  // control point of its motion (for the check's default epsilon).
+  std::vector<std::optional<std::array<Vec3E, 2>>> reach_;
   std::unique_ptr<std::once_flag[]> once_;
   mutable std::vector<std::unique_ptr<PreparedBody>> prepared_;
   std::unique_ptr<std::once_flag[]> surface_once_;

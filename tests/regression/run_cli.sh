@@ -194,6 +194,7 @@ if [ -d "$certs" ]; then
   # A certificate path that cannot be written is bad input (exit 3), never
   # a verdict printed without its proof.
   expect_refusal "--certificate: cannot write" verify "$examples/octagons-near.json" --certificate "$work/no-such-dir/near.cert"
+  expect_refusal "--certificate: cannot write '$work': it is a directory" verify "$examples/octagons-near.json" --certificate "$work"
 fi
 
 # 4. Round trip: every scene with a known verdict, verified with

@@ -99,6 +99,15 @@ BOOST_AUTO_TEST_CASE(number_tokens_near_the_double_range) {
 
 namespace {
 
+// The double nearest to x (ties: either), from the tight interval CGAL
+// encloses it in: an approximation computed independently of
+// kernels/decimal.
+double nearest_double(const Exact& x) {
+  const std::pair<double, double> range = CGAL::to_interval(x);
+  if (range.first == range.second) return range.first;
+  return x - Exact(range.first) <= Exact(range.second) - x ? range.first : range.second;
+}
+
 // The result document as nlohmann's ordered_json wrote it before the
 // writer of report.cpp replaced it.
 std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
@@ -110,11 +119,15 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
   j["kernel"] = to_string(r.kernel);
   j["certified"] = r.certified;
   j["epsilon"] = to_string(r.epsilon);
+  j["epsilon_approx"] = nearest_double(r.epsilon);
+  j["epsilon_per_check"] = r.epsilon_per_check;
   j["checks"] = ordered_json::array();
   for (const tmcert::CheckResult& c : r.checks) {
     ordered_json k;
     k["bodies"] = {scene.bodies[c.bodies[0]].name, scene.bodies[c.bodies[1]].name};
     k["verdict"] = to_string(c.verdict);
+    k["epsilon"] = to_string(c.epsilon);
+    k["epsilon_approx"] = nearest_double(c.epsilon);
     // An irrational time as the contract writes it.
     auto root = [](const tmcert::AlgebraicTime& a) {
       ordered_json coefficients = ordered_json::array();
@@ -122,23 +135,38 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
       return ordered_json{{"root_of", coefficients}, {"interval", {to_string(a.lo), to_string(a.hi)}}, {"approx", a.approx}};
     };
     const tmcert::AlgebraicTime* at = c.witness && c.witness->root ? &*c.witness->root : nullptr;
+    // The approximations: doubles of the exact numbers (the test's values
+    // are all far from rounding ties), an algebraic number's own approx.
+    auto approx = [](const Exact& x) { return nearest_double(x); };
+    const double at_approx = at ? std::stod(at->approx) : 0.0;
     if (c.first_contact && at)
-      k["first_contact"] = {{"t", {c.first_contact_exact ? root(*at) : ordered_json(to_string(c.first_contact->first)), root(*at)}}};
+      k["first_contact"] = {{"t", {c.first_contact_exact ? root(*at) : ordered_json(to_string(c.first_contact->first)), root(*at)}},
+                            {"t_approx", {c.first_contact_exact ? at_approx : approx(c.first_contact->first), at_approx}}};
     else if (c.first_contact)
-      k["first_contact"] = {{"t", {to_string(c.first_contact->first), to_string(c.first_contact->second)}}};
+      k["first_contact"] = {{"t", {to_string(c.first_contact->first), to_string(c.first_contact->second)}},
+                            {"t_approx", {approx(c.first_contact->first), approx(c.first_contact->second)}}};
     if (c.witness && at) {
-      ordered_json box = ordered_json::array();
-      if (c.witness->point_box) for (const auto& range : *c.witness->point_box) box.push_back({to_string(range[0]), to_string(range[1])});
-      k["witness"] = {{"t", root(*at)}, {"features", {c.witness->features[0], c.witness->features[1]}}, {"point_box", box}};
+      ordered_json box = ordered_json::array(), box_approx = ordered_json::array();
+      if (c.witness->point_box)
+        for (const auto& range : *c.witness->point_box) {
+          box.push_back({to_string(range[0]), to_string(range[1])});
+          box_approx.push_back({approx(range[0]), approx(range[1])});
+        }
+      k["witness"] = {{"t", root(*at)}, {"t_approx", at_approx}, {"features", {c.witness->features[0], c.witness->features[1]}},
+                      {"point_box", box}, {"point_box_approx", box_approx}};
     } else if (c.witness) {
+      const tmcert::Vec3E& p = c.witness->point;
       k["witness"] = {{"t", to_string(c.witness->t)},
+                      {"t_approx", approx(c.witness->t)},
                       {"features", {c.witness->features[0], c.witness->features[1]}},
-                      {"point", {to_string(c.witness->point[0]), to_string(c.witness->point[1]),
-                                 to_string(c.witness->point[2])}}};
+                      {"point", {to_string(p[0]), to_string(p[1]), to_string(p[2])}},
+                      {"point_approx", {approx(p[0]), approx(p[1]), approx(p[2])}}};
     }
     ordered_json und = ordered_json::array();
     for (const tmcert::UndecidedInterval& u : c.undecided)
-      und.push_back({{"t", {to_string(u.t0), to_string(u.t1)}}, {"reason", to_string(u.reason)}});
+      und.push_back({{"t", {to_string(u.t0), to_string(u.t1)}},
+                     {"t_approx", {approx(u.t0), approx(u.t1)}},
+                     {"reason", to_string(u.reason)}});
     k["undecided"] = und;
     const tmcert::CheckStats& s = c.stats;
     k["stats"] = {{"nodes", s.nodes},
@@ -203,6 +231,7 @@ BOOST_AUTO_TEST_CASE(result_json_is_written_as_nlohmann_dumps_it) {
   hit.stats.contact.calls = 18446744073709551615ull;
   hit.stats.by_kind[1].exact_fallbacks = 3;
   hit.stats.seconds = 2.0;
+  hit.epsilon = Exact(248723, 100000000);
   r.checks.push_back(hit);
 
   // A contact at an irrational time: root, interval and point box.

@@ -1,0 +1,104 @@
+// src/cli/report.cpp, the human summary: decimals beside exact numbers, the
+// contact point, and every undecided interval with its reason and a hint
+// that fits the reason (docs/scene-format.md, "Human summary").
+#include "src/cli/report.h"
+
+#include <boost/test/unit_test.hpp>
+
+#include <string>
+
+using tmcert::CheckResult;
+using tmcert::Exact;
+using tmcert::SceneResult;
+using tmcert::StopReason;
+using tmcert::Verdict;
+
+namespace {
+
+tmcert::Scene two_bodies() {
+  tmcert::Scene scene;
+  for (const char* name : {"a", "b"}) {
+    tmcert::Body b;
+    b.name = name;
+    scene.bodies.push_back(b);
+  }
+  return scene;
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(report)
+
+BOOST_AUTO_TEST_CASE(collision_with_its_point_in_decimals_and_exactly) {
+  const tmcert::Scene scene = two_bodies();
+  SceneResult r;
+  r.verdict = Verdict::Collision;
+  r.epsilon = Exact(1, 1000);
+  CheckResult c;
+  c.bodies = {0, 1};
+  c.verdict = Verdict::Collision;
+  c.epsilon = r.epsilon;
+  c.witness = tmcert::Witness{Exact(8471, 4096), {"a polygon 0", "b point 2"}, {Exact(1, 2), Exact(1, 3), Exact(0)}};
+  c.first_contact = std::make_pair(Exact(8471, 4096), Exact(8471, 4096));
+  c.first_contact_exact = true;
+  r.checks.push_back(c);
+  const std::string s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "tmcert: collision  [kernel filtered, epsilon 0.001]\n"), s);
+  BOOST_TEST(has(s, "  a x b: collision at t = 2.06812 (8471/4096), the exact first contact  ("), s);
+  BOOST_TEST(has(s, "    contact: a polygon 0 meets b point 2 at (0.5, 0.333333, 0), exactly (1/2, 1/3, 0)\n"), s);
+}
+
+BOOST_AUTO_TEST_CASE(undecided_intervals_with_their_hints) {
+  const tmcert::Scene scene = two_bodies();
+  SceneResult r;
+  r.verdict = Verdict::Undecided;
+  r.epsilon_per_check = true;
+  r.max_depth = 40;
+  r.max_nodes = 1000;
+  r.max_stops = 4;
+  r.time_limit = 2.5;
+  CheckResult c;
+  c.bodies = {0, 1};
+  c.verdict = Verdict::Undecided;
+  c.epsilon = Exact(3, 1000);
+  c.first_contact = std::make_pair(Exact(1, 4), Exact(5, 16));
+  // Two adjacent epsilon stops (merged into one line), a depth stop, and
+  // the rest cut by the time limit.
+  c.undecided = {{Exact(1, 4), Exact(9, 32), StopReason::Epsilon},
+                 {Exact(9, 32), Exact(5, 16), StopReason::Epsilon},
+                 {Exact(1, 2), Exact(17, 32), StopReason::Depth},
+                 {Exact(3, 4), Exact(1), StopReason::Limit}};
+  r.checks.push_back(c);
+  std::string s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "epsilon per check: 1/1000 of its bodies' box]"), s);
+  BOOST_TEST(has(s, "  a x b: undecided; no contact before t = 0.25  (epsilon 0.003, "), s);
+  BOOST_TEST(has(s, "    undecided t in [0.25, 0.3125] (epsilon): the bodies come within about epsilon (0.003) there; "
+                    "try a smaller --epsilon, e.g. --epsilon 0.0003\n"), s);
+  BOOST_TEST(has(s, "    undecided t in [0.5, 0.53125] (depth): the subdivision reached its depth limit (40); try --max-depth 62\n"), s);
+  BOOST_TEST(has(s, "    undecided t in [0.75, 1] (limit): --time-limit 2.5 was reached; try a larger --time-limit\n"), s);
+
+  // The limit reason names the budget that ran out.
+  r.checks[0].stats.stops = 4;
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "(limit): the stop budget (4 undecided pieces) was used up"), s);
+  r.checks[0].stats.stops = 0;
+  r.checks[0].stats.nodes = 1000;
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "(limit): the node budget (1000 nodes per check) was used up"), s);
+  r.max_depth = 62;
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "(depth): the subdivision reached its finest depth (62)"), s);
+
+  // At most five lines of intervals, then their count.
+  r.checks[0].undecided.clear();
+  for (int k = 0; k < 8; ++k)
+    r.checks[0].undecided.push_back({Exact(2 * k, 16), Exact(2 * k + 1, 16), StopReason::Epsilon});
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "undecided t in [0.5, 0.5625] (epsilon)"), s);
+  BOOST_TEST(!has(s, "undecided t in [0.625, 0.6875]"), s);
+  BOOST_TEST(has(s, "    ... and 3 more undecided intervals (--json lists them all)\n"), s);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
