@@ -25,6 +25,7 @@ int main() {
     builder.add_body("table").triangles(table_xyz, table_faces);
     // Lowered from z = 1 to z = -1/2 over the parameter interval [0, 1].
     builder.add_body("box").triangles(box_xyz, box_faces).motion(tmcert::Motion::translation({0, 0, 1}, {0, 0, "-1/2"}));
+    builder.check("box", "table");  // without checks: every moving body against every other one
     const tmcert::Scene scene = builder.build();
 
     const tmcert::Result result = tmcert::verify(scene);  // filtered kernel: certified
