@@ -1,0 +1,56 @@
+// What the public API (include/tmcert/) wraps: the internal scene and
+// result behind Scene and Result, and the conversions between internal and
+// public values.  Only src/api/*.cpp include this.
+//
+// Internal headers come first: the public headers put a using-directive
+// for tmcert::api into namespace tmcert, after which an unqualified name
+// such as Scene in internal code would be ambiguous.  Code here lives in
+// tmcert::api, where an unqualified name finds the public type first;
+// internal types are written tmcert::X.
+#pragma once
+
+#include "src/scene/model.h"
+#include "src/verify/verify.h"
+
+#include "tmcert/errors.h"
+#include "tmcert/numbers.h"
+#include "tmcert/result.h"
+#include "tmcert/scene.h"
+
+#include <memory>
+#include <new>
+#include <string>
+#include <utility>
+
+namespace tmcert::api {
+
+struct Scene::Impl {
+  std::shared_ptr<const tmcert::Scene> scene;
+};
+
+struct Result::Impl {
+  std::shared_ptr<const tmcert::Scene> scene;
+  tmcert::SceneResult internal;
+  bool certificate = false;  // verified with VerifyOptions::certificate
+  // The public view of `internal`.
+  Rational epsilon;
+  std::vector<CheckResult> checks;
+};
+
+// The exact value of q with its nearest double.
+Rational to_rational(const tmcert::Exact& q);
+
+// Runs f, turning the internal exceptions into the public ones (same
+// messages).  std::bad_alloc and other standard exceptions pass through.
+template <typename F>
+auto public_errors(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const tmcert::InputError& e) {
+    throw InputError(e.what());
+  } catch (const tmcert::ResourceLimit& e) {
+    throw ResourceLimit(e.what());
+  }
+}
+
+}  // namespace tmcert::api

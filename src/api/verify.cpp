@@ -1,0 +1,216 @@
+// verify() and Result (include/tmcert/verify.h, result.h): the internal
+// verifier with the command line's option rules, and its result seen
+// through exact Rationals and Times with doubles next to them.
+#include "src/certificate/check.h"
+#include "src/certificate/writer.h"
+#include "src/cli/report.h"
+#include "src/scene/parse.h"
+#include "src/verify/verify.h"
+
+#include "src/api/internal.h"
+#include "tmcert/certificate.h"
+#include "tmcert/verify.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace tmcert::api {
+
+namespace {
+
+// The public enums list the internal ones' values in the same order
+// (checked here), so a conversion either way is a cast.
+static_assert(static_cast<int>(Verdict::Safe) == static_cast<int>(tmcert::Verdict::Safe) &&
+              static_cast<int>(Verdict::Collision) == static_cast<int>(tmcert::Verdict::Collision) &&
+              static_cast<int>(Verdict::Undecided) == static_cast<int>(tmcert::Verdict::Undecided));
+static_assert(static_cast<int>(Kernel::Filtered) == static_cast<int>(tmcert::KernelKind::Filtered) &&
+              static_cast<int>(Kernel::Exact) == static_cast<int>(tmcert::KernelKind::Exact) &&
+              static_cast<int>(Kernel::Fast) == static_cast<int>(tmcert::KernelKind::Fast));
+static_assert(static_cast<int>(StopReason::Epsilon) == static_cast<int>(tmcert::StopReason::Epsilon) &&
+              static_cast<int>(StopReason::Depth) == static_cast<int>(tmcert::StopReason::Depth) &&
+              static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit));
+
+template <typename To, typename From>
+To same_enum(From value) {
+  return static_cast<To>(static_cast<int>(value));
+}
+
+}  // namespace
+
+const char* to_string(Verdict v) { return tmcert::to_string(same_enum<tmcert::Verdict>(v)); }
+const char* to_string(Kernel k) { return tmcert::to_string(same_enum<tmcert::KernelKind>(k)); }
+const char* to_string(StopReason r) { return tmcert::to_string(same_enum<tmcert::StopReason>(r)); }
+
+namespace {
+
+std::array<Rational, 3> public_point(const tmcert::Vec3E& p) {
+  return {to_rational(p[0]), to_rational(p[1]), to_rational(p[2])};
+}
+
+AlgebraicNumber public_root(const tmcert::AlgebraicTime& a) {
+  AlgebraicNumber out;
+  for (const CGAL::Gmpz& c : a.root_of) out.root_of.push_back(tmcert::to_string(tmcert::Exact(c)));
+  out.lower = to_rational(a.lo);
+  out.upper = to_rational(a.hi);
+  out.approx_text = a.approx;
+  out.approx = std::strtod(a.approx.c_str(), nullptr);
+  return out;
+}
+
+Witness public_witness(const tmcert::Scene& scene, const tmcert::CheckResult& c, const tmcert::Witness& w) {
+  Witness out;
+  out.t = w.root ? Time{public_root(*w.root)} : Time{to_rational(w.t)};
+  out.features = w.features;
+  if (w.point_box) {
+    std::array<std::array<Rational, 2>, 3> box;
+    for (int k = 0; k < 3; ++k) {
+      box[k] = {to_rational((*w.point_box)[k][0]), to_rational((*w.point_box)[k][1])};
+      out.point_approx[k] = (box[k][0].approx + box[k][1].approx) / 2;
+    }
+    out.point_box = box;
+  } else {
+    out.point = public_point(w.point);
+    for (int k = 0; k < 3; ++k) out.point_approx[k] = (*out.point)[k].approx;
+  }
+  if (w.points) out.points = std::array{public_point((*w.points)[0]), public_point((*w.points)[1])};
+  if (w.displacement) {
+    out.displacement = public_point(*w.displacement);
+    out.displaced = scene.bodies[c.bodies[w.displaced]].name;
+  }
+  return out;
+}
+
+// As result_json writes a check (src/cli/report.cpp).
+CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& c) {
+  CheckResult out;
+  const tmcert::Body& a = scene.bodies[c.bodies[0]];
+  const tmcert::Body& b = scene.bodies[c.bodies[1]];
+  out.bodies = {a.name, b.name};
+  out.verdict = same_enum<Verdict>(c.verdict);
+  out.clearance = to_rational(c.clearance);
+  out.clearance_violated = c.clearance > 0 && c.verdict == tmcert::Verdict::Collision;
+  out.enlarged_model = !a.enlarged.empty() || !b.enlarged.empty();
+  if (c.witness) out.witness = public_witness(scene, c, *c.witness);
+  if (c.first_contact) {
+    // With an algebraic witness the bracket ends at its time, and starts
+    // there too when that is the exact first contact.
+    const bool root = out.witness && !out.witness->t.is_rational();
+    Time lo = root && c.first_contact_exact ? out.witness->t : Time{to_rational(c.first_contact->first)};
+    Time hi = root ? out.witness->t : Time{to_rational(c.first_contact->second)};
+    out.first_contact = std::array{std::move(lo), std::move(hi)};
+  }
+  out.first_contact_exact = c.first_contact_exact;
+  for (const tmcert::UndecidedInterval& u : c.undecided)
+    out.undecided.push_back({to_rational(u.t0), to_rational(u.t1), same_enum<StopReason>(u.reason)});
+  const tmcert::CheckStats& s = c.stats;
+  out.stats.nodes = s.nodes;
+  out.stats.max_depth = s.max_depth;
+  out.stats.predicate_calls = s.contact.calls;
+  out.stats.exact_fallbacks = s.contact.exact_fallbacks;
+  out.stats.stops = s.stops;
+  out.stats.exact_pieces = s.exact_pieces;
+  out.stats.exact_undecided = s.exact_unknown;
+  out.stats.prefiltered = s.prefiltered;
+  out.stats.seconds = s.seconds;
+  return out;
+}
+
+// The command line's rules for its options (src/cli/main.cpp), with the
+// option's name in the message.
+tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o) {
+  tmcert::VerifyOptions options;
+  options.kernel = same_enum<tmcert::KernelKind>(o.kernel);
+  if (o.epsilon) {
+    tmcert::Exact e;
+    if (!tmcert::parse_exact(o.epsilon->text(), e) || !(e > 0))
+      throw InputError("epsilon: must be a positive number (decimal or p/q), got " + tmcert::quote_text(o.epsilon->text()));
+    options.epsilon = e;
+  } else {
+    options.epsilon = scene.epsilon ? *scene.epsilon : tmcert::default_epsilon(scene);
+  }
+  if (o.max_depth && (*o.max_depth < 1 || *o.max_depth > 200))
+    throw InputError("max_depth: must be between 1 and 200, got " + std::to_string(*o.max_depth));
+  options.max_depth = o.max_depth ? *o.max_depth : scene.max_depth;
+  if (o.threads < 1 || o.threads > 256) throw InputError("threads: must be between 1 and 256, got " + std::to_string(o.threads));
+  options.threads = o.threads;
+  if (o.time_limit) {
+    const double seconds = *o.time_limit;
+    if (!std::isfinite(seconds) || !(seconds > 0) || seconds > 1e9)
+      throw InputError("time_limit: must be a number of seconds, > 0 and at most 1e9");
+    options.time_limit = seconds;
+  }
+  options.hierarchy = !o.all_pairs;
+  options.record_cover = o.certificate;
+  if (o.certificate && options.kernel == tmcert::KernelKind::Fast)
+    throw InputError("certificate: the fast kernel is not certified; use the filtered or the exact kernel");
+  return options;
+}
+
+}  // namespace
+
+Result verify(const Scene& scene, const VerifyOptions& options) {
+  return public_errors([&] {
+    const std::shared_ptr<const tmcert::Scene>& internal = scene.impl().scene;
+    const tmcert::VerifyOptions o = internal_options(*internal, options);
+    tmcert::require_supported(*internal);
+    if (options.certificate)
+      if (const std::string why = tmcert::certificate::uncertifiable(*internal); !why.empty())
+        throw InputError("certificate: certificates do not cover this scene: " + why);
+    auto impl = std::make_shared<Result::Impl>();
+    impl->scene = internal;
+    impl->internal = tmcert::verify_scene(*internal, o, o.threads);
+    impl->certificate = options.certificate;
+    impl->epsilon = to_rational(impl->internal.epsilon);
+    impl->checks.reserve(impl->internal.checks.size());
+    for (const tmcert::CheckResult& c : impl->internal.checks) impl->checks.push_back(public_check(*internal, c));
+    return Result(std::move(impl));
+  });
+}
+
+Result::Result(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+Verdict Result::verdict() const { return same_enum<Verdict>(impl_->internal.verdict); }
+Kernel Result::kernel() const { return same_enum<Kernel>(impl_->internal.kernel); }
+bool Result::certified() const { return impl_->internal.certified; }
+const Rational& Result::epsilon() const { return impl_->epsilon; }
+const std::vector<CheckResult>& Result::checks() const { return impl_->checks; }
+
+std::string Result::to_json() const { return tmcert::result_json(*impl_->scene, impl_->internal); }
+std::string Result::summary() const { return tmcert::result_summary(*impl_->scene, impl_->internal); }
+
+std::string Result::certificate() const {
+  if (!impl_->certificate)
+    throw InputError("certificate: the result was verified without VerifyOptions::certificate");
+  return public_errors([&] { return tmcert::certificate::certificate_json(*impl_->scene, impl_->internal); });
+}
+
+void Result::write_certificate(const std::string& path) const {
+  const std::string document = certificate();
+  std::ofstream out(path, std::ios::binary);
+  out << document;
+  out.close();
+  if (!out) throw InputError("certificate: cannot write " + tmcert::quote_text(path));
+}
+
+namespace {
+
+CertificateCheck public_outcome(const tmcert::certificate::CheckOutcome& o) { return {o.ok, o.message, o.proven}; }
+
+}  // namespace
+
+CertificateCheck check_certificate(const Scene& scene, const std::string& path) {
+  return public_errors([&] {
+    const nlohmann::json doc = tmcert::certificate::read_certificate_file(path);
+    return public_outcome(tmcert::certificate::check_certificate(*scene.impl().scene, doc, path));
+  });
+}
+
+CertificateCheck check_certificate_text(const Scene& scene, const std::string& text, const std::string& source) {
+  return public_errors([&] {
+    const nlohmann::json doc = tmcert::certificate::parse_certificate_text(text, source);
+    return public_outcome(tmcert::certificate::check_certificate(*scene.impl().scene, doc, source));
+  });
+}
+
+}  // namespace tmcert::api
