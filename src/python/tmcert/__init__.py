@@ -1,0 +1,647 @@
+"""tmcert: certified collision checks of moving polyhedra.
+
+A Python binding of tmcert's public C++ API (``include/tmcert/``).  A scene
+(bodies with exact geometry and motions, the body pairs to check) comes
+from a file, a JSON string, a dict holding the tmcert-scene/1 document, or a
+:class:`SceneBuilder` fed with NumPy arrays; :func:`verify` proves each
+check ``safe`` or ``collision`` (with an exact witness), or reports it
+``undecided`` where a limit was hit.
+
+    >>> import tmcert
+    >>> result = tmcert.verify("examples/octagons-collision.json")
+    >>> result.verdict
+    <Verdict.COLLISION: 'collision'>
+
+**Numbers are exact.**  Wherever a scene takes a number, these are accepted:
+
+* ``int`` (and NumPy integers): that integer;
+* ``fractions.Fraction``: that fraction;
+* ``decimal.Decimal`` and ``str`` (``"0.1"``, ``"1/3"``, ``"-1.25e-3"``):
+  exactly the decimal or fraction they spell, as in a scene file;
+* ``float`` (and NumPy floats): **exactly its binary value**, the same rule
+  as the C++ API's ``Number(double)``: ``0.1`` is
+  3602879701896397/36028797018963968, not 1/10.  This holds for dicts too:
+  a dict is not JSON text, and its floats are already rounded.  Write
+  ``"0.1"``, ``Decimal("0.1")`` or ``Fraction(1, 10)`` for one tenth, or
+  read a JSON file with :meth:`Scene.from_file` (or
+  ``json.load(f, parse_float=decimal.Decimal)``) to keep its decimals.
+
+Results carry exact values (``fractions.Fraction``, or an
+:class:`AlgebraicNumber` for a contact at an irrational instant) next to a
+``*_float`` view of each for people and plots.  Bad input raises
+:class:`InputError` (a ``ValueError``) with the message the command line
+prints after ``tmcert: ``; a resource limit that leaves no honest answer
+raises :class:`ResourceLimit`.
+"""
+
+from __future__ import annotations
+
+import decimal
+import enum
+import json
+import math
+import numbers
+import os
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _tmcert
+from ._tmcert import (InputError, Keyframes, Motion, Piecewise, Pose, RationalBezier, ResourceLimit, Rotation,
+                      Scene)
+
+__all__ = [
+    "AlgebraicNumber", "Body", "CertificateCheck", "Check", "InputError", "Keyframes", "Motion", "Piecewise",
+    "Pose", "RationalBezier", "ResourceLimit", "Result", "Robot", "Rotation", "Scene", "SceneBuilder", "Stats",
+    "UndecidedInterval", "Verdict", "Witness", "check", "load", "scene_from_dict", "verify",
+]
+
+NumberLike = Union[int, float, Fraction, decimal.Decimal, str]
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+# ----------------------------------------------------------------- numbers
+
+@dataclass(frozen=True)
+class AlgebraicNumber:
+    """An irrational real: the only root of ``root_of`` in the open ``interval``.
+
+    ``root_of`` lists the integer coefficients of a square-free polynomial,
+    constant term first; ``interval`` is an open rational interval isolating
+    the root.  ``approx`` (also ``float(x)``) is for people.
+    """
+
+    root_of: Tuple[int, ...]
+    interval: Tuple[Fraction, Fraction]
+    approx: float
+
+    def __float__(self) -> float:
+        return self.approx
+
+    def __str__(self) -> str:
+        coefficients = ", ".join(str(c) for c in self.root_of)
+        return f"root of [{coefficients}] in ({self.interval[0]}, {self.interval[1]})"
+
+
+Time = Union[Fraction, AlgebraicNumber]
+"""A parameter of a result: a Fraction, or an AlgebraicNumber."""
+
+
+def _time(t: Any) -> Time:
+    value = t.value
+    if isinstance(value, _tmcert._Rational):
+        return value.fraction()
+    return AlgebraicNumber(tuple(int(c) for c in value.root_of),
+                           (value.lower.fraction(), value.upper.fraction()), value.approx)
+
+
+def _point(p: Optional[Sequence[Any]]) -> Optional[Tuple[Fraction, Fraction, Fraction]]:
+    return None if p is None else (p[0].fraction(), p[1].fraction(), p[2].fraction())
+
+
+def _point_float(p: Sequence[Any]) -> np.ndarray:
+    return np.array([c.approx for c in p], dtype=np.float64)
+
+
+# ----------------------------------------------------------------- results
+
+class Verdict(str, enum.Enum):
+    """A check's or a result's verdict; equal to its string ("safe", ...)."""
+
+    SAFE = "safe"            #: certified: no common point at any parameter
+    COLLISION = "collision"  #: certified by an exact witness
+    UNDECIDED = "undecided"  #: neither was proven (a limit was hit)
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class Witness:
+    """Where and when two bodies provably touch (world coordinates).
+
+    ``t`` is exact (``t_float`` for people).  ``point`` is the exact common
+    point (three Fractions), or None at an algebraic time or an enclosed
+    pose, where ``point_box`` (three ``(lo, hi)`` Fraction pairs) holds it;
+    ``point_float`` is the point (or the box's centre) as a float array.
+    With a clearance, ``points`` gives a point of each body (in the check's
+    order) no farther apart than it; with a tolerance, body ``displaced``
+    translated by ``displacement`` touches.
+    """
+
+    t: Time
+    t_float: float
+    features: Tuple[str, str]
+    point: Optional[Tuple[Fraction, Fraction, Fraction]]
+    point_box: Optional[Tuple[Tuple[Fraction, Fraction], ...]]
+    point_float: np.ndarray
+    points: Optional[Tuple[Tuple[Fraction, Fraction, Fraction], Tuple[Fraction, Fraction, Fraction]]]
+    points_float: Optional[np.ndarray]
+    displacement: Optional[Tuple[Fraction, Fraction, Fraction]]
+    displacement_float: Optional[np.ndarray]
+    displaced: Optional[str]
+
+    @staticmethod
+    def _from(w: Any) -> "Witness":
+        box = None if w.point_box is None else tuple((lo.fraction(), hi.fraction()) for lo, hi in w.point_box)
+        points = None if w.points is None else (_point(w.points[0]), _point(w.points[1]))
+        return Witness(
+            t=_time(w.t), t_float=float(w.t.value.approx), features=(w.features[0], w.features[1]),
+            point=_point(w.point), point_box=box, point_float=np.array(w.point_approx, dtype=np.float64),
+            points=points, points_float=None if w.points is None else np.array([_point_float(p) for p in w.points]),
+            displacement=_point(w.displacement),
+            displacement_float=None if w.displacement is None else _point_float(w.displacement),
+            displaced=w.displaced or None)
+
+
+@dataclass(frozen=True)
+class UndecidedInterval:
+    """A parameter interval not cleared, and why: "epsilon", "depth" or "limit"."""
+
+    t: Tuple[Fraction, Fraction]
+    t_float: Tuple[float, float]
+    reason: str
+
+
+@dataclass(frozen=True)
+class Stats:
+    """The work a check took (``seconds`` is wall time, not deterministic)."""
+
+    nodes: int
+    max_depth: int
+    predicate_calls: int
+    exact_fallbacks: int
+    stops: int
+    exact_pieces: int
+    exact_undecided: int
+    prefiltered: bool
+    seconds: float
+
+
+@dataclass(frozen=True)
+class Check:
+    """The result of one body pair.
+
+    ``first_contact`` brackets the earliest possible contact (exact;
+    ``first_contact_float`` for people): everything before its lower end is
+    certified free of contact; None when the check is safe.  With
+    ``first_contact_exact`` the witness's time is the first contact.
+    ``witness`` is set iff the verdict is collision.
+    """
+
+    bodies: Tuple[str, str]
+    verdict: Verdict
+    clearance: Fraction
+    clearance_violated: bool
+    enlarged_model: bool
+    first_contact: Optional[Tuple[Time, Time]]
+    first_contact_float: Optional[Tuple[float, float]]
+    first_contact_exact: bool
+    witness: Optional[Witness]
+    undecided: Tuple[UndecidedInterval, ...]
+    stats: Stats
+
+    @staticmethod
+    def _from(c: Any) -> "Check":
+        fc = c.first_contact
+        s = c.stats
+        return Check(
+            bodies=(c.bodies[0], c.bodies[1]), verdict=Verdict(c.verdict), clearance=c.clearance.fraction(),
+            clearance_violated=c.clearance_violated, enlarged_model=c.enlarged_model,
+            first_contact=None if fc is None else (_time(fc[0]), _time(fc[1])),
+            first_contact_float=None if fc is None else (fc[0].value.approx, fc[1].value.approx),
+            first_contact_exact=c.first_contact_exact,
+            witness=None if c.witness is None else Witness._from(c.witness),
+            undecided=tuple(UndecidedInterval((u.t0.fraction(), u.t1.fraction()), (u.t0.approx, u.t1.approx),
+                                              u.reason) for u in c.undecided),
+            stats=Stats(s.nodes, s.max_depth, s.predicate_calls, s.exact_fallbacks, s.stops, s.exact_pieces,
+                        s.exact_undecided, s.prefiltered, s.seconds))
+
+
+class Result:
+    """What :func:`verify` returns: a verdict per check, with its proof data.
+
+    ``str(result)`` is the command line's human summary; :meth:`to_json` is
+    the tmcert-result/1 document ``tmcert verify --json`` prints.
+    """
+
+    def __init__(self, raw: Any) -> None:
+        self._raw = raw
+        self._checks: Optional[Tuple[Check, ...]] = None
+
+    @property
+    def verdict(self) -> Verdict:
+        """Collision if any check is, else undecided if any check is, else safe."""
+        return Verdict(self._raw.verdict)
+
+    @property
+    def kernel(self) -> str:
+        """"filtered", "exact" or "fast"."""
+        return str(self._raw.kernel)
+
+    @property
+    def certified(self) -> bool:
+        """False only for the fast kernel, whose verdicts are not proofs."""
+        return bool(self._raw.certified)
+
+    @property
+    def epsilon(self) -> Fraction:
+        """The termination tolerance used, exact."""
+        return self._raw.epsilon.fraction()
+
+    @property
+    def epsilon_float(self) -> float:
+        return float(self._raw.epsilon.approx)
+
+    @property
+    def checks(self) -> Tuple[Check, ...]:
+        """The checks in the scene's order."""
+        if self._checks is None:
+            self._checks = tuple(Check._from(c) for c in self._raw.checks)
+        return self._checks
+
+    def to_json(self) -> str:
+        """The tmcert-result/1 document (as ``tmcert verify --json``, up to "seconds")."""
+        return str(self._raw.to_json())
+
+    def to_dict(self) -> dict:
+        """:meth:`to_json` parsed (exact numbers stay strings)."""
+        return json.loads(self.to_json())
+
+    def summary(self) -> str:
+        """The human summary ``tmcert verify`` prints."""
+        return str(self._raw.summary())
+
+    def certificate(self) -> str:
+        """The tmcert-certificate/1 document; needs ``verify(..., certificate=True)``."""
+        return str(self._raw.certificate())
+
+    def write_certificate(self, path: PathLike) -> None:
+        """Writes :meth:`certificate` to ``path`` (InputError when it cannot)."""
+        self._raw.write_certificate(os.fspath(path))
+
+    def __str__(self) -> str:
+        return self.summary()
+
+    def __repr__(self) -> str:
+        counts = {v: sum(1 for c in self._raw.checks if c.verdict == v.value) for v in Verdict}
+        detail = ", ".join(f"{n} {v.value}" for v, n in counts.items() if n)
+        return f"<tmcert.Result {self.verdict.value} ({detail}), kernel {self.kernel}>"
+
+
+@dataclass(frozen=True)
+class CertificateCheck:
+    """What :func:`check` returns; true when every claim of the certificate is proven.
+
+    ``message`` names the failing claim when not ``ok``; ``proven`` says per
+    check what was proven when ``ok``.
+    """
+
+    ok: bool
+    message: str
+    proven: Tuple[str, ...]
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+
+# ----------------------------------------------------------------- scenes
+
+_INT64 = 2 ** 63
+
+
+def _json_value(value: Any, path: str) -> Any:
+    """A dict scene's value as JSON, numbers as their exact text."""
+    if value is None or isinstance(value, (bool, np.bool_)):
+        return None if value is None else bool(value)
+    if isinstance(value, str):
+        return value
+    if isinstance(value, numbers.Integral):
+        v = int(value)
+        return v if -_INT64 < v < _INT64 else str(v)
+    if isinstance(value, numbers.Rational):
+        return f"{value.numerator}/{value.denominator}"
+    if isinstance(value, decimal.Decimal):
+        return str(value)
+    if isinstance(value, numbers.Real):
+        f = float(value)
+        if not math.isfinite(f):
+            return str(f)  # "nan", "inf": the reader names the field
+        n, d = f.as_integer_ratio()
+        return f"{n}/{d}"
+    if isinstance(value, Mapping):
+        out = {}
+        for key, item in value.items():
+            if not isinstance(key, str):
+                raise InputError(f"<dict>: {path or 'document'}: key {key!r} is not a string")
+            out[key] = _json_value(item, f"{path}.{key}" if path else key)
+        return out
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_json_value(item, f"{path}[{i}]") for i, item in enumerate(value)]
+    raise InputError(f"<dict>: {path or 'document'}: cannot use a {type(value).__name__} in a scene")
+
+
+def scene_from_dict(document: Mapping[str, Any], base_dir: Optional[PathLike] = None,
+                    source: str = "<dict>") -> Scene:
+    """A scene from the tmcert-scene/1 document as Python objects.
+
+    Numbers may be int, Fraction, Decimal, str or float (a float is its
+    exact binary value; see the module's docstring); arrays may be lists,
+    tuples or NumPy arrays.  Relative ``mesh`` and ``urdf`` files are taken
+    relative to ``base_dir`` (default: the current directory).  Messages
+    name ``source`` and the field, as for a file.
+    """
+    doc = _json_value(document, "")
+    if base_dir is not None and isinstance(doc, dict):
+        base = os.fspath(base_dir)
+        for key, field in (("bodies", "mesh"), ("robots", "urdf")):
+            items = doc.get(key)
+            if isinstance(items, list):
+                for item in items:
+                    if isinstance(item, dict) and isinstance(item.get(field), str) \
+                            and not os.path.isabs(item[field]):
+                        item[field] = os.path.join(base, item[field])
+    return Scene.from_json(json.dumps(doc), source)
+
+
+def load(scene: "SceneLike") -> Scene:
+    """A Scene from a Scene, a SceneBuilder, a dict (:func:`scene_from_dict`) or a file path."""
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, SceneBuilder):
+        return scene.build()
+    if isinstance(scene, Mapping):
+        return scene_from_dict(scene)
+    if isinstance(scene, (str, os.PathLike)):
+        return Scene.from_file(os.fspath(scene))
+    raise TypeError(f"expected a Scene, SceneBuilder, dict or file path, got {type(scene).__name__}")
+
+
+Scene.from_dict = staticmethod(scene_from_dict)  # type: ignore[attr-defined]
+
+
+def _vertices(vertices: Any, what: str) -> Tuple[Optional[np.ndarray], Optional[list]]:
+    """(float64 (n, 3) array, None) or (None, exact points) for ``vertices``."""
+    if isinstance(vertices, np.ndarray) and vertices.dtype.kind == "f":
+        array = np.ascontiguousarray(vertices, dtype=np.float64)
+        if array.ndim != 2 or array.shape[1] != 3:
+            raise InputError(f"{what}: expected an (n, 3) array of points, got shape {array.shape}")
+        return array, None
+    array = np.empty((0, 3), dtype=object) if len(vertices) == 0 else np.array(vertices, dtype=object)
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise InputError(f"{what}: expected an (n, 3) array of points, got shape {array.shape}")
+    return None, [tuple(row) for row in array]
+
+
+def _faces(faces: Any, what: str) -> list:
+    """Faces as lists of vertex indices (an (m, k) integer array, or ragged lists)."""
+    if isinstance(faces, np.ndarray):
+        if faces.dtype.kind not in "iu" or faces.ndim != 2:
+            raise InputError(f"{what}: expected an (m, k) integer array of vertex indices, got "
+                             f"{faces.dtype} of shape {faces.shape}")
+        faces = faces.tolist()
+    out = []
+    for i, face in enumerate(faces):
+        row = []
+        for j, index in enumerate(face):
+            if isinstance(index, (bool, np.bool_)) or not isinstance(index, numbers.Integral):
+                raise InputError(f"{what}[{i}][{j}]: a vertex index is an integer, got {index!r}")
+            if index < 0:
+                raise InputError(f"{what}[{i}][{j}]: negative vertex index {int(index)}")
+            row.append(int(index))
+        out.append(row)
+    return out
+
+
+class Body:
+    """One body of a :class:`SceneBuilder`; every method adds to it and returns it.
+
+    Vertex arrays are (n, 3): float64 arrays are taken exactly as their
+    binary values (fast path); anything else (lists, object arrays of
+    Fractions, integer arrays) number by number with the package's rule.
+    Polygons, triangles and mesh faces are numbered in the order added.
+    """
+
+    def __init__(self, raw: Any) -> None:
+        self._raw = raw
+
+    @property
+    def name(self) -> str:
+        return str(self._raw.name)
+
+    def polygons(self, vertices: Any, faces: Any) -> "Body":
+        """Polygons: ``faces`` an (m, k) integer array or lists of indices into ``vertices`` (planar, simple)."""
+        xyz, exact = _vertices(vertices, f"{self.name}: vertices")
+        face_list = _faces(faces, f"{self.name}: faces")
+        if xyz is not None:
+            indices = np.array([i for f in face_list for i in f], dtype=np.uintp)
+            sizes = np.array([len(f) for f in face_list], dtype=np.uintp)
+            self._raw.polygons_xyz(xyz.ravel(), indices, sizes)
+        else:
+            self._raw.polygons_exact(exact, face_list)
+        return self
+
+    def polygon(self, vertices: Any) -> "Body":
+        """One polygon, its (k, 3) vertices in order."""
+        n = len(vertices)
+        return self.polygons(vertices, [list(range(n))])
+
+    def triangles(self, vertices: Any, triangles: Any) -> "Body":
+        """Triangles: ``triangles`` an (m, 3) integer array of indices into ``vertices``."""
+        xyz, exact = _vertices(vertices, f"{self.name}: vertices")
+        face_list = _faces(triangles, f"{self.name}: triangles")
+        if any(len(f) != 3 for f in face_list):
+            raise InputError(f"{self.name}: triangles: expected three vertex indices per triangle")
+        indices = np.array([i for f in face_list for i in f], dtype=np.uintp)
+        if xyz is not None:
+            self._raw.triangles_xyz(xyz.ravel(), indices)
+        else:
+            self._raw.triangles_exact(exact, indices)
+        return self
+
+    def segments(self, segments: Any) -> "Body":
+        """Segments: an (m, 2, 3) array of endpoint pairs (distinct endpoints)."""
+        if isinstance(segments, np.ndarray) and segments.dtype.kind == "f":
+            array = np.ascontiguousarray(segments, dtype=np.float64)
+            if array.ndim != 3 or array.shape[1:] != (2, 3):
+                raise InputError(f"{self.name}: segments: expected an (m, 2, 3) array, got shape {array.shape}")
+            self._raw.segments_xyz(array.ravel())
+            return self
+        array = np.array(segments, dtype=object)
+        if array.ndim != 3 or array.shape[1:] != (2, 3):
+            raise InputError(f"{self.name}: segments: expected an (m, 2, 3) array, got shape {array.shape}")
+        for a, b in array:
+            self._raw.segment(tuple(a), tuple(b))
+        return self
+
+    def points(self, points: Any) -> "Body":
+        """Isolated points: an (n, 3) array."""
+        xyz, exact = _vertices(points, f"{self.name}: points")
+        if xyz is not None:
+            self._raw.points_xyz(xyz.ravel())
+        else:
+            for p in exact:
+                self._raw.point(p)
+        return self
+
+    def mesh(self, path: PathLike) -> "Body":
+        """A mesh file (OFF, OBJ or STL, read exactly), one per body."""
+        self._raw.mesh(os.fspath(path))
+        return self
+
+    def solid(self, value: bool = True) -> "Body":
+        """The inside counts as part of the body (its polygons must form closed shells)."""
+        self._raw.solid(bool(value))
+        return self
+
+    def mass(self, points: Any, weights: Iterable[NumberLike]) -> "Body":
+        """The metric's mass points ((n, 3), not coplanar) and positive weights."""
+        _, exact = _vertices(np.array(points, dtype=object), f"{self.name}: mass points")
+        self._raw.mass(exact, list(weights))
+        return self
+
+    def tolerance(self, r: NumberLike) -> "Body":
+        """Every pose within ``r`` of the nominal one (body metric) is possible."""
+        self._raw.tolerance(r)
+        return self
+
+    def motion(self, motion: Union[Motion, RationalBezier, Keyframes, Piecewise]) -> "Body":
+        """The body's motion (default: fixed at the identity); replaces an earlier one."""
+        self._raw.motion(motion)
+        return self
+
+
+class Robot:
+    """A robot from a URDF file moving in joint space (:meth:`SceneBuilder.add_robot`)."""
+
+    def __init__(self, raw: Any) -> None:
+        self._raw = raw
+
+    @property
+    def name(self) -> str:
+        return str(self._raw.name)
+
+    def base(self, pose: Pose) -> "Robot":
+        """Where the root link is placed (default: the identity)."""
+        self._raw.base(pose)
+        return self
+
+    def path(self, joints: Sequence[str], times: Iterable[NumberLike], positions: Any) -> "Robot":
+        """Linear in joint space: ``positions`` one row per time, columns in the order of ``joints``."""
+        rows = [list(row) for row in positions]
+        self._raw.path(list(joints), list(times), rows)
+        return self
+
+    def self_collision(self, value: bool = True) -> "Robot":
+        """Check pairs of its own links (not parent and child, not allowed)."""
+        self._raw.self_collision(bool(value))
+        return self
+
+    def allow(self, link_a: str, link_b: str) -> "Robot":
+        """A pair of links never checked against each other."""
+        self._raw.allow(link_a, link_b)
+        return self
+
+
+class SceneBuilder:
+    """Builds a scene in code: bodies from NumPy arrays, motions, robots, checks.
+
+        b = tmcert.SceneBuilder()
+        b.add_body("table").triangles(table_xyz, table_triangles)
+        b.add_body("box").triangles(box_xyz, box_triangles).motion(
+            tmcert.Motion.translation((0, 0, 2), (0, 0, "-1/2")))
+        scene = b.build()   # InputError naming the field, as for a file
+
+    Nothing is checked until :meth:`build`; messages then name the field as
+    in a tmcert-scene/1 document ("SceneBuilder: bodies[1].polygons[3]: ...").
+    """
+
+    def __init__(self) -> None:
+        self._raw = _tmcert._SceneBuilder()
+
+    def add_body(self, name: str) -> Body:
+        """A new body with a unique, non-empty name."""
+        return Body(self._raw.add_body(name))
+
+    def add_robot(self, name: str, urdf: PathLike) -> Robot:
+        """A robot from ``urdf``; its links' bodies are named "<name>/<link>"."""
+        return Robot(self._raw.add_robot(name, os.fspath(urdf)))
+
+    def check(self, body_a: str, body_b: str, clearance: Optional[NumberLike] = None) -> "SceneBuilder":
+        """A pair to check (default: every moving body against every other body)."""
+        if clearance is None:
+            self._raw.check(body_a, body_b)
+        else:
+            self._raw.check_with_clearance(body_a, body_b, clearance)
+        return self
+
+    def epsilon(self, e: NumberLike) -> "SceneBuilder":
+        """Termination tolerance, a length (default: 1/1000 of the scene diagonal)."""
+        self._raw.epsilon(e)
+        return self
+
+    def max_depth(self, depth: int) -> "SceneBuilder":
+        """Subdivision depth limit, 1 to 200 (default 40)."""
+        self._raw.max_depth(int(depth))
+        return self
+
+    def clearance(self, d: NumberLike) -> "SceneBuilder":
+        """Minimum separation of every check without its own (default 0)."""
+        self._raw.clearance(d)
+        return self
+
+    def build(self) -> Scene:
+        """Validates everything and returns the scene (InputError naming the field)."""
+        return self._raw.build()
+
+    def to_json(self) -> str:
+        """The scene as a tmcert-scene/1 document, numbers as exact strings."""
+        return str(self._raw.to_json())
+
+
+SceneLike = Union[Scene, SceneBuilder, Mapping[str, Any], str, "os.PathLike[str]"]
+
+
+# ----------------------------------------------------------------- verify
+
+def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str = "filtered",
+           max_depth: Optional[int] = None, threads: int = 1, time_limit: Optional[float] = None,
+           all_pairs: bool = False, certificate: bool = False) -> Result:
+    """Verifies every check of ``scene`` (as ``tmcert verify``).
+
+    scene: a Scene, SceneBuilder, dict (tmcert-scene/1) or file path.
+    epsilon: termination tolerance, a positive length (default: the scene's).
+    kernel: "filtered" (certified, default), "exact" (certified, slow) or
+        "fast" (plain doubles: NOT certified, and the result says so).
+    max_depth: subdivision depth limit, 1 to 200 (default: the scene's).
+    threads: worker threads, 1 to 256 (the result does not depend on it).
+    time_limit: seconds per check; past it the rest of a check is undecided.
+    all_pairs: carry every feature pair instead of the bounding volumes.
+    certificate: keep what :meth:`Result.certificate` needs.
+
+    Runs without holding the GIL.  Raises InputError for bad options or a
+    scene that cannot be verified, ResourceLimit, MemoryError.
+    """
+    return Result(_tmcert.verify(load(scene), str(kernel), epsilon, max_depth, int(threads),
+                                 None if time_limit is None else float(time_limit), bool(all_pairs),
+                                 bool(certificate)))
+
+
+def check(certificate: Union[PathLike, Result, Mapping[str, Any]], scene: SceneLike) -> CertificateCheck:
+    """Re-verifies a certificate against ``scene`` in exact arithmetic (as ``tmcert check``).
+
+    certificate: a file path, a Result of ``verify(..., certificate=True)``,
+        or the tmcert-certificate/1 document as a dict.
+    A malformed certificate raises InputError; one whose claims fail gives
+    a false CertificateCheck whose ``message`` names the failing claim.
+    """
+    s = load(scene)
+    if isinstance(certificate, Result):
+        raw = _tmcert.check_certificate_text(s, certificate.certificate(), "<result>")
+    elif isinstance(certificate, Mapping):
+        raw = _tmcert.check_certificate_text(s, json.dumps(certificate), "<dict>")
+    else:
+        raw = _tmcert.check_certificate(s, os.fspath(certificate))
+    return CertificateCheck(bool(raw.ok), str(raw.message), tuple(raw.proven))

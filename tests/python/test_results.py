@@ -1,0 +1,87 @@
+"""Result objects: exact values where the scenes' comments derive them, the
+human summary of the CLI, scenes' properties, and verify() from threads."""
+
+from __future__ import annotations
+
+import re
+from concurrent.futures import ThreadPoolExecutor
+from fractions import Fraction
+
+import numpy as np
+
+import tmcert
+from conftest import DATA, SOURCE, assert_views_agree, run_cli, without_seconds
+
+SCENES = DATA / "scenes"
+
+
+def test_rational_witness() -> None:
+    # README: a point through a sliding triangle, collision at t = 1/2.
+    result = tmcert.verify(SOURCE / "examples" / "vertex-face-linear.json")
+    (check,) = result.checks
+    assert check.verdict is tmcert.Verdict.COLLISION and check.witness.t == Fraction(1, 2)
+    assert check.witness.t_float == 0.5 and isinstance(check.witness.point_float, np.ndarray)
+    assert check.first_contact[0] <= check.witness.t <= check.first_contact[1]
+    assert_views_agree(result)
+
+
+def test_irrational_first_contact() -> None:
+    # The comment of the scene: the contact is at the real root of t^3 + t - 1.
+    result = tmcert.verify(SCENES / "cubic-crossing-irrational.json")
+    (check,) = result.checks
+    t = check.witness.t
+    assert isinstance(t, tmcert.AlgebraicNumber) and t.root_of == (-1, 1, 0, 1)
+    assert str(t) == "root of [-1, 1, 0, 1] in (0, 1)"
+    assert abs(float(t) ** 3 + float(t) - 1) < 1e-12
+    assert check.first_contact_exact and check.first_contact == (t, t)
+    assert check.witness.point is None and check.witness.point_box is not None
+    assert_views_agree(result)
+
+
+def test_clearance_and_undecided_intervals() -> None:
+    result = tmcert.verify(SCENES / "planner-clearance-violated.json")
+    (check,) = result.checks
+    assert check.clearance == Fraction(1, 2) and check.clearance_violated
+    a, b = check.witness.points
+    assert sum((x - y) ** 2 for x, y in zip(a, b)) <= check.clearance ** 2
+    assert [u.reason for u in check.undecided] == ["epsilon", "limit"]
+    assert_views_agree(result)
+
+
+def test_tolerance_displacement() -> None:
+    result = tmcert.verify(SCENES / "planner-tolerance-collision.json")
+    (check,) = result.checks
+    assert check.witness.displaced == "pin" and check.witness.displacement == (Fraction(1, 22), Fraction(1, 50), 0)
+    assert_views_agree(result)
+
+
+def test_summary_is_the_cli_output() -> None:
+    seconds = re.compile(r"[0-9.e+-]+ s\)")
+    for scene in (SCENES / "cubic-crossing-irrational.json", SOURCE / "examples" / "octagons-near.json"):
+        done = run_cli("verify", str(scene))
+        result = tmcert.verify(scene)
+        assert seconds.sub("S s)", str(result)) == seconds.sub("S s)", done.stdout)
+        assert result.summary() == str(result)
+    result = tmcert.verify(SCENES / "cubic-crossing-irrational.json")
+    assert repr(result) == "<tmcert.Result collision (1 collision), kernel filtered>"
+
+
+def test_scene_properties() -> None:
+    scene = tmcert.Scene.from_file(str(SCENES / "robots" / "arm-swing-collision.json"))
+    assert scene.body_names[-1] == "block" and all(n.startswith("arm/") for n in scene.body_names[:-1])
+    assert len(scene) == len(scene.body_names)
+    assert not scene.moves(len(scene) - 1)
+    assert all(b == "block" for _, b in scene.checks)
+    assert scene.epsilon is None and scene.default_epsilon > 0 and scene.max_depth == 40
+    near = tmcert.Scene.from_file(str(SOURCE / "examples" / "octagons-near.json"))
+    assert near.checks == [("moving", "fixed")] and near.moves(0) and not near.moves(1)
+    assert tmcert.verify(near).epsilon == (near.epsilon or near.default_epsilon)
+
+
+def test_verify_from_threads_gives_the_same_results() -> None:
+    scenes = [SOURCE / "examples" / "octagons-collision.json", SCENES / "planner-wall1-screw.json",
+              SCENES / "cubic-crossing-irrational.json", SCENES / "planner-piecewise-second-piece.json"]
+    sequential = [without_seconds(tmcert.verify(s).to_dict()) for s in scenes]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        parallel = list(pool.map(lambda s: without_seconds(tmcert.verify(s, threads=2).to_dict()), scenes))
+    assert parallel == sequential
