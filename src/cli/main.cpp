@@ -4,6 +4,7 @@
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/report.h"
+#include "src/html/report_html.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
@@ -51,6 +52,7 @@ struct VerifyArgs {
   int threads = 1;
   bool all_pairs = false;
   std::string time_limit;  // seconds per check; empty: none
+  std::string report;      // --report: HTML page; empty: none
 };
 
 // Progress on stderr for runs longer than about two seconds, only when
@@ -111,6 +113,7 @@ int run_verify(const VerifyArgs& args) {
   if (options.record_cover && options.kernel == KernelKind::Fast)
     throw InputError("--certificate: the fast kernel is not certified; use --kernel filtered or exact");
   require_supported(scene);
+  if (!args.report.empty()) require_writable(args.report, "--report");  // before a long run
   if (!args.certificate.empty())
     if (const std::string why = certificate::uncertifiable(scene); !why.empty())
       throw InputError("--certificate: certificates do not cover this scene: " + why);
@@ -134,6 +137,10 @@ int run_verify(const VerifyArgs& args) {
     if (!out) throw InputError("--certificate: cannot write '" + args.certificate + "'");
     std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
               << stats.separations << " separations, " << stats.seconds << " s)\n";
+  }
+  if (!args.report.empty()) {
+    write_text_file(args.report, report_html(scene, result), "--report");
+    std::cerr << "tmcert: report written to " << args.report << "\n";
   }
   std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
   // The process ends now: freeing a scene of many bodies number by number
@@ -177,6 +184,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
   verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
+  verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
