@@ -16,6 +16,7 @@ packages=(
   libtinyxml-dev libconsole-bridge-dev
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples
+  chromium              # the visual report's test (tests/html/report_browser.py), headless
 )
 if [ "${1:-}" = "fuzz" ]; then
   # libFuzzer (-fsanitize=fuzzer) comes with clang's compiler-rt.
