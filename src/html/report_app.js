@@ -23,6 +23,9 @@ const timeLabel = document.getElementById('time-label');
 const playButton = document.getElementById('play');
 const witnessButton = document.getElementById('to-witness');
 
+// Options in the address after '#': t=witness or t=<number> (the time
+// shown first), view=<azimuth>,<elevation> and zoom=<factor> (the camera).
+const pageOptions = new URLSearchParams(location.hash.slice(1));
 const times = data.times;
 const [tStart, tEnd] = data.range;
 // "At the witness time": within half a slider step of it.
@@ -148,12 +151,13 @@ function buildScene(renderer) {
     if (!w) continue;
     const objects = [];
     const marker = new THREE.Group();
+    // Both transparent, so that renderOrder puts the ball over its halo.
     const ball = new THREE.Mesh(new THREE.SphereGeometry(markerRadius, 24, 16),
-      new THREE.MeshBasicMaterial({ color: 0xd91e18, depthTest: false }));
-    const halo = new THREE.Mesh(new THREE.SphereGeometry(markerRadius * 1.8, 24, 16),
-      new THREE.MeshBasicMaterial({ color: 0xffffff, depthTest: false, transparent: true, opacity: 0.55 }));
-    ball.renderOrder = 11;
-    halo.renderOrder = 10;
+      new THREE.MeshBasicMaterial({ color: 0xe0140c, depthTest: false, transparent: true, opacity: 1 }));
+    const halo = new THREE.Mesh(new THREE.SphereGeometry(markerRadius * 1.9, 24, 16),
+      new THREE.MeshBasicMaterial({ color: 0xffffff, depthTest: false, transparent: true, opacity: 0.6 }));
+    ball.renderOrder = 12;
+    halo.renderOrder = 11;
     marker.add(halo, ball);
     marker.position.fromArray(w.marker);
     objects.push(marker);
@@ -168,21 +172,23 @@ function buildScene(renderer) {
       if (h.triangles && h.triangles.length) {
         const g = bufferGeometry(h.triangles);
         g.computeVertexNormals();
-        objects.push(parentTo(parent, new THREE.Mesh(g, new THREE.MeshBasicMaterial({
-          color: 0xffc400, side: THREE.DoubleSide, transparent: true, opacity: 0.9,
-          polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -2 }))));
+        // Drawn through whatever hides it: contacts are often inside clutter.
+        const face = new THREE.Mesh(g, new THREE.MeshBasicMaterial({
+          color: 0xffc400, side: THREE.DoubleSide, transparent: true, opacity: 0.85, depthTest: false }));
+        face.renderOrder = 9;
+        objects.push(parentTo(parent, face));
       }
       if (h.lines && h.lines.length) {
         const line = new THREE.LineSegments(bufferGeometry(h.lines),
-          new THREE.LineBasicMaterial({ color: 0x7a4a00, depthTest: false }));
-        line.renderOrder = 9;
+          new THREE.LineBasicMaterial({ color: 0x9a5200, depthTest: false, transparent: true }));
+        line.renderOrder = 10;
         objects.push(parentTo(parent, line));
       }
       if (h.points) {
         for (let i = 0; i + 2 < h.points.length; i += 3) {
           const dot = new THREE.Mesh(new THREE.SphereGeometry(markerRadius * 0.7, 16, 12),
-            new THREE.MeshBasicMaterial({ color: 0xff7a00, depthTest: false }));
-          dot.renderOrder = 10;
+            new THREE.MeshBasicMaterial({ color: 0xff7a00, depthTest: false, transparent: true }));
+          dot.renderOrder = 13;
           dot.position.set(h.points[i], h.points[i + 1], h.points[i + 2]);
           objects.push(parentTo(parent, dot));
         }
@@ -195,10 +201,16 @@ function buildScene(renderer) {
     witnesses.push({ t: w.t_display, objects });
   }
 
+  // The camera looks at the centre of everything swept, z up, from azimuth
+  // and elevation in degrees (#view=az,el in the address; default -60,26)
+  // at a distance of 1.1 times the swept box's diagonal (#zoom=z divides it).
   const camera = new THREE.PerspectiveCamera(35, 1, size / 2000, size * 100);
   camera.up.set(0, 0, 1);
-  const direction = new THREE.Vector3(0.9, -1.5, 0.85).normalize();
-  camera.position.copy(centre).addScaledVector(direction, size * 1.55);
+  const [az, el] = (pageOptions.get('view') || '-60,26').split(',').map((x) => Number(x) * Math.PI / 180);
+  const zoom = Number(pageOptions.get('zoom')) > 0 ? Number(pageOptions.get('zoom')) : 1;
+  const direction = new THREE.Vector3(Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el));
+  if (!(direction.lengthSq() > 0.5)) direction.set(0.46, -0.78, 0.44);
+  camera.position.copy(centre).addScaledVector(direction, size * 1.1 / zoom);
   sun.position.copy(direction).add(new THREE.Vector3(0.4, 0.2, 0.6));
   const controls = new OrbitControls(camera, canvas);
   controls.target.copy(centre);
@@ -323,8 +335,7 @@ playButton.addEventListener('click', () => {
 const firstWitness = world.witnesses.length ? world.witnesses[0].t : null;
 if (witnessButton) witnessButton.addEventListener('click', () => { stop(); setTime(firstWitness); });
 
-// #t=witness or #t=<number> opens the page at that time.
-const hash = new URLSearchParams(location.hash.slice(1)).get('t');
+const hash = pageOptions.get('t');
 setTime(hash === 'witness' && firstWitness !== null ? firstWitness
         : hash !== null && Number.isFinite(Number(hash)) ? Number(hash) : tStart);
 resize();

@@ -19,9 +19,10 @@ over --remote-debugging-pipe (Python's standard library only), and checks
      witness's two features resolve to geometry that is highlighted;
      at the witness time the page shows the witness.
 
-Usage: report_browser.py TMCERT REPO_ROOT [--screenshot OUT.png]
+Usage: report_browser.py TMCERT REPO_ROOT [--screenshot OUT.png [--view OPTIONS]]
   --screenshot writes the gripper collision at its witness time (the
-  README's docs/images/gripper-collision.png).
+  README's docs/images/gripper-collision.png); --view adds page options
+  (e.g. "view=-60,26&zoom=1.5", src/html/report_app.js) to its address.
 Also checks that an unwritable --report path is exit 3 naming --report.
 """
 import base64
@@ -362,7 +363,7 @@ def canvas_screenshot(browser, session):
     return png
 
 
-def check_page(browser, tmcert, scene, options, work, name, screenshot=None):
+def check_page(browser, tmcert, scene, options, work, name, screenshot=None, view=""):
     started = time.monotonic()
     page = os.path.join(work, name + ".html")
     run = subprocess.run([tmcert, "verify", scene, "--json", "--report", page] + options,
@@ -382,7 +383,7 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None):
     browser.send("Emulation.setDeviceMetricsOverride",
                  {"width": 1200, "height": 760, "deviceScaleFactor": 1, "mobile": False}, session)
     browser.events()
-    browser.send("Page.navigate", {"url": "file://" + page}, session)
+    browser.send("Page.navigate", {"url": "file://" + page + ("#" + view if view else "")}, session)
     wait_for(browser, session,
              "location.protocol === 'file:' && !!document.documentElement && "
              "(document.documentElement.dataset.status === 'rendered' || !!document.documentElement.dataset.errors)",
@@ -431,6 +432,11 @@ def main():
         k = args.index("--screenshot")
         screenshot = os.path.abspath(args[k + 1])
         del args[k:k + 2]
+    view = ""
+    if "--view" in args:
+        k = args.index("--view")
+        view = args[k + 1]
+        del args[k:k + 2]
     tmcert, repo = os.path.abspath(args[0]), os.path.abspath(args[1])
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     if not chromium:
@@ -452,7 +458,7 @@ def main():
                        ["--time-limit", "1e-9"], work, "octagons-undecided")
             check_page(browser, tmcert, os.path.join(repo, "examples/octagons-clear.json"), [], work, "octagons-clear")
             check_page(browser, tmcert, os.path.join(repo, "examples/gripper/gripper-collision.json"), [], work,
-                       "gripper-collision", screenshot)
+                       "gripper-collision", screenshot, view)
     except AssertionError as e:
         print("FAIL:", e)
         if os.path.exists(log_path):
