@@ -77,15 +77,18 @@ function bufferGeometry(flat) {
 
 // ---------------------------------------------------------------- scene
 
-function buildScene(renderer) {
+function buildScene(initialTime) {
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0xeef1f5);
   scene.add(new THREE.HemisphereLight(0xffffff, 0x7a8696, 1.8));
   const sun = new THREE.DirectionalLight(0xffffff, 1.6);
   scene.add(sun);
 
-  // Bounds of everything the bodies sweep, from each body's box under its samples.
+  // Bounds of everything the bodies sweep, from each body's box under its
+  // samples (for the clipping planes), and of the bodies at the first time
+  // shown (what the camera frames).
   const box = new THREE.Box3();
+  const framed = new THREE.Box3();
   const matrix = new THREE.Matrix4();
   const legend = document.getElementById('bodies-legend');
   let moving = 0;
@@ -130,6 +133,7 @@ function buildScene(renderer) {
         matrix.set(...p, 0, 0, 0, 1);
         box.union(local.clone().applyMatrix4(matrix));
       }
+      framed.union(local.clone().applyMatrix4(poseAt(body, initialTime, matrix)));
     }
     scene.add(group);
     const swatch = document.createElement('span');
@@ -139,8 +143,9 @@ function buildScene(renderer) {
     return group;
   });
 
-  const centre = box.getCenter(new THREE.Vector3());
   const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-9);
+  const centre = (framed.isEmpty() ? box : framed).getCenter(new THREE.Vector3());
+  const framedSize = framed.isEmpty() ? size : Math.max(framed.getSize(new THREE.Vector3()).length(), size / 100);
 
   // Witnesses: a marker at the common point (drawn over everything), the
   // two features highlighted on their bodies; shown at the witness time.
@@ -201,16 +206,16 @@ function buildScene(renderer) {
     witnesses.push({ t: w.t_display, objects });
   }
 
-  // The camera looks at the centre of everything swept, z up, from azimuth
-  // and elevation in degrees (#view=az,el in the address; default -60,26)
-  // at a distance of 1.1 times the swept box's diagonal (#zoom=z divides it).
+  // The camera looks at the centre of the bodies at the first time shown, z
+  // up, from azimuth and elevation in degrees (#view=az,el in the address;
+  // default -60,26) at 1.5 times their box's diagonal (#zoom=z divides it).
   const camera = new THREE.PerspectiveCamera(35, 1, size / 2000, size * 100);
   camera.up.set(0, 0, 1);
   const [az, el] = (pageOptions.get('view') || '-60,26').split(',').map((x) => Number(x) * Math.PI / 180);
   const zoom = Number(pageOptions.get('zoom')) > 0 ? Number(pageOptions.get('zoom')) : 1;
   const direction = new THREE.Vector3(Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el));
   if (!(direction.lengthSq() > 0.5)) direction.set(0.46, -0.78, 0.44);
-  camera.position.copy(centre).addScaledVector(direction, size * 1.1 / zoom);
+  camera.position.copy(centre).addScaledVector(direction, framedSize * 1.5 / zoom);
   sun.position.copy(direction).add(new THREE.Vector3(0.4, 0.2, 0.6));
   const controls = new OrbitControls(camera, canvas);
   controls.target.copy(centre);
@@ -239,7 +244,11 @@ try {
   message.textContent = 'This browser cannot draw the scene (WebGL is not available); the timeline below is complete.';
   throw e;  // recorded by the page's error handler
 }
-world = buildScene(renderer);
+const firstWitness = data.checks.find((c) => c.witness)?.witness.t_display ?? null;
+const shownFirst = pageOptions.get('t');
+const initialTime = shownFirst === 'witness' && firstWitness !== null ? firstWitness
+  : shownFirst !== null && Number.isFinite(Number(shownFirst)) ? Number(shownFirst) : tStart;
+world = buildScene(initialTime);
 
 let time = tStart;
 let pending = false;
@@ -332,10 +341,7 @@ playButton.addEventListener('click', () => {
   playing = requestAnimationFrame(step);
 });
 
-const firstWitness = world.witnesses.length ? world.witnesses[0].t : null;
 if (witnessButton) witnessButton.addEventListener('click', () => { stop(); setTime(firstWitness); });
 
-const hash = pageOptions.get('t');
-setTime(hash === 'witness' && firstWitness !== null ? firstWitness
-        : hash !== null && Number.isFinite(Number(hash)) ? Number(hash) : tStart);
+setTime(initialTime);
 resize();

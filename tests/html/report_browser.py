@@ -402,12 +402,11 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None, vie
         wait_for(browser, session, "document.documentElement.dataset.witnessShown === '1'", name + " witness")
         wait_for(browser, session, "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => r(true))))",
                  name + " frame")
-        png = canvas_screenshot(browser, session)
-        check_not_blank(png, name + " at the witness")
-        if screenshot:
+        if screenshot:  # first: a clipped, scaled capture can leave the page scaled
             full = browser.send("Page.captureScreenshot", {"format": "png"}, session)["data"]
             with open(screenshot, "wb") as f:
                 f.write(base64.b64decode(full))
+        check_not_blank(canvas_screenshot(browser, session), name + " at the witness")
     problems = problems_in(browser.events()) + json.loads(
         evaluate(browser, session, "JSON.stringify(window.tmcertErrors)"))
     if problems:
@@ -441,11 +440,12 @@ def main():
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     if not chromium:
         fail("chromium is not installed (scripts/deps.sh installs it)")
+    os.chdir(repo)  # scenes named as in the README (the page shows the name)
     work = tempfile.mkdtemp(prefix="tmcert-report-")
     log_path = os.path.join(work, "chromium.log")
     browser = None
     try:
-        check_unwritable(tmcert, os.path.join(repo, "examples/octagons-near.json"), work)
+        check_unwritable(tmcert, "examples/octagons-near.json", work)
         profile = os.path.join(work, "profile")
         os.mkdir(profile)
         with open(log_path, "w") as log:
@@ -454,10 +454,10 @@ def main():
             # past at once), one
             # that is safe, and the gripper collision (5,700 triangles, a
             # witness at an algebraic time).
-            check_page(browser, tmcert, os.path.join(repo, "examples/octagons-near.json"),
+            check_page(browser, tmcert, "examples/octagons-near.json",
                        ["--time-limit", "1e-9"], work, "octagons-undecided")
-            check_page(browser, tmcert, os.path.join(repo, "examples/octagons-clear.json"), [], work, "octagons-clear")
-            check_page(browser, tmcert, os.path.join(repo, "examples/gripper/gripper-collision.json"), [], work,
+            check_page(browser, tmcert, "examples/octagons-clear.json", [], work, "octagons-clear")
+            check_page(browser, tmcert, "examples/gripper/gripper-collision.json", [], work,
                        "gripper-collision", screenshot, view)
     except AssertionError as e:
         print("FAIL:", e)
