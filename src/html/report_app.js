@@ -153,7 +153,7 @@ function buildScene(initialTime) {
   const markerRadius = size * 0.012;
   for (const check of data.checks) {
     const w = check.witness;
-    if (!w) continue;
+    if (!w || !w.marker) continue;
     const objects = [];
     const marker = new THREE.Group();
     // Both transparent, so that renderOrder puts the ball over its halo.
@@ -249,6 +249,11 @@ const shownFirst = pageOptions.get('t');
 const initialTime = shownFirst === 'witness' && firstWitness !== null ? firstWitness
   : shownFirst !== null && Number.isFinite(Number(shownFirst)) ? Number(shownFirst) : tStart;
 world = buildScene(initialTime);
+if (data.undrawable) {
+  const message = document.getElementById('view-message');
+  message.hidden = false;
+  message.textContent = 'The scene is not drawn: ' + data.undrawable + '. The timeline below is complete.';
+}
 
 let time = tStart;
 let pending = false;

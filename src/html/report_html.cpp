@@ -85,15 +85,17 @@ class DisplayPose {
 
 // ---------------------------------------------------------------- numbers as text
 
+// A coordinate or pose entry beyond single precision: the scene is then
+// not drawn (the page says so; the timeline is complete).
+struct DisplayOverflow {};
+
 // Floats in their shortest round-trip form: the page's geometry is for
 // display, and float precision keeps a mesh of thousands of triangles small.
 class FloatArray {
  public:
   void add(double x) {
     const float f = static_cast<float>(x);
-    if (!std::isfinite(f))
-      throw InputError("--report: a coordinate or pose entry (" + std::to_string(x) +
-                       ") is too large to display");
+    if (!std::isfinite(f)) throw DisplayOverflow{};
     out_ += first_ ? '[' : ',';
     first_ = false;
     char digits[32];
@@ -362,6 +364,8 @@ json witness_json(const Scene& scene, const CheckResult& c) {
     }
     out["point"] = std::move(point);
   }
+  for (double x : marker)
+    if (!std::isfinite(static_cast<float>(x))) throw DisplayOverflow{};
   out["marker"] = marker;
   if (w.points) {
     json pts = json::array();
@@ -517,11 +521,24 @@ std::string report_html(const Scene& scene, const SceneResult& result) {
   data["times"] = std::move(t_display);
   json checks = json::array();
   for (const CheckResult& c : result.checks) {
-    json check{{"bodies", {c.bodies[0], c.bodies[1]}}, {"verdict", to_string(c.verdict)}};
-    if (c.witness) check["witness"] = witness_json(scene, c);
-    checks.push_back(std::move(check));
+    checks.push_back(json{{"bodies", {c.bodies[0], c.bodies[1]}}, {"verdict", to_string(c.verdict)}});
   }
   data["checks"] = std::move(checks);
+  std::string geometry;
+  try {
+    geometry = geometry_json(scene, times);
+    for (std::size_t i = 0; i < result.checks.size(); ++i)
+      if (result.checks[i].witness) data["checks"][i]["witness"] = witness_json(scene, result.checks[i]);
+  } catch (const DisplayOverflow&) {
+    // Nothing is drawn: bodies without geometry, witnesses as text.
+    data["undrawable"] = "coordinates of this scene exceed single precision: the bodies are not drawn";
+    json bodies = json::array();
+    for (const Body& b : scene.bodies)
+      bodies.push_back({{"name", b.name}, {"moving", false}, {"solid", b.solid}, {"triangles", json::array()},
+                        {"outlines", json::array()}, {"segments", json::array()}, {"points", json::array()},
+                        {"poses", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}}});
+    geometry = script_json(json{{"bodies", bodies}});
+  }
 
   std::string title = "tmcert report: " + scene.source;
   std::string page;
@@ -576,7 +593,7 @@ std::string report_html(const Scene& scene, const SceneResult& result) {
           "(hover a span) are the exact results of <code>tmcert verify --json</code>. three.js " +
           html_escape(three_version()) + " (MIT licence).</p>\n</section>\n</main>\n<pre id=\"errors\" hidden></pre>\n";
   page += "<script type=\"application/json\" id=\"tmcert-data\">" + script_json(data) + "</script>\n";
-  page += "<script type=\"application/json\" id=\"tmcert-geometry\">" + geometry_json(scene, times) + "</script>\n";
+  page += "<script type=\"application/json\" id=\"tmcert-geometry\">" + geometry + "</script>\n";
   page += "<script type=\"module\">\n" + std::string(html::kReportApp) + "</script>\n</body>\n</html>\n";
   return page;
 }
