@@ -223,7 +223,13 @@ struct Span {
 // check's interval; an exact first contact is then [lo', hi'] around its
 // root.  Empty without a first contact.
 std::optional<std::pair<Exact, Exact>> contact_bracket(const CheckResult& c, const std::pair<Exact, Exact>& interval) {
-  if (!c.first_contact) return std::nullopt;
+  if (!c.first_contact) {
+    if (c.verdict != Verdict::Collision) return std::nullopt;
+    // A collision always has a first contact (SCENE_FORMAT.md); without
+    // one, nothing before the witness is drawn safe.
+    const Exact end = !c.witness ? interval.first : c.witness->root ? c.witness->root->hi : c.witness->t;
+    return std::pair{interval.first, end};
+  }
   std::pair<Exact, Exact> bracket = *c.first_contact;
   if (!c.witness || !c.witness->root) return bracket;
   const AlgebraicTime& at = *c.witness->root;
@@ -273,8 +279,9 @@ std::vector<Span> timeline(const CheckResult& c, const Exact& t0, const Exact& t
   return spans;
 }
 
-const char* span_title(const Span& s) {
-  if (std::string_view(s.kind) == "safe") return "certified safe: no contact";
+const char* span_title(const Span& s, bool certified) {
+  if (std::string_view(s.kind) == "safe")
+    return certified ? "certified safe: no contact" : "safe by the fast kernel: NOT CERTIFIED";
   if (std::string_view(s.kind) == "first-contact") return "the earliest contact lies here";
   if (std::string_view(s.kind) == "colliding") return "colliding: from the witness on";
   return "undecided";
@@ -397,7 +404,7 @@ std::string fixed(double x) {
 
 // One check's timeline bar: spans with their exact ends as data
 // attributes, the witness mark, and the playhead (moved by the page).
-std::string timeline_html(const Scene& scene, const CheckResult& c, int index) {
+std::string timeline_html(const Scene& scene, const CheckResult& c, int index, bool certified) {
   const auto interval = check_interval(scene, c);
   const std::string& a = scene.bodies[c.bodies[0]].name;
   const std::string& b = scene.bodies[c.bodies[1]].name;
@@ -418,7 +425,7 @@ std::string timeline_html(const Scene& scene, const CheckResult& c, int index) {
          to_string(interval.second) + "\">";
   for (const Span& s : timeline(c, interval.first, interval.second)) {
     const double left = percent(s.t0, interval), width = percent(s.t1, interval) - left;
-    std::string title = std::string(span_title(s)) + ", t in [" + to_string(s.t0) + ", " + to_string(s.t1) + "]";
+    std::string title = std::string(span_title(s, certified)) + ", t in [" + to_string(s.t0) + ", " + to_string(s.t1) + "]";
     if (s.reason) title += ", reason: " + std::string(s.reason);
     out += "<div class=\"span " + std::string(s.kind) + "\" data-kind=\"" + s.kind + "\" data-t0=\"" +
            to_string(s.t0) + "\" data-t1=\"" + to_string(s.t1) + "\"";
@@ -583,8 +590,9 @@ std::string report_html(const Scene& scene, const SceneResult& result) {
                                        [](const CheckResult& c) { return c.witness.has_value(); });
   if (any_witness) page += "<button id=\"to-witness\" type=\"button\">Go to witness</button>";
   page += "</div>\n<div id=\"timelines\">\n";
-  for (std::size_t i = 0; i < result.checks.size(); ++i) page += timeline_html(scene, result.checks[i], static_cast<int>(i));
-  page += "</div>\n<div class=\"legend\"><span class=\"key safe\"></span>certified safe "
+  for (std::size_t i = 0; i < result.checks.size(); ++i) page += timeline_html(scene, result.checks[i], static_cast<int>(i), result.certified);
+  page += std::string("</div>\n<div class=\"legend\"><span class=\"key safe\"></span>") +
+          (result.certified ? "certified safe " : "safe (NOT CERTIFIED: fast kernel) ") +
           "<span class=\"key undecided\"></span>undecided (hover: reason) "
           "<span class=\"key first-contact\"></span>earliest contact somewhere here "
           "<span class=\"key colliding\"></span>colliding from the witness on "
