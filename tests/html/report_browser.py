@@ -380,8 +380,11 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None, vie
     session = browser.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
     for domain in ("Runtime", "Log", "Page"):
         browser.send(domain + ".enable", {}, session)
+    # Software WebGL draws every pixel on the CPU: a small page unless a
+    # screenshot for people is wanted.
+    width, height = (1200, 760) if screenshot else (720, 480)
     browser.send("Emulation.setDeviceMetricsOverride",
-                 {"width": 1200, "height": 760, "deviceScaleFactor": 1, "mobile": False}, session)
+                 {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False}, session)
     browser.events()
     browser.send("Page.navigate", {"url": "file://" + page + ("#" + view if view else "")}, session)
     wait_for(browser, session,
@@ -450,12 +453,15 @@ def main():
         os.mkdir(profile)
         with open(log_path, "w") as log:
             browser = Browser(chromium, profile, log)
-            # A small scene left undecided (reason limit: a time limit that is
-            # past at once), one
-            # that is safe, and the gripper collision (5,700 triangles, a
-            # witness at an algebraic time).
-            check_page(browser, tmcert, "examples/octagons-near.json",
-                       ["--time-limit", "1e-9"], work, "octagons-undecided")
+            # Small scenes: undecided spans (the depth limit) between safe
+            # ones; a clearance violated after an undecided span (safe,
+            # undecided, first-contact and colliding spans, a witness of two
+            # points); a safe one; then the gripper collision (5,700
+            # triangles, a witness at an algebraic time).
+            check_page(browser, tmcert, "tests/data/scenes/planner-clearance-safe.json",
+                       ["--max-depth", "2"], work, "clearance-undecided")
+            check_page(browser, tmcert, "tests/data/scenes/planner-clearance-violated.json",
+                       ["--max-depth", "2"], work, "clearance-violated")
             check_page(browser, tmcert, "examples/octagons-clear.json", [], work, "octagons-clear")
             check_page(browser, tmcert, "examples/gripper/gripper-collision.json", [], work,
                        "gripper-collision", screenshot, view)
