@@ -279,11 +279,17 @@ std::vector<Span> timeline(const CheckResult& c, const Exact& t0, const Exact& t
   return spans;
 }
 
-const char* span_title(const Span& s, bool certified) {
-  if (std::string_view(s.kind) == "safe")
-    return certified ? "certified safe: no contact" : "safe by the fast kernel: NOT CERTIFIED";
-  if (std::string_view(s.kind) == "first-contact") return "the earliest contact lies here";
-  if (std::string_view(s.kind) == "colliding") return "colliding: from the witness on";
+// For people: what a span says (the page's tooltips).  With a clearance,
+// "contact" is coming within it.
+std::string span_title(const Span& s, bool certified, bool clearance) {
+  const std::string_view kind(s.kind);
+  if (kind == "safe") {
+    const char* what = clearance ? "farther apart than the clearance" : "no contact";
+    return std::string(certified ? "certified safe: " : "safe by the fast kernel (NOT CERTIFIED): ") + what;
+  }
+  if (kind == "first-contact")
+    return clearance ? "the clearance is first violated somewhere here" : "the earliest contact lies here";
+  if (kind == "colliding") return clearance ? "clearance violated, from the witness on" : "colliding, from the witness on";
   return "undecided";
 }
 
@@ -425,7 +431,7 @@ std::string timeline_html(const Scene& scene, const CheckResult& c, int index, b
          to_string(interval.second) + "\">";
   for (const Span& s : timeline(c, interval.first, interval.second)) {
     const double left = percent(s.t0, interval), width = percent(s.t1, interval) - left;
-    std::string title = std::string(span_title(s, certified)) + ", t in [" + to_string(s.t0) + ", " + to_string(s.t1) + "]";
+    std::string title = span_title(s, certified, c.clearance > 0) + ", t in [" + to_string(s.t0) + ", " + to_string(s.t1) + "]";
     if (s.reason) title += ", reason: " + std::string(s.reason);
     out += "<div class=\"span " + std::string(s.kind) + "\" data-kind=\"" + s.kind + "\" data-t0=\"" +
            to_string(s.t0) + "\" data-t1=\"" + to_string(s.t1) + "\"";

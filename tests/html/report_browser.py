@@ -7,7 +7,8 @@ from file:// in Debian's chromium, driven through the DevTools protocol
 over --remote-debugging-pipe (Python's standard library only), and checks
 
   1. no console error, exception or WebGL error while loading and drawing,
-     and the page's own error log is empty;
+     the page's own error log is empty, and it requests nothing but
+     itself and data: URLs;
   2. the canvas is not blank: a screenshot of it (PNG, decoded here with
      zlib) has many colours and many pixels that are not background;
   3. the timeline in the DOM (spans with exact data-t0/data-t1, the
@@ -139,12 +140,17 @@ class Browser:
         os.close(self._to_browser)
 
 
-def problems_in(events):
-    """Console errors, exceptions and WebGL errors among DevTools events."""
+def problems_in(events, page):
+    """Console errors, exceptions, WebGL errors and requests for anything but
+    the page itself and data: URLs, among DevTools events."""
     found = []
     for e in events:
         method, p = e.get("method"), e.get("params", {})
-        if method == "Runtime.exceptionThrown":
+        if method == "Network.requestWillBeSent":
+            url = p["request"]["url"]
+            if not url.startswith("data:") and url.split("#")[0] != "file://" + page:
+                found.append("the page fetched " + url)
+        elif method == "Runtime.exceptionThrown":
             d = p["exceptionDetails"]
             found.append("exception: " + d.get("exception", {}).get("description", d.get("text", "")))
         elif method == "Runtime.consoleAPICalled" and p.get("type") in ("error", "assert"):
@@ -378,7 +384,7 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None, vie
 
     target = browser.send("Target.createTarget", {"url": "about:blank"})["targetId"]
     session = browser.send("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
-    for domain in ("Runtime", "Log", "Page"):
+    for domain in ("Runtime", "Log", "Page", "Network"):
         browser.send(domain + ".enable", {}, session)
     # Software WebGL draws every pixel on the CPU: a small page unless a
     # screenshot for people is wanted.
@@ -393,7 +399,7 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None, vie
              name + " to render")
     time.sleep(0.2)  # a resize may draw again
     errors = evaluate(browser, session, "JSON.stringify(window.tmcertErrors || ['no error log'])")
-    problems = problems_in(browser.events()) + json.loads(errors)
+    problems = problems_in(browser.events(), page) + json.loads(errors)
     if problems:
         fail(f"{name}: errors while loading:\n  " + "\n  ".join(problems))
     colours, drawn = check_not_blank(canvas_screenshot(browser, session), name)
@@ -410,7 +416,7 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None, vie
             with open(screenshot, "wb") as f:
                 f.write(base64.b64decode(full))
         check_not_blank(canvas_screenshot(browser, session), name + " at the witness")
-    problems = problems_in(browser.events()) + json.loads(
+    problems = problems_in(browser.events(), page) + json.loads(
         evaluate(browser, session, "JSON.stringify(window.tmcertErrors)"))
     if problems:
         fail(f"{name}: errors while interacting:\n  " + "\n  ".join(problems))
