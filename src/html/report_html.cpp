@@ -424,6 +424,9 @@ std::string timeline_html(const Scene& scene, const CheckResult& c, int index, b
     out += ": " + html_escape(w.features[0]) + (w.points ? " comes within the clearance of " : " meets ") +
            html_escape(w.features[1]) + " at t = " +
            html_escape(w.root ? "~" + w.root->approx : to_string(w.t));
+    if (w.displacement)
+      out += " when " + html_escape(scene.bodies[c.bodies[w.displaced]].name) +
+             " is displaced within its tolerance (drawn at its nominal pose)";
   } else if (!c.undecided.empty()) {
     out += ": " + std::to_string(c.undecided.size()) + " undecided interval(s)";
   }
