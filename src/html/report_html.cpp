@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -616,8 +617,11 @@ std::string report_html(const Scene& scene, const SceneResult& result) {
 }
 
 void require_writable(const std::string& path, const std::string& option) {
-  const bool existed = access(path.c_str(), F_OK) == 0;
-  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
+  // lstat: a dangling symbolic link counts as existing (it is not removed).
+  struct stat info;
+  const bool existed = lstat(path.c_str(), &info) == 0;
+  // O_NONBLOCK: a FIFO without a reader fails at once instead of waiting.
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0666);
   if (fd < 0) throw InputError(option + ": cannot write '" + path + "'");
   close(fd);
   if (!existed) unlink(path.c_str());
