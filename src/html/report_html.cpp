@@ -1,6 +1,7 @@
 #include "src/html/report_html.h"
 
 #include "kernels/real_roots.h"
+#include "src/cli/report.h"
 #include "src/html/assets.h"
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
@@ -607,6 +608,10 @@ std::string report_html(const Scene& scene, const SceneResult& result) {
           "<span class=\"key first-contact\"></span>earliest contact somewhere here "
           "<span class=\"key colliding\"></span>colliding from the witness on "
           "<span class=\"key witness\"></span>witness (exact contact)</div>\n";
+  // The result document itself, as `--json` prints it.
+  page += "<details id=\"result\"><summary>The result document (<code>tmcert-result/1</code>, as "
+          "<code>--json</code> prints it)</summary><pre id=\"tmcert-result\">" +
+          html_escape(result_json(scene, result)) + "</pre></details>\n";
   page += "<p class=\"note\">Drawn in single precision for display; the verdicts and the interval ends "
           "(hover a span) are the exact results of <code>tmcert verify --json</code>. three.js " +
           html_escape(three_version()) + " (MIT licence).</p>\n</section>\n</main>\n<pre id=\"errors\" hidden></pre>\n";

@@ -18,7 +18,8 @@ over --remote-debugging-pipe (Python's standard library only), and checks
      safe or undecided, colliding starts at the witness (an algebraic
      witness time: checked with exact signs of its polynomial), and the
      witness's two features resolve to geometry that is highlighted;
-     at the witness time the page shows the witness.
+     at the witness time the page shows the witness; and the result
+     document on the page is --json's.
 
 Usage: report_browser.py TMCERT REPO_ROOT [--screenshot OUT.png [--view OPTIONS]]
   --screenshot writes the gripper collision at its witness time (the
@@ -405,6 +406,9 @@ def check_page(browser, tmcert, scene, options, work, name, screenshot=None, vie
     colours, drawn = check_not_blank(canvas_screenshot(browser, session), name)
 
     check_timeline(result, json.loads(evaluate(browser, session, READ_TIMELINE)), name)
+    shown = json.loads(evaluate(browser, session, "document.getElementById('tmcert-result').textContent"))
+    if shown != result:
+        fail(f"{name}: the result document on the page differs from --json's")
 
     if any(c["verdict"] == "collision" for c in result["checks"]):
         evaluate(browser, session, "document.getElementById('to-witness').click()")
