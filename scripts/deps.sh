@@ -17,6 +17,7 @@ packages=(
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python package (src/python/), its tests and example
+  chromium              # the visual report's test (tests/html/report_browser.py), headless
 )
 if [ "${1:-}" = "fuzz" ]; then
   # libFuzzer (-fsanitize=fuzzer) comes with clang's compiler-rt.

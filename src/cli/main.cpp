@@ -5,6 +5,7 @@
 #include "src/certificate/writer.h"
 #include "src/cli/output_file.h"
 #include "src/cli/report.h"
+#include "src/html/report_html.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
@@ -53,6 +54,7 @@ struct VerifyArgs {
   int threads = 1;
   bool all_pairs = false;
   std::string time_limit;  // seconds per check; empty: none
+  std::string report;      // --report: HTML page; empty: none
 };
 
 // Progress on stderr for runs longer than about two seconds, only when
@@ -121,6 +123,8 @@ int run_verify(const VerifyArgs& args) {
   // file.
   std::optional<OutputFile> certificate_file;
   if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
+  std::optional<OutputFile> report_file;
+  if (!args.report.empty()) report_file.emplace("--report", args.report);
   std::shared_ptr<Progress> progress;
   if (isatty(STDERR_FILENO)) {
     progress = std::make_shared<Progress>();
@@ -137,6 +141,10 @@ int run_verify(const VerifyArgs& args) {
     certificate_file->write(certificate::certificate_json(scene, result, &stats));
     std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
               << stats.separations << " separations, " << stats.seconds << " s)\n";
+  }
+  if (report_file) {
+    report_file->write(report_html(scene, result));
+    std::cerr << "tmcert: report written to " << args.report << "\n";
   }
   std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
   // The process ends now: freeing a scene of many bodies number by number
@@ -180,6 +188,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
   verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
+  verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
