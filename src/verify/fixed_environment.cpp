@@ -8,6 +8,7 @@
 #include "src/verify/solid_contact.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -518,8 +519,14 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     const bool start_free =
         b == 0 && static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts).kind ==
                       StaticOutcome::Kind::Free;
+    // VerifyOptions::time_limit bounds each check, as in Verifier::check.
+    VerifyOptions options = options_;
+    if (options.time_limit > 0)
+      options.deadline = std::chrono::steady_clock::now() +
+                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(options.time_limit));
     out.checks.push_back(
-        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_, start_free));
+        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free));
     record(out.checks.size() - 1);
   }
   if (decided < out.checks.size()) {
