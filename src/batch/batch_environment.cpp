@@ -141,7 +141,7 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
       names.bodies[1].name = obstacle.name;
       names.bodies[1].enlarged = obstacle.enlarged;
       nlohmann::ordered_json check = nlohmann::ordered_json::parse(check_json(names, r));
-      if (!env.stats_) check["stats"].erase("seconds");
+      if (!env.stats_) check.erase("stats");  // work counters and seconds: only on request
       if (!checks.empty()) checks += ',';
       checks += check.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
       if (r.verdict == Verdict::Collision) verdict = Verdict::Collision;

@@ -31,7 +31,8 @@ class BatchEnvironment {
   // `scene`: the environment (every body fixed: no motion, or a one-pose
   // motion; no robots, no checks); `base`: the directory inline bodies'
   // mesh files are relative to.  `options.epsilon` must be > 0.  `stats`:
-  // keep the checks' wall-clock seconds in results (not deterministic).
+  // give each check its "stats" (work counters and wall-clock seconds: not
+  // reproducible); without it results are the same bytes on every run.
   // Throws InputError naming the field when the scene cannot be one.
   BatchEnvironment(Scene scene, const VerifyOptions& options, std::string base, bool stats);
   ~BatchEnvironment();

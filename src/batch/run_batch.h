@@ -22,7 +22,7 @@ struct BatchOptions {
   std::optional<Exact> epsilon;
   std::optional<int> max_depth;
   int threads = 1;       // requests run in parallel (output order kept)
-  bool stats = false;    // keep the checks' wall-clock seconds
+  bool stats = false;    // each check's "stats", wall-clock seconds included
 };
 
 // Runs the shard's requests and returns the exit code: 1 when a request

@@ -244,7 +244,8 @@ int main(int argc, char** argv) {
   batch->add_option("--time-limit", batch_args.time_limit, "seconds per check (the rest of a check past it is undecided)");
   batch->add_option("--threads", batch_args.options.threads, "requests run in parallel (the output is the same)")
       ->check(CLI::Range(1, 256));
-  batch->add_flag("--stats", batch_args.options.stats, "keep each check's wall-clock seconds (output not reproducible)");
+  batch->add_flag("--stats", batch_args.options.stats,
+                  "give each check its stats, wall-clock seconds included (output not reproducible)");
   std::vector<std::string> merge_files;
   std::string merge_output;
   CLI::App* merge = app.add_subcommand("batch-merge", "merge the result files of the shards of a batch run "

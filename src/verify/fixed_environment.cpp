@@ -469,6 +469,19 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
   }
   const Exact t1 = motions.front().t1();
   for (const auto& [a, b] : pairs) {
+    // A mover whose swept box misses the box of the whole environment never
+    // meets it, insides of solids included (every point of a solid lies in
+    // the box of its vertices): cleared before any exact test, which for
+    // solids places a surface exactly at every check.
+    if (b == 0 && swept[a].valid && !index_->nodes.empty() &&
+        !EnvironmentIndex::overlap(swept[a].lo, swept[a].hi, index_->nodes[0].lo, index_->nodes[0].hi)) {
+      CheckResult r;
+      r.bodies = {a, b};
+      r.verdict = Verdict::Safe;
+      r.stats.prefiltered = true;
+      out.checks.push_back(r);
+      continue;
+    }
     // A solid's inside counts as contact: at the start, a component of one
     // body inside the other (solid) body is a collision there; later
     // contacts go through the surfaces (as Verifier::check does).

@@ -61,7 +61,9 @@ want='0 "e0" safe safe,safe,safe
 3 {"edge":[7,8]} safe safe,safe,safe
 4 4 safe safe'
 if [ "$got" = "$want" ]; then pass; else fail "example verdicts:"$'\n'"$got"$'\n'"expected:"$'\n'"$want"; fi
-if grep -q '"seconds"' "$work/example.jsonl"; then fail "seconds in results without --stats"; else pass; fi
+if grep -q '"stats"' "$work/example.jsonl"; then fail "stats in results without --stats"; else pass; fi
+expect_code 1 "--stats" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" --stats
+if [ "$(grep -o '"seconds":' "$work/out" | wc -l)" -eq 13 ]; then pass; else fail "--stats: not 13 checks with seconds"; fi
 if grep -q 'tmcert batch: shard 0/1: 5 of 5 requests: 4 safe, 1 collision, 0 undecided, 0 bad' "$work/err"; then pass; else
   fail "summary line: $(cat "$work/err")"
 fi
