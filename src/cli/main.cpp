@@ -1,6 +1,8 @@
 // tmcert command line (SCENE_FORMAT.md): exit 0 safe, 1 collision,
 // 2 undecided, 3 bad input or usage, 4 internal error or resource limit.
 #include "kernels/allocation.h"
+#include "src/batch/merge_batch.h"
+#include "src/batch/run_batch.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/output_file.h"
@@ -171,6 +173,41 @@ int run_certificate_check(const std::string& certificate_file, const std::string
   return 0;
 }
 
+// `tmcert batch` options as written, checked in run_batch_command.
+struct BatchArgs {
+  tmcert::BatchOptions options;
+  std::optional<std::string> shard;
+  std::string epsilon, kernel = "filtered", time_limit;
+  int max_depth = -1;
+};
+
+int run_batch_command(BatchArgs& args) {
+  using namespace tmcert;
+  BatchOptions& o = args.options;
+  if (args.shard) o.shard = Shard::parse(*args.shard);
+  o.verify.kernel = args.kernel == "exact" ? KernelKind::Exact
+                    : args.kernel == "fast" ? KernelKind::Fast
+                                            : KernelKind::Filtered;
+  if (!args.epsilon.empty()) {
+    Exact e;
+    if (!parse_exact(args.epsilon, e) || !(e > 0))
+      throw InputError("--epsilon: must be a positive number (decimal or p/q), got '" + args.epsilon + "'");
+    o.epsilon = e;
+  }
+  if (args.max_depth >= 0) o.max_depth = args.max_depth;
+  if (!args.time_limit.empty()) {
+    const char* text = args.time_limit.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double seconds = std::strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(seconds) || !(seconds > 0) ||
+        seconds > 1e9)
+      throw InputError("--time-limit: must be a number of seconds, > 0 and at most 1e9, got '" + args.time_limit + "'");
+    o.verify.time_limit = seconds;
+  }
+  return run_batch(o);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -201,8 +238,33 @@ int main(int argc, char** argv) {
   std::string cert_file, cert_scene;
   check->add_option("certificate", cert_file, "certificate file (tmcert-certificate/1)")->required();
   check->add_option("scene", cert_scene, "the scene it certifies (tmcert-scene/1)")->required();
+  BatchArgs batch_args;
+  CLI::App* batch = app.add_subcommand("batch", "certify many motions against one environment: JSON Lines "
+                                                "requests in, one result line per request out (in input order)");
+  batch->add_option("requests", batch_args.options.requests,
+                    "requests file (JSON Lines; - for standard input); its first line is the environment "
+                    "unless --scene is given")->required();
+  batch->add_option("--scene", batch_args.options.scene, "the environment scene (tmcert-scene/1, fixed bodies)");
+  batch->add_option("-o,--output", batch_args.options.output, "results file (default: standard output)");
+  batch->add_option("--shard", batch_args.shard, "i/n: run only the requests whose index is i modulo n");
+  batch->add_option("--epsilon", batch_args.epsilon, "termination tolerance, a length (overrides the environment)");
+  batch->add_option("--max-depth", batch_args.max_depth, "subdivision depth limit (overrides the environment)")
+      ->check(CLI::Range(1, 200));
+  batch->add_option("--kernel", batch_args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
+      ->check(CLI::IsMember({"filtered", "exact", "fast"}));
+  batch->add_option("--time-limit", batch_args.time_limit, "seconds per check (the rest of a check past it is undecided)");
+  batch->add_option("--threads", batch_args.options.threads, "requests run in parallel (the output is the same)")
+      ->check(CLI::Range(1, 256));
+  batch->add_flag("--stats", batch_args.options.stats,
+                  "give each check its stats, wall-clock seconds included (output not reproducible)");
+  std::vector<std::string> merge_files;
+  std::string merge_output;
+  CLI::App* merge = app.add_subcommand("batch-merge", "merge the result files of the shards of a batch run "
+                                                      "(the bytes of the unsharded run)");
+  merge->add_option("results", merge_files, "result files of the shards (any order)")->required();
+  merge->add_option("-o,--output", merge_output, "merged file (default: standard output)");
   unsigned long long memory_limit = 0;
-  for (CLI::App* sub : {verify, check})
+  for (CLI::App* sub : {verify, check, batch})
     sub->add_option("--memory-limit", memory_limit,
                     "address space of the process in MiB; beyond it: out of memory, exit 4, no verdict")
         ->check(CLI::Range(1ull, 1ull << 40));
@@ -222,6 +284,12 @@ int main(int argc, char** argv) {
   }
   try {
     if (check->parsed()) return run_certificate_check(cert_file, cert_scene);
+    if (batch->parsed()) return run_batch_command(batch_args);
+    if (merge->parsed()) {
+      const std::size_t lines = tmcert::merge_batch(merge_files, merge_output);
+      std::cerr << "tmcert batch-merge: " << lines << " results from " << merge_files.size() << " files\n";
+      return 0;
+    }
     return run_verify(args);
   } catch (const tmcert::InputError& e) {
     std::cerr << "tmcert: " << e.what() << "\n";

@@ -395,6 +395,12 @@ std::string rigidity_note(const Body& b) {
 
 }  // namespace
 
+std::string check_json(const Scene& scene, const CheckResult& check) {
+  JsonWriter w;
+  write_check(w, scene, check);
+  return std::move(w).take();
+}
+
 std::string result_json(const Scene& scene, const SceneResult& r) {
   JsonWriter w;
   w.begin_object();

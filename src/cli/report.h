@@ -9,5 +9,7 @@ namespace tmcert {
 
 std::string result_json(const Scene& scene, const SceneResult& result);
 std::string result_summary(const Scene& scene, const SceneResult& result);
+// One element of the result document's "checks" (its bodies index `scene`).
+std::string check_json(const Scene& scene, const CheckResult& check);
 
 }  // namespace tmcert

@@ -826,6 +826,55 @@ class SceneReader {
     return scene;
   }
 
+  // A request line of a batch run (docs/scene-format.md "Batch runs"):
+  // {"id", "body", "motion", "checks", "clearance"}.  `out.id` is set first,
+  // so that a request rejected later is still reported under its id.
+  void read_request(RequestLine& out) const {
+    const Path document;
+    const Members doc = object(tree_.root, document);
+    if (const Node* id = find(doc, "id")) out.id = compact(*id);
+    reject_unknown_keys(doc, document, {"id", "body", "motion", "checks", "clearance"});
+    const Path body_path = document.member("body");
+    const Node* b = find(doc, "body");
+    if (!b) fail(body_path, "missing required field (a body name of the environment, or a body)");
+    if (b->kind == Node::Kind::String) {
+      out.body = text(*b);
+      if (out.body.empty()) fail(body_path, "a body name must be a non-empty string");
+    } else if (b->kind == Node::Kind::Object) {
+      Scene alone;  // its default mass from its own vertices
+      alone.bodies.push_back(body(*b, body_path));
+      if (alone.bodies[0].motion || alone.bodies[0].trajectory)
+        fail(body_path.member("motion"), "the request's motion goes in its \"motion\" field");
+      assign_masses(alone, body_path);
+      out.body = alone.bodies[0].name;
+      out.inline_body = std::move(alone.bodies[0]);
+    } else {
+      fail(body_path, std::string("expected a body name or a body object, got ") + kind_name(b->kind));
+    }
+    const Path motion_path = document.member("motion");
+    const Node* m = find(doc, "motion");
+    if (!m) fail(motion_path, "missing required field");
+    Body moved;
+    motion(moved, *m, motion_path);
+    if (!moved.moves()) fail(motion_path, "the motion must move (a one-pose motion is not a request)");
+    out.motion = std::move(moved.motion);
+    out.trajectory = std::move(moved.trajectory);
+    if (const Node* c = find(doc, "checks")) {
+      const Path checks_path = document.member("checks");
+      const std::span<const Node> list = array(*c, checks_path);
+      if (list.empty()) fail(checks_path, "at least one body name is required (omit the field for every other body)");
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        if (list[k].kind != Node::Kind::String)
+          fail(checks_path.index(k), std::string("expected a body name, got ") + kind_name(list[k].kind));
+        std::string name(text(list[k]));
+        if (std::find(out.checks.begin(), out.checks.end(), name) != out.checks.end())
+          fail(checks_path.index(k), "duplicate body " + quote_text(name));
+        out.checks.push_back(std::move(name));
+      }
+    }
+    if (const Node* c = find(doc, "clearance")) out.clearance = non_negative(*c, document.member("clearance"));
+  }
+
  private:
   [[noreturn]] void fail(const Path& path, const std::string& what) const {
     throw InputError(located(source_, path.str(), what));
@@ -837,6 +886,27 @@ class SceneReader {
   std::string describe(const Node& node) const {
     return node.kind == Node::Kind::String ? quote_text(std::string(text(node)))
                                            : std::string("(") + kind_name(node.kind) + ")";
+  }
+
+  // A value as compact JSON, numbers exactly as written (an id echoed in
+  // results: the same bytes for the same input).
+  std::string compact(const Node& node) const {
+    switch (node.kind) {
+      case Node::Kind::Null: return "null";
+      case Node::Kind::Boolean: return node.boolean ? "true" : "false";
+      case Node::Kind::Number: return std::string(text(node));
+      case Node::Kind::String: return nlohmann::json(std::string(text(node))).dump();
+      case Node::Kind::Array:
+      case Node::Kind::Object: break;
+    }
+    const bool is_object = node.kind == Node::Kind::Object;
+    std::string out(1, is_object ? '{' : '[');
+    for (std::uint32_t i = 0; i < node.size; ++i) {
+      if (i > 0) out += ',';
+      if (is_object) out += nlohmann::json(tree_.keys[node.first_key + i]).dump() + ':';
+      out += compact(tree_.nodes[node.first + i]);
+    }
+    return out + (is_object ? '}' : ']');
   }
 
   // An object's keys and member values, side by side.
@@ -1575,6 +1645,16 @@ Scene parse_scene_text(const std::string& text, const std::string& source) {
   std::filesystem::path base;
   if (!source.empty() && std::filesystem::is_regular_file(source, ec)) base = std::filesystem::path(source).parent_path();
   return parse_with_base(text, source, base);
+}
+
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base) {
+  return parse_with_base(text, source, base);
+}
+
+void parse_request_line(const std::string& text, const std::string& source, const std::string& base,
+                        RequestLine& out) {
+  const Tree tree = parse_json(text, source);
+  SceneReader(source, base, tree).read_request(out);
 }
 
 Scene parse_scene_file(const std::string& path) {

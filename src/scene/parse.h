@@ -4,6 +4,7 @@
 #include "src/scene/model.h"
 #include "src/scene/solid.h"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,5 +30,26 @@ std::pair<std::vector<Vec3E>, std::vector<ConvexPiece>> split_scene_polygon(cons
 
 // The same for a document held in memory; `source` names it in messages.
 Scene parse_scene_text(const std::string& text, const std::string& source);
+
+// The same, with mesh and URDF files relative to the directory `base`.
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base);
+
+// One request of a batch run (docs/scene-format.md "Batch runs"), read as
+// scenes are: exact numbers, the same motion objects and messages.
+struct RequestLine {
+  std::string id = "null";   // the "id" value as compact JSON, numbers as written
+  std::string body;          // the moved body's name
+  std::optional<Body> inline_body;  // the body itself, when the request gives it
+  // The motion, as Body::motion and Body::trajectory hold one (it moves).
+  std::optional<Motion> motion;
+  std::optional<Trajectory> trajectory;
+  std::vector<std::string> checks;  // bodies to check against; empty: every other body
+  std::optional<Exact> clearance;
+};
+
+// Reads a request line into `out` (its id first: a request rejected later
+// keeps it).  Throws InputError "<source>: <JSON path>: <what>".
+void parse_request_line(const std::string& text, const std::string& source, const std::string& base,
+                        RequestLine& out);
 
 }  // namespace tmcert

@@ -8,6 +8,7 @@
 #include "src/verify/solid_contact.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -470,6 +471,19 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
   }
   const Exact t1 = motions.front().t1();
   for (const auto& [a, b] : pairs) {
+    // A mover whose swept box misses the box of the whole environment never
+    // meets it, insides of solids included (every point of a solid lies in
+    // the box of its vertices): cleared before any exact test, which for
+    // solids places a surface exactly at every check.
+    if (b == 0 && swept[a].valid && !index_->nodes.empty() &&
+        !EnvironmentIndex::overlap(swept[a].lo, swept[a].hi, index_->nodes[0].lo, index_->nodes[0].hi)) {
+      CheckResult r;
+      r.bodies = {a, b};
+      r.verdict = Verdict::Safe;
+      r.stats.prefiltered = true;
+      out.checks.push_back(r);
+      continue;
+    }
     // A solid's inside counts as contact: at the start, a component of one
     // body inside the other (solid) body is a collision there; later
     // contacts go through the surfaces (as Verifier::check does).
@@ -520,8 +534,14 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     const bool start_free =
         b == 0 && static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts).kind ==
                       StaticOutcome::Kind::Free;
+    // VerifyOptions::time_limit bounds each check, as in Verifier::check.
+    VerifyOptions options = options_;
+    if (options.time_limit > 0)
+      options.deadline = std::chrono::steady_clock::now() +
+                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(options.time_limit));
     out.checks.push_back(
-        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options_, start_free));
+        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free));
     record(out.checks.size() - 1);
   }
   for (CheckResult& r : out.checks) r.epsilon = *options_.epsilon;

@@ -1,0 +1,35 @@
+// `tmcert batch` (docs/scene-format.md "Batch runs"): an environment read
+// once, then one request per line of a JSON Lines file, one result line
+// per request in input order, streamed.
+#pragma once
+
+#include "src/batch/shard.h"
+#include "src/verify/verify.h"
+
+#include <optional>
+#include <string>
+
+namespace tmcert {
+
+struct BatchOptions {
+  std::string requests;  // a JSON Lines file, or "-" for standard input
+  std::string scene;     // the environment scene; empty: the first line of `requests`
+  std::string output;    // the results file; empty: standard output
+  Shard shard;
+  // Kernel, max_depth, time limit as for verify; epsilon and max_depth
+  // default to the environment scene's.
+  VerifyOptions verify;
+  std::optional<Exact> epsilon;
+  std::optional<int> max_depth;
+  int threads = 1;       // requests run in parallel (output order kept)
+  bool stats = false;    // each check's "stats", wall-clock seconds included
+};
+
+// Runs the shard's requests and returns the exit code: 1 when a request
+// collides, else 2 when one is undecided or bad (a bad request line is not
+// certified), else 0.  A summary goes to stderr.  Throws InputError (exit
+// 3) for a bad environment, a bad or unwritable file before any result is
+// written.
+int run_batch(const BatchOptions& options);
+
+}  // namespace tmcert

@@ -1,0 +1,220 @@
+#!/usr/bin/env bash
+# `tmcert batch` and `tmcert batch-merge` (docs/scene-format.md "Batch runs").
+#
+#   batch.sh TMCERT_BINARY EXAMPLES_DIR
+#
+# 1. The example (examples/batch) gives its expected verdicts, the same
+#    bytes with the environment as the first line as with --scene, and the
+#    same bytes with --threads 2.
+# 2. 4 local shards merged are byte-identical to the unsharded run.
+# 3. Bad request lines become error lines naming the field; the run goes on.
+# 4. Bad options, a bad environment and bad merges exit 3 with nothing on stdout.
+# 5. Every check of every example request has the verdict `tmcert verify`
+#    gives the equivalent single scene.
+# Ends with "N passed, M failed"; exits non-zero if M > 0.
+set -u
+
+if [ $# -ne 2 ]; then
+  echo "usage: $0 TMCERT_BINARY EXAMPLES_DIR" >&2
+  exit 2
+fi
+tmcert=$1
+example=$2/batch
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+pass() { passed=$((passed + 1)); }
+fail() {
+  failed=$((failed + 1))
+  echo "FAIL: $*"
+}
+# expect_code CODE DESCRIPTION COMMAND...: stdout in $work/out, stderr in $work/err.
+expect_code() {
+  local want=$1 what=$2
+  shift 2
+  timeout 120 "$@" >"$work/out" 2>"$work/err"
+  local rc=$?
+  if [ "$rc" -eq "$want" ]; then pass; else fail "$what: exit $rc, expected $want ($(head -c 300 "$work/err"))"; fi
+}
+# expect_bad DESCRIPTION SUBSTRING COMMAND...: exit 3, nothing on stdout, SUBSTRING on stderr.
+expect_bad() {
+  local what=$1 needle=$2
+  shift 2
+  expect_code 3 "$what" "$@"
+  if [ -s "$work/out" ]; then fail "$what: something on stdout with exit 3"; else pass; fi
+  if grep -qF -- "$needle" "$work/err"; then pass; else fail "$what: stderr lacks '$needle': $(cat "$work/err")"; fi
+}
+
+# ---------------------------------------------------------------- 1. the example
+expect_code 1 "example" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json"
+cp "$work/out" "$work/example.jsonl"
+got=$(python3 -c '
+import json, sys
+for line in open(sys.argv[1]):
+    r = json.loads(line)
+    print(r["index"], json.dumps(r["id"], separators=(",", ":")), r["verdict"], ",".join(c["verdict"] for c in r["checks"]))
+' "$work/example.jsonl")
+want='0 "e0" safe safe,safe,safe
+1 "e1" collision safe,collision,safe
+2 "e2" safe safe,safe,safe
+3 {"edge":[7,8]} safe safe,safe,safe
+4 4 safe safe'
+if [ "$got" = "$want" ]; then pass; else fail "example verdicts:"$'\n'"$got"$'\n'"expected:"$'\n'"$want"; fi
+if grep -q '"stats"' "$work/example.jsonl"; then fail "stats in results without --stats"; else pass; fi
+expect_code 1 "--stats" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" --stats
+if [ "$(grep -o '"seconds":' "$work/out" | wc -l)" -eq 13 ]; then pass; else fail "--stats: not 13 checks with seconds"; fi
+if grep -q 'tmcert batch: shard 0/1: 5 of 5 requests: 4 safe, 1 collision, 0 undecided, 0 bad' "$work/err"; then pass; else
+  fail "summary line: $(cat "$work/err")"
+fi
+
+# The environment as the first line of the requests.
+python3 -c 'import json, sys; print(json.dumps(json.load(open(sys.argv[1]))))' "$example/environment.json" >"$work/inline.jsonl"
+cat "$example/requests.jsonl" >>"$work/inline.jsonl"
+expect_code 1 "environment as the first line" "$tmcert" batch "$work/inline.jsonl"
+if cmp -s "$work/out" "$work/example.jsonl"; then pass; else fail "environment as the first line: other bytes"; fi
+expect_code 1 "--threads 2" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" --threads 2
+if cmp -s "$work/out" "$work/example.jsonl"; then pass; else fail "--threads 2: other bytes"; fi
+expect_code 1 "-o" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" -o "$work/o.jsonl"
+if [ ! -s "$work/out" ] && cmp -s "$work/o.jsonl" "$work/example.jsonl"; then pass; else fail "-o: other bytes"; fi
+
+# ---------------------------------------------------------------- 2. shards
+# 26 requests: the example's, repeated with other ids (blank lines between
+# do not count), so that every shard holds several, of both verdicts.
+python3 - "$example/requests.jsonl" "$work/many.jsonl" <<'EOF'
+import json, sys
+requests = [json.loads(line) for line in open(sys.argv[1])]
+with open(sys.argv[2], "w") as out:
+    for k in range(26):
+        r = dict(requests[k % len(requests)])
+        r["id"] = k * 10
+        out.write(json.dumps(r) + "\n")
+        if k % 7 == 3:
+            out.write("\n")
+EOF
+expect_code 1 "26 requests" "$tmcert" batch "$work/many.jsonl" --scene "$example/environment.json" -o "$work/whole.jsonl"
+for i in 0 1 2 3; do
+  expect_code 1 "shard $i/4" "$tmcert" batch "$work/many.jsonl" --scene "$example/environment.json" --shard "$i/4" \
+    -o "$work/shard-$i.jsonl"
+  if [ "$(wc -l <"$work/shard-$i.jsonl")" -ge 6 ]; then pass; else fail "shard $i/4: fewer than 6 results"; fi
+done
+expect_code 0 "merge of 4 shards" "$tmcert" batch-merge "$work/shard-2.jsonl" "$work/shard-0.jsonl" \
+  "$work/shard-3.jsonl" "$work/shard-1.jsonl" -o "$work/merged.jsonl"
+if cmp -s "$work/merged.jsonl" "$work/whole.jsonl"; then pass; else fail "4 shards merged differ from the unsharded run"; fi
+if [ "$(wc -l <"$work/whole.jsonl")" -eq 26 ]; then pass; else fail "26 requests: $(wc -l <"$work/whole.jsonl") results"; fi
+expect_code 0 "merge to stdout" "$tmcert" batch-merge "$work/shard-0.jsonl" "$work/shard-1.jsonl" \
+  "$work/shard-2.jsonl" "$work/shard-3.jsonl"
+if cmp -s "$work/out" "$work/whole.jsonl"; then pass; else fail "merge to stdout differs"; fi
+
+# ---------------------------------------------------------------- 3. bad request lines
+good='{"id":"ok","body":"cube","motion":{"type":"keyframes","poses":[{"translation":[-1,-3,1]},{"translation":[3,-3,1]}]}}'
+cat >"$work/bad.jsonl" <<EOF
+$good
+{"id":"json","body":"cube",
+{"id":"nobody","body":"ghost","motion":{"type":"keyframes","poses":[{"translation":[0,0,1]},{"translation":[1,0,1]}]}}
+{"id":"type","body":"cube","motion":{"type":"spline","poses":[]}}
+{"id":"times","body":"cube","motion":{"type":"keyframes","times":[0,0],"poses":[{"translation":[0,0,1]},{"translation":[1,0,1]}]}}
+{"id":"nomotion","body":"cube"}
+{"id":"check","body":"cube","checks":["floor","ghost"],"motion":{"type":"keyframes","poses":[{"translation":[0,0,1]},{"translation":[1,0,1]}]}}
+{"id":"self","body":"cube","checks":["cube"],"motion":{"type":"keyframes","poses":[{"translation":[0,0,1]},{"translation":[1,0,1]}]}}
+{"id":"still","body":"cube","motion":{"type":"rational_bezier","control_points":[[[1,0,0,0],[0,1,0,0],[0,0,1,1]]]}}
+{"id":"field","body":"cube","speed":3,"motion":{"type":"keyframes","poses":[{"translation":[0,0,1]},{"translation":[1,0,1]}]}}
+{"id":"nan","body":"cube","motion":{"type":"keyframes","poses":[{"translation":[0,0,"nan"]},{"translation":[1,0,1]}]}}
+{"id":"clearance","body":"cube","clearance":-1,"motion":{"type":"keyframes","poses":[{"translation":[0,0,1]},{"translation":[1,0,1]}]}}
+[1,2,3]
+$good
+EOF
+expect_code 2 "bad lines" "$tmcert" batch "$work/bad.jsonl" --scene "$example/environment.json"
+got=$(python3 -c '
+import json, sys
+for line in open(sys.argv[1]):
+    r = json.loads(line)
+    print(r["index"], json.dumps(r["id"]), r.get("verdict", "-"), r.get("error", "-"))
+' "$work/out")
+while IFS='|' read -r index needle; do
+  if printf '%s\n' "$got" | grep -q "^$index .*$needle"; then pass; else
+    fail "bad line $index: no '$needle' in: $(printf '%s\n' "$got" | grep "^$index ")"
+  fi
+done <<'EOF'
+0|"ok" safe -
+1|null - line 2: invalid JSON
+2|"nobody" - line 3: body: unknown body "ghost"
+3|"type" - line 4: motion.type: unknown motion type "spline"
+4|"times" - line 5: motion.times
+5|"nomotion" - line 6: motion: missing required field
+6|"check" - line 7: checks\[1\]: unknown body "ghost"
+7|"self" - line 8: checks\[0\]: a body cannot be checked against itself
+8|"still" - line 9: motion: the motion must move
+9|"field" - line 10: speed: unknown field
+10|"nan" - line 11: motion.poses\[0\].translation\[2\]
+11|"clearance" - line 12: clearance: must not be negative
+12|null - line 13: document: expected an object
+13|"ok" safe -
+EOF
+if grep -q '14 of 14 requests: 2 safe, 0 collision, 0 undecided, 12 bad' "$work/err"; then pass; else fail "bad lines summary: $(cat "$work/err")"; fi
+
+# ---------------------------------------------------------------- 4. bad options and environments
+for shard in 4/4 1/0 x 1 -1/2 2/-3 "1/2/3" ""; do
+  expect_bad "--shard '$shard'" "--shard" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" \
+    --shard "$shard"
+done
+expect_bad "unwritable -o" "-o: cannot write" "$tmcert" batch "$example/requests.jsonl" \
+  --scene "$example/environment.json" -o "$work/no/such/dir/out.jsonl"
+expect_bad "missing requests" "cannot open" "$tmcert" batch "$work/none.jsonl" --scene "$example/environment.json"
+expect_bad "--epsilon 0" "--epsilon" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" \
+  --epsilon 0
+expect_bad "--time-limit -1" "--time-limit" "$tmcert" batch "$example/requests.jsonl" \
+  --scene "$example/environment.json" --time-limit -1
+python3 - "$example/environment.json" "$work/moving.json" <<'EOF'
+import json, sys
+env = json.load(open(sys.argv[1]))
+env["bodies"][1]["motion"] = {"type": "keyframes", "poses": [{"translation": [0, 0, 0]}, {"translation": [1, 0, 0]}]}
+json.dump(env, open(sys.argv[2], "w"))
+EOF
+expect_bad "moving environment body" "bodies[1].motion: the bodies of a batch environment are fixed" \
+  "$tmcert" batch "$example/requests.jsonl" --scene "$work/moving.json"
+printf '{"format":"tmcert-scene/1","bodies":[]}\n' >"$work/empty-env.jsonl"
+cat "$example/requests.jsonl" >>"$work/empty-env.jsonl"
+expect_bad "bad first-line environment" "empty-env.jsonl line 1: bodies" "$tmcert" batch "$work/empty-env.jsonl"
+printf '\n\n' >"$work/blank.jsonl"
+expect_bad "no environment" "no environment" "$tmcert" batch "$work/blank.jsonl"
+# Merges: a gap, a repeated index, a line that is not a result.
+expect_bad "merge with a missing shard" "no file holds index 1" "$tmcert" batch-merge "$work/shard-0.jsonl" \
+  "$work/shard-2.jsonl" "$work/shard-3.jsonl"
+expect_bad "merge with a repeated shard" "is also in another file" "$tmcert" batch-merge "$work/shard-0.jsonl" \
+  "$work/shard-0.jsonl" "$work/shard-1.jsonl" "$work/shard-2.jsonl" "$work/shard-3.jsonl"
+printf '{"index":0}\nnot json\n' >"$work/junk.jsonl"
+expect_bad "merge of a bad line" "junk.jsonl line 2: not a result line" "$tmcert" batch-merge "$work/junk.jsonl"
+expect_bad "merge onto its input" "is also a result file" "$tmcert" batch-merge "$work/shard-0.jsonl" \
+  -o "$work/shard-0.jsonl"
+
+# ---------------------------------------------------------------- 5. batch agrees with verify
+# Each example request as a scene of its own: the environment, the moved
+# body with the request's motion, one check per obstacle.
+python3 - "$example/environment.json" "$example/requests.jsonl" "$work" <<'EOF'
+import json, sys
+env = json.load(open(sys.argv[1]))
+for k, line in enumerate(open(sys.argv[2])):
+    r = json.loads(line)
+    scene = json.loads(json.dumps(env))
+    moved = next(b for b in scene["bodies"] if b["name"] == r["body"])
+    moved["motion"] = r["motion"]
+    others = r.get("checks") or [b["name"] for b in scene["bodies"] if b["name"] != r["body"]]
+    if "clearance" in r:
+        scene["checks"] = [{"bodies": [r["body"], o], "clearance": r["clearance"]} for o in others]
+    else:
+        scene["checks"] = [[r["body"], o] for o in others]
+    json.dump(scene, open("%s/single-%d.json" % (sys.argv[3], k), "w"))
+EOF
+k=0
+while IFS= read -r line; do
+  timeout 120 "$tmcert" verify --json "$work/single-$k.json" >"$work/verify.json" 2>"$work/err"
+  single=$(python3 -c 'import json, sys; print(",".join(c["verdict"] for c in json.load(open(sys.argv[1]))["checks"]))' \
+    "$work/verify.json")
+  batch=$(printf '%s\n' "$line" | python3 -c 'import json, sys; print(",".join(c["verdict"] for c in json.loads(sys.stdin.read())["checks"]))')
+  if [ -n "$single" ] && [ "$single" = "$batch" ]; then pass; else fail "request $k: batch $batch, verify $single"; fi
+  k=$((k + 1))
+done <"$work/example.jsonl"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
