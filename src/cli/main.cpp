@@ -218,7 +218,8 @@ int main(int argc, char** argv) {
   VerifyArgs args;
   CLI::App* verify = app.add_subcommand("verify", "check every requested body pair over the whole motion");
   verify->add_option("scene", args.scene, "scene file (tmcert-scene/1)")->required();
-  verify->add_option("--epsilon", args.epsilon, "termination tolerance, a length (overrides the scene)");
+  verify->add_option("--epsilon", args.epsilon, "termination tolerance, a length, for every check (overrides the scene; default: per check, "
+                     "1/1000 of the diagonal of its two bodies' box)");
   verify->add_option("--max-depth", args.max_depth, "subdivision depth limit (overrides the scene)")
       ->check(CLI::Range(1, 200));  // as the scene's max_depth
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")

@@ -136,7 +136,7 @@ struct Body {
 struct Scene {
   std::string source;                   // file name, for messages
   std::vector<Body> bodies;
-  std::optional<Exact> epsilon;         // absent: 1/1000 of the scene diagonal
+  std::optional<Exact> epsilon;         // absent: per check (default_epsilon of its two bodies)
   int max_depth = 40;
   std::vector<std::pair<int, int>> checks;  // indices into bodies; explicit or default
   // Minimum separation (SCENE_FORMAT.md "Tolerance and clearance"): the
