@@ -320,9 +320,9 @@ def _json_value(value: Any, path: str) -> Any:
         return value
     if isinstance(value, numbers.Integral):
         v = int(value)
-        return v if -_INT64 < v < _INT64 else str(v)
+        return v if -_INT64 < v < _INT64 else _tmcert._int_text(v)
     if isinstance(value, numbers.Rational):
-        return f"{value.numerator}/{value.denominator}"
+        return f"{_tmcert._int_text(int(value.numerator))}/{_tmcert._int_text(int(value.denominator))}"
     if isinstance(value, decimal.Decimal):
         return str(value)
     if isinstance(value, numbers.Real):
@@ -330,7 +330,7 @@ def _json_value(value: Any, path: str) -> Any:
         if not math.isfinite(f):
             return str(f)  # "nan", "inf": the reader names the field
         n, d = f.as_integer_ratio()
-        return f"{n}/{d}"
+        return f"{_tmcert._int_text(n)}/{_tmcert._int_text(d)}"
     if isinstance(value, Mapping):
         out = {}
         for key, item in value.items():
@@ -415,6 +415,12 @@ def _faces(faces: Any, what: str) -> list:
     return out
 
 
+def _flag(value: Any, what: str) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{what}: expected True or False, got {value!r}")
+    return bool(value)
+
+
 class Body:
     """One body of a :class:`SceneBuilder`; every method adds to it and returns it.
 
@@ -493,7 +499,7 @@ class Body:
 
     def solid(self, value: bool = True) -> "Body":
         """The inside counts as part of the body (its polygons must form closed shells)."""
-        self._raw.solid(bool(value))
+        self._raw.solid(_flag(value, f"{self.name}: solid"))
         return self
 
     def mass(self, points: Any, weights: Iterable[NumberLike]) -> "Body":
@@ -536,7 +542,7 @@ class Robot:
 
     def self_collision(self, value: bool = True) -> "Robot":
         """Check pairs of its own links (not parent and child, not allowed)."""
-        self._raw.self_collision(bool(value))
+        self._raw.self_collision(_flag(value, f"{self.name}: self_collision"))
         return self
 
     def allow(self, link_a: str, link_b: str) -> "Robot":
