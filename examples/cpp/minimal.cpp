@@ -1,8 +1,7 @@
-// Minimal use of the tmcert library: read a scene, verify it, print the
-// verdict of each check.  Build against an installed tmcert with
-//   find_package(tmcert REQUIRED)  target_link_libraries(app tmcert::tmcert)
-#include "src/scene/parse.h"
-#include "src/verify/verify.h"
+// Minimal use of the tmcert library: read a scene file, verify it, print
+// the verdict of each check.  Exits 0 safe, 1 collision, 2 undecided,
+// 3 bad input (as `tmcert verify`).
+#include <tmcert/tmcert.h>
 
 #include <iostream>
 
@@ -12,15 +11,11 @@ int main(int argc, char** argv) {
     return 3;
   }
   try {
-    const tmcert::Scene scene = tmcert::parse_scene_file(argv[1]);
-    tmcert::VerifyOptions options;  // filtered kernel: certified
-    options.epsilon = scene.epsilon ? *scene.epsilon : tmcert::default_epsilon(scene);
-    options.max_depth = scene.max_depth;
-    const tmcert::SceneResult result = tmcert::verify_scene(scene, options);
-    for (const tmcert::CheckResult& c : result.checks)
-      std::cout << scene.bodies[c.bodies[0]].name << " x " << scene.bodies[c.bodies[1]].name << ": "
-                << tmcert::to_string(c.verdict) << "\n";
-    return result.verdict == tmcert::Verdict::Safe ? 0 : result.verdict == tmcert::Verdict::Collision ? 1 : 2;
+    const tmcert::Scene scene = tmcert::Scene::from_file(argv[1]);
+    const tmcert::Result result = tmcert::verify(scene);  // filtered kernel: certified
+    for (const tmcert::CheckResult& c : result.checks())
+      std::cout << c.bodies[0] << " x " << c.bodies[1] << ": " << tmcert::to_string(c.verdict) << "\n";
+    return result.verdict() == tmcert::Verdict::Safe ? 0 : result.verdict() == tmcert::Verdict::Collision ? 1 : 2;
   } catch (const tmcert::InputError& e) {
     std::cerr << e.what() << "\n";
     return 3;

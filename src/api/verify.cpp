@@ -17,70 +17,32 @@
 
 namespace tmcert::api {
 
-const char* to_string(Verdict v) {
-  switch (v) {
-    case Verdict::Safe: return "safe";
-    case Verdict::Collision: return "collision";
-    case Verdict::Undecided: return "undecided";
-  }
-  return "undecided";
-}
-
-const char* to_string(Kernel k) {
-  switch (k) {
-    case Kernel::Filtered: return "filtered";
-    case Kernel::Exact: return "exact";
-    case Kernel::Fast: return "fast";
-  }
-  return "filtered";
-}
-
-const char* to_string(StopReason r) {
-  switch (r) {
-    case StopReason::Epsilon: return "epsilon";
-    case StopReason::Depth: return "depth";
-    case StopReason::Limit: return "limit";
-  }
-  return "limit";
-}
-
 namespace {
 
-Verdict public_verdict(tmcert::Verdict v) {
-  switch (v) {
-    case tmcert::Verdict::Safe: return Verdict::Safe;
-    case tmcert::Verdict::Collision: return Verdict::Collision;
-    case tmcert::Verdict::Undecided: return Verdict::Undecided;
-  }
-  return Verdict::Undecided;
+// The public enums list the internal ones' values in the same order
+// (checked here), so a conversion either way is a cast.
+static_assert(static_cast<int>(Verdict::Safe) == static_cast<int>(tmcert::Verdict::Safe) &&
+              static_cast<int>(Verdict::Collision) == static_cast<int>(tmcert::Verdict::Collision) &&
+              static_cast<int>(Verdict::Undecided) == static_cast<int>(tmcert::Verdict::Undecided));
+static_assert(static_cast<int>(Kernel::Filtered) == static_cast<int>(tmcert::KernelKind::Filtered) &&
+              static_cast<int>(Kernel::Exact) == static_cast<int>(tmcert::KernelKind::Exact) &&
+              static_cast<int>(Kernel::Fast) == static_cast<int>(tmcert::KernelKind::Fast));
+static_assert(static_cast<int>(StopReason::Epsilon) == static_cast<int>(tmcert::StopReason::Epsilon) &&
+              static_cast<int>(StopReason::Depth) == static_cast<int>(tmcert::StopReason::Depth) &&
+              static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit));
+
+template <typename To, typename From>
+To same_enum(From value) {
+  return static_cast<To>(static_cast<int>(value));
 }
 
-Kernel public_kernel(tmcert::KernelKind k) {
-  switch (k) {
-    case tmcert::KernelKind::Filtered: return Kernel::Filtered;
-    case tmcert::KernelKind::Exact: return Kernel::Exact;
-    case tmcert::KernelKind::Fast: return Kernel::Fast;
-  }
-  return Kernel::Filtered;
-}
+}  // namespace
 
-tmcert::KernelKind internal_kernel(Kernel k) {
-  switch (k) {
-    case Kernel::Filtered: return tmcert::KernelKind::Filtered;
-    case Kernel::Exact: return tmcert::KernelKind::Exact;
-    case Kernel::Fast: return tmcert::KernelKind::Fast;
-  }
-  return tmcert::KernelKind::Filtered;
-}
+const char* to_string(Verdict v) { return tmcert::to_string(same_enum<tmcert::Verdict>(v)); }
+const char* to_string(Kernel k) { return tmcert::to_string(same_enum<tmcert::KernelKind>(k)); }
+const char* to_string(StopReason r) { return tmcert::to_string(same_enum<tmcert::StopReason>(r)); }
 
-StopReason public_reason(tmcert::StopReason r) {
-  switch (r) {
-    case tmcert::StopReason::Epsilon: return StopReason::Epsilon;
-    case tmcert::StopReason::Depth: return StopReason::Depth;
-    case tmcert::StopReason::Limit: return StopReason::Limit;
-  }
-  return StopReason::Limit;
-}
+namespace {
 
 std::array<Rational, 3> public_point(const tmcert::Vec3E& p) {
   return {to_rational(p[0]), to_rational(p[1]), to_rational(p[2])};
@@ -125,7 +87,7 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   const tmcert::Body& a = scene.bodies[c.bodies[0]];
   const tmcert::Body& b = scene.bodies[c.bodies[1]];
   out.bodies = {a.name, b.name};
-  out.verdict = public_verdict(c.verdict);
+  out.verdict = same_enum<Verdict>(c.verdict);
   out.clearance = to_rational(c.clearance);
   out.clearance_violated = c.clearance > 0 && c.verdict == tmcert::Verdict::Collision;
   out.enlarged_model = !a.enlarged.empty() || !b.enlarged.empty();
@@ -140,7 +102,7 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   }
   out.first_contact_exact = c.first_contact_exact;
   for (const tmcert::UndecidedInterval& u : c.undecided)
-    out.undecided.push_back({to_rational(u.t0), to_rational(u.t1), public_reason(u.reason)});
+    out.undecided.push_back({to_rational(u.t0), to_rational(u.t1), same_enum<StopReason>(u.reason)});
   const tmcert::CheckStats& s = c.stats;
   out.stats.nodes = s.nodes;
   out.stats.max_depth = s.max_depth;
@@ -158,7 +120,7 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
 // option's name in the message.
 tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o) {
   tmcert::VerifyOptions options;
-  options.kernel = internal_kernel(o.kernel);
+  options.kernel = same_enum<tmcert::KernelKind>(o.kernel);
   if (o.epsilon) {
     tmcert::Exact e;
     if (!tmcert::parse_exact(o.epsilon->text(), e) || !(e > 0))
@@ -208,8 +170,8 @@ Result verify(const Scene& scene, const VerifyOptions& options) {
 
 Result::Result(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
-Verdict Result::verdict() const { return public_verdict(impl_->internal.verdict); }
-Kernel Result::kernel() const { return public_kernel(impl_->internal.kernel); }
+Verdict Result::verdict() const { return same_enum<Verdict>(impl_->internal.verdict); }
+Kernel Result::kernel() const { return same_enum<Kernel>(impl_->internal.kernel); }
 bool Result::certified() const { return impl_->internal.certified; }
 const Rational& Result::epsilon() const { return impl_->epsilon; }
 const std::vector<CheckResult>& Result::checks() const { return impl_->checks; }

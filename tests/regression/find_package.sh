@@ -1,22 +1,59 @@
 #!/usr/bin/env bash
 # Installs the built tree into a scratch prefix, builds examples/cpp against
-# it with find_package(tmcert) and runs it on a bundled example.
+# it with find_package(tmcert), once with the shared library and once with
+# the static one, and runs the examples: the scene built in code (drop_box)
+# and a bundled scene file (minimal).  Also checks that the installed
+# headers are the public ones only.
 set -euo pipefail
 build=$1
 src=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
-cmake -S "$src/examples/cpp" -B "$work/app" -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
-cmake --build "$work/app" -j 2 >/dev/null
-set +e
-"$work/app/minimal" "$src/examples/octagons-collision.json"
-code=$?
-set -e
-if [ "$code" -ne 1 ]; then
-  echo "expected exit 1 (collision), got $code"
-  echo "0 passed, 1 failed"
-  exit 1
+passed=0
+failed=0
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+
+# Only include/tmcert/ is installed: no internal header, no CGAL in them.
+headers=$(cd "$work/prefix/include" && find . -type f | sort | tr '\n' ' ')
+if [ "$(cd "$work/prefix/include" && find . -type f ! -path './tmcert/*' | wc -l)" -ne 0 ] ||
+   grep -lE '#include [<"](CGAL|gmp|Eigen|nlohmann|src/|kernels/)' "$work/prefix/include/tmcert/"*.h >/dev/null; then
+  fail "installed headers are not only the public ones: $headers"
+else
+  passed=$((passed + 1))
 fi
-echo "1 passed, 0 failed"
+
+expected_drop="verdict: collision
+box meets table at t = 0.666666666666667 (exactly 2/3)"
+for target in tmcert::tmcert tmcert::tmcert_static; do
+  app="$work/app-${target#tmcert::}"
+  cmake -S "$src/examples/cpp" -B "$app" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_PREFIX_PATH="$work/prefix" -DTMCERT_TARGET="$target" >/dev/null
+  cmake --build "$app" -j 2 >/dev/null
+  set +e
+  out=$("$app/drop_box")
+  code=$?
+  "$app/minimal" "$src/examples/octagons-collision.json" >/dev/null
+  code_minimal=$?
+  set -e
+  if [ "$code" -ne 1 ] || [ "$(printf '%s\n' "$out" | head -2)" != "$expected_drop" ] ||
+     ! printf '%s\n' "$out" | grep -qE '^witness point: \(.*, .*, 0\)$'; then
+    fail "$target: drop_box exited $code with output:"
+    printf '%s\n' "$out"
+  else
+    passed=$((passed + 1))
+  fi
+  if [ "$code_minimal" -ne 1 ]; then
+    fail "$target: minimal on octagons-collision.json: expected exit 1 (collision), got $code_minimal"
+  else
+    passed=$((passed + 1))
+  fi
+done
+# The shared example needs the shared library; the static one does not.
+if ldd "$work/app-tmcert/drop_box" | grep -q 'libtmcert\.so' && ! ldd "$work/app-tmcert_static/drop_box" | grep -q 'libtmcert\.so'; then
+  passed=$((passed + 1))
+else
+  fail "drop_box is not linked as expected (shared: libtmcert.so; static: none)"
+fi
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,547 @@
+// The public C++ API (include/tmcert/), used as a user would: linked
+// against the shared library only, with only <tmcert/...> headers.
+//  * builder vs reader: the same scene built in code and read from its
+//    tmcert-scene/1 text gives the same result, for every motion type;
+//  * doubles are exact: 0.1 as a double is not 1/10;
+//  * every builder and option error is a tmcert::InputError naming the field;
+//  * the doubles of a result agree with its exact values (nearest double);
+//  * Result::to_json is the document `tmcert verify --json` prints, and a
+//    certificate of a result holds.
+#define BOOST_TEST_MODULE tmcert_api
+#include <boost/test/unit_test.hpp>
+
+#include <tmcert/tmcert.h>
+
+#include <gmp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+const std::string kExamples = TMCERT_EXAMPLES;
+
+// A result document without its "seconds" lines (the one thing in it that
+// is not deterministic).
+std::string without_seconds(const std::string& json) {
+  std::istringstream in(json);
+  std::string line, out;
+  while (std::getline(in, line))
+    if (line.find("\"seconds\"") == std::string::npos) out += line + "\n";
+  return out;
+}
+
+// Verifies the builder's scene and the scene read from `json`; both must
+// give the same result document, with verdict `expected`.
+void same_result(const tmcert::SceneBuilder& builder, const std::string& json, tmcert::Verdict expected) {
+  const tmcert::Scene built = builder.build();
+  const tmcert::Scene read = tmcert::Scene::from_json(json);
+  BOOST_TEST(built.body_names() == read.body_names(), boost::test_tools::per_element());
+  BOOST_TEST((built.checks() == read.checks()));
+  const tmcert::Result a = tmcert::verify(built);
+  const tmcert::Result b = tmcert::verify(read);
+  BOOST_TEST(tmcert::to_string(a.verdict()) == tmcert::to_string(expected));
+  BOOST_TEST(without_seconds(a.to_json()) == without_seconds(b.to_json()));
+}
+
+// The wall x = 3/2, |y|, |z| <= 1, as the JSON of one body.
+const char* kWallJson = R"({ "name": "wall", "polygons": [ [["1.5",-1,-1],["1.5",1,-1],["1.5",1,1],["1.5",-1,1]] ] })";
+
+void add_wall(tmcert::SceneBuilder& b) {
+  const std::vector<double> xyz = {1.5, -1, -1, 1.5, 1, -1, 1.5, 1, 1, 1.5, -1, 1};
+  b.add_body("wall").polygons(xyz, {{0, 1, 2, 3}});
+}
+
+// The bar |x| <= 2, |y| <= 1/10 in the plane z = 0.
+void add_bar(tmcert::SceneBuilder& b, tmcert::Motion motion) {
+  b.add_body("bar").polygon({{-2, "-0.1", 0}, {2, "-0.1", 0}, {2, "0.1", 0}, {-2, "0.1", 0}}).motion(std::move(motion));
+}
+const char* kBarPolygon = R"("polygons": [ [[-2,"-0.1",0],[2,"-0.1",0],[2,"0.1",0],[-2,"0.1",0]] ])";
+
+// A scene document: `before` (members ending in a comma) ahead of the
+// bodies, `after` (members starting with a comma) behind them.
+std::string scene_json(const std::string& bodies, const std::string& before = "", const std::string& after = "") {
+  return R"({ "format": "tmcert-scene/1", )" + before + R"( "bodies": [ )" + bodies + " ]" + after + " }";
+}
+
+// Is `approx` the double nearest to the rational num/den (ties to even)?
+bool nearest(const tmcert::Rational& r) {
+  mpq_t q, d, below, above, tmp;
+  mpq_inits(q, d, below, above, tmp, nullptr);
+  const std::string text = r.numerator + "/" + r.denominator;
+  bool ok = mpq_set_str(q, text.c_str(), 10) == 0;
+  mpq_canonicalize(q);
+  if (ok && std::isfinite(r.approx)) {
+    // |q - approx| <= |q - neighbour| for both neighbours.
+    mpq_set_d(d, r.approx);
+    mpq_sub(tmp, q, d);
+    mpq_abs(tmp, tmp);
+    for (double n : {std::nextafter(r.approx, -INFINITY), std::nextafter(r.approx, INFINITY)}) {
+      if (!std::isfinite(n)) continue;
+      mpq_set_d(below, n);
+      mpq_sub(above, q, below);
+      mpq_abs(above, above);
+      if (mpq_cmp(tmp, above) > 0) ok = false;
+    }
+    // Text and numerator/denominator agree.
+    mpq_set_str(below, r.text.c_str(), 10);
+    mpq_canonicalize(below);
+    if (!mpq_equal(below, q)) ok = false;
+  }
+  mpq_clears(q, d, below, above, tmp, nullptr);
+  return ok;
+}
+
+void check_doubles(const tmcert::Result& result) {
+  BOOST_TEST(nearest(result.epsilon()));
+  for (const tmcert::CheckResult& c : result.checks()) {
+    for (const tmcert::UndecidedInterval& u : c.undecided) {
+      BOOST_TEST(nearest(u.t0));
+      BOOST_TEST(nearest(u.t1));
+    }
+    if (c.first_contact)
+      for (const tmcert::Time& t : *c.first_contact)
+        if (const tmcert::Rational* r = t.rational()) BOOST_TEST(nearest(*r));
+    if (!c.witness) continue;
+    const tmcert::Witness& w = *c.witness;
+    if (const tmcert::Rational* r = w.t.rational()) {
+      BOOST_TEST(nearest(*r));
+      BOOST_TEST(w.t.approx() == r->approx);
+    } else {
+      const tmcert::AlgebraicNumber& a = *w.t.algebraic();
+      BOOST_TEST(nearest(a.lower));
+      BOOST_TEST(nearest(a.upper));
+      // The 15-digit decimal of a root inside (lower, upper).
+      const double slack = 1e-14 * std::max(1.0, std::fabs(a.approx));
+      BOOST_TEST(a.approx >= a.lower.approx - slack);
+      BOOST_TEST(a.approx <= a.upper.approx + slack);
+    }
+    if (w.point) {
+      for (int k = 0; k < 3; ++k) {
+        BOOST_TEST(nearest((*w.point)[k]));
+        BOOST_TEST(w.point_approx[k] == (*w.point)[k].approx);
+      }
+    } else {
+      BOOST_REQUIRE(w.point_box.has_value());
+      for (int k = 0; k < 3; ++k) {
+        BOOST_TEST(nearest((*w.point_box)[k][0]));
+        BOOST_TEST(nearest((*w.point_box)[k][1]));
+        BOOST_TEST(w.point_approx[k] >= (*w.point_box)[k][0].approx);
+        BOOST_TEST(w.point_approx[k] <= (*w.point_box)[k][1].approx);
+      }
+    }
+  }
+}
+
+// Runs f and requires a tmcert::InputError whose message holds every one
+// of `parts`.
+void input_error(const std::function<void()>& f, const std::vector<std::string>& parts) {
+  try {
+    f();
+    BOOST_ERROR("no InputError; expected one naming " + parts.front());
+  } catch (const tmcert::InputError& e) {
+    const std::string message = e.what();
+    for (const std::string& part : parts)
+      BOOST_TEST(message.find(part) != std::string::npos, "\"" << message << "\" names " << part);
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(builder_vs_reader)
+
+// A triangle with a segment and a point, translated along a weighted
+// (rational) degree-2 curve into the wall, with a mass, epsilon, max_depth
+// and an explicit check.
+BOOST_AUTO_TEST_CASE(rational_bezier) {
+  tmcert::SceneBuilder b;
+  b.epsilon("1/500").max_depth(30);
+  add_wall(b);
+  tmcert::RationalBezier curve;
+  curve.control_points = {{1, 0, 0, -1, 0, 1, 0, 0, 0, 0, 1, 0},
+                          {1, 0, 0, 0.5, 0, 1, 0, 0.25, 0, 0, 1, 0},
+                          {1, 0, 0, 2, 0, 1, 0, 0, 0, 0, 1, "1/3"}};
+  curve.weights = {1, 2, 1};
+  curve.interval = {0, 2};
+  const std::vector<double> xyz = {0, 0, 0, 0.25, 0, 0, 0, 0.25, 0};
+  b.add_body("tri")
+      .polygons(xyz, std::vector<std::size_t>{0, 1, 2}, std::vector<std::size_t>{3})
+      .segments(std::vector<double>{0, 0, 0, 0, 0, 0.5})
+      .points(std::vector<double>{-0.5, 0, 0})
+      .mass({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {1, 1, 1, "1/2"})
+      .motion(curve);
+  b.check("tri", "wall");
+  const std::string json = scene_json(std::string(kWallJson) + R"(,
+    { "name": "tri", "polygons": [ [[0,0,0],[0.25,0,0],[0,0.25,0]] ], "segments": [ [[0,0,0],[0,0,0.5]] ],
+      "points": [ [-0.5,0,0] ],
+      "mass": { "points": [[0,0,0],[1,0,0],[0,1,0],[0,0,1]], "weights": [1,1,1,"1/2"] },
+      "motion": { "type": "rational_bezier", "interval": [0, 2],
+        "control_points": [ [[1,0,0,-1],[0,1,0,0],[0,0,1,0]], [[1,0,0,0.5],[0,1,0,0.25],[0,0,1,0]],
+                            [[1,0,0,2],[0,1,0,0],[0,0,1,"1/3"]] ],
+        "weights": [1, 2, 1] } })", R"("epsilon": "1/500", "max_depth": 30,)", R"(, "checks": [["tri", "wall"]])");
+  same_result(b, json, tmcert::Verdict::Collision);
+}
+
+BOOST_AUTO_TEST_CASE(keyframes_slerp_quaternion) {
+  tmcert::SceneBuilder b;
+  add_bar(b, tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::quaternion(1, 0, 0, 1)},
+                                {{0, 0, 0}, tmcert::Rotation::quaternion(1, 0, 0, 0)}},
+                               {0, 1},
+                               tmcert::Interpolation::Slerp});
+  add_wall(b);
+  const std::string json = scene_json(std::string(R"({ "name": "bar", )") + kBarPolygon + R"(,
+      "motion": { "type": "keyframes", "interpolation": "slerp", "times": [0, 1],
+                  "poses": [ { "rotation": {"quaternion": [1,0,0,1]} }, { "rotation": {"quaternion": [1,0,0,0]} } ] } },
+    )" + kWallJson);
+  same_result(b, json, tmcert::Verdict::Collision);
+}
+
+BOOST_AUTO_TEST_CASE(keyframes_screw_rpy) {
+  tmcert::SceneBuilder b;
+  add_bar(b, tmcert::Keyframes{{{{0, 0, 2}, tmcert::Rotation::rpy(0, 0, "1.5")},
+                                {{0, 0, 1}, tmcert::Rotation::rpy(0, 0, "0.75")},
+                                {{0, 0, 0}, tmcert::Rotation::identity()}},
+                               {0, "1/2", 1},
+                               tmcert::Interpolation::Screw});
+  add_wall(b);
+  const std::string json = scene_json(std::string(R"({ "name": "bar", )") + kBarPolygon + R"(,
+      "motion": { "type": "keyframes", "interpolation": "screw", "times": [0, "1/2", 1],
+                  "poses": [ { "translation": [0,0,2], "rotation": {"rpy": [0,0,"1.5"]} },
+                             { "translation": [0,0,1], "rotation": {"rpy": [0,0,"0.75"]} },
+                             { "translation": [0,0,0] } ] } },
+    )" + kWallJson);
+  same_result(b, json, tmcert::Verdict::Collision);
+}
+
+BOOST_AUTO_TEST_CASE(keyframes_nlerp_matrix) {
+  tmcert::SceneBuilder b;
+  // Quarter turn about z as a matrix, then the identity; times evenly spaced.
+  add_bar(b, tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::matrix({0, -1, 0, 1, 0, 0, 0, 0, 1})},
+                                {{"0.5", 0, 0}, tmcert::Rotation::identity()}},
+                               {},
+                               tmcert::Interpolation::Nlerp});
+  add_wall(b);
+  const std::string json = scene_json(std::string(R"({ "name": "bar", )") + kBarPolygon + R"(,
+      "motion": { "type": "keyframes", "interpolation": "nlerp",
+                  "poses": [ { "rotation": {"matrix": [[0,-1,0],[1,0,0],[0,0,1]]} },
+                             { "translation": ["0.5",0,0] } ] } },
+    )" + kWallJson);
+  same_result(b, json, tmcert::Verdict::Collision);
+}
+
+// A translation on [0, 1] and a slerp on [1, 2] meeting at the identity.
+BOOST_AUTO_TEST_CASE(piecewise) {
+  tmcert::SceneBuilder b;
+  add_bar(b, tmcert::Piecewise{{tmcert::Motion::translation({0, 0, -3}, {0, 0, 0}),
+                                tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::identity()},
+                                                   {{0, 0, 0}, tmcert::Rotation::quaternion(1, 0, 0, 1)}},
+                                                  {1, 2}}}});
+  add_wall(b);
+  const std::string json = scene_json(std::string(R"({ "name": "bar", )") + kBarPolygon + R"(,
+      "motion": { "type": "piecewise", "pieces": [
+        { "type": "rational_bezier", "interval": [0, 1],
+          "control_points": [ [[1,0,0,0],[0,1,0,0],[0,0,1,-3]], [[1,0,0,0],[0,1,0,0],[0,0,1,0]] ] },
+        { "type": "keyframes", "times": [1, 2],
+          "poses": [ {}, { "rotation": {"quaternion": [1,0,0,1]} } ] } ] } },
+    )" + kWallJson);
+  same_result(b, json, tmcert::Verdict::Collision);
+}
+
+// A solid box (triangles) with a tolerance, a point passing it, a clearance
+// on the check.
+BOOST_AUTO_TEST_CASE(solid_tolerance_clearance) {
+  tmcert::SceneBuilder b;
+  std::vector<double> xyz;
+  for (int k = 0; k < 8; ++k) xyz.insert(xyz.end(), {k & 1 ? 1.0 : 0.0, k & 2 ? 1.0 : 0.0, k & 4 ? 1.0 : 0.0});
+  const std::vector<std::size_t> faces = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                          2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  b.add_body("box").triangles(xyz, faces).solid().tolerance("1/100");
+  b.add_body("p").point({"0.5", 2, "0.5"}).motion(tmcert::Motion::translation({0, 0, 0}, {0, 0, 1}));
+  b.check("p", "box", "1/2");
+  std::string json_faces;
+  auto corner = [](std::size_t k) {
+    return "[" + std::string(k & 1 ? "1" : "0") + "," + (k & 2 ? "1" : "0") + "," + (k & 4 ? "1" : "0") + "]";
+  };
+  for (std::size_t i = 0; i < faces.size(); i += 3)
+    json_faces += std::string(i ? "," : "") + "[" + corner(faces[i]) + "," + corner(faces[i + 1]) + "," + corner(faces[i + 2]) + "]";
+  const std::string json = scene_json(R"({ "name": "box", "polygons": [)" + json_faces + R"(], "solid": true, "tolerance": "1/100" },
+      { "name": "p", "points": [ ["0.5", 2, "0.5"] ],
+        "motion": { "type": "rational_bezier", "control_points": [ [[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,0],[0,1,0,0],[0,0,1,1]] ] } })",
+      "", R"(, "checks": [ { "bodies": ["p", "box"], "clearance": "1/2" } ])");
+  same_result(b, json, tmcert::Verdict::Safe);
+}
+
+// A URDF arm whose forearm sweeps through a panel; the post as a mesh file.
+BOOST_AUTO_TEST_CASE(robot_and_mesh) {
+  tmcert::SceneBuilder b;
+  b.add_robot("arm", kExamples + "/robot/arm.urdf")
+      .base({{0, 0, 0}, tmcert::Rotation::identity()})
+      .path({"shoulder", "elbow", "wrist"}, {0, 1}, {{0, 0, 0}, {-1, 0, 0}})
+      .self_collision()
+      .allow("upper_arm", "tool");
+  b.add_body("panel").polygon({{0.25, "-0.3", "0.55"}, {0.25, "-0.1", "0.55"}, {0.25, "-0.1", "0.65"}, {0.25, "-0.3", "0.65"}});
+  b.add_body("post").mesh(kExamples + "/robot/post.off");
+  const std::string json = scene_json(R"(
+      { "name": "panel", "polygons": [ [[0.25,"-0.3","0.55"],[0.25,"-0.1","0.55"],[0.25,"-0.1","0.65"],[0.25,"-0.3","0.65"]] ] },
+      { "name": "post", "mesh": ")" + kExamples + R"(/robot/post.off" })", "", R"(,
+      "robots": [ { "name": "arm", "urdf": ")" + kExamples + R"(/robot/arm.urdf", "base": { "translation": [0,0,0] },
+                    "joints": ["shoulder", "elbow", "wrist"],
+                    "path": { "times": [0, 1], "positions": [[0,0,0],[-1,0,0]] },
+                    "self_collision": true, "allowed_pairs": [["upper_arm", "tool"]] } ])");
+  same_result(b, json, tmcert::Verdict::Collision);
+  const tmcert::Scene scene = b.build();
+  BOOST_TEST(scene.body_names().front() == "panel");
+  BOOST_TEST(scene.body_names().back().rfind("arm/", 0) == 0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(exact_numbers)
+
+BOOST_AUTO_TEST_CASE(doubles_are_taken_exactly) {
+  BOOST_TEST(tmcert::Number(0.1).text() == "3602879701896397/36028797018963968");
+  BOOST_TEST(tmcert::Number("0.1").text() == "0.1");
+  BOOST_TEST(tmcert::Number(0.25).text() == "1/4");
+  BOOST_TEST(tmcert::Number(-3).text() == "-3");
+  BOOST_TEST(tmcert::Number(1e300).text().find('/') == std::string::npos);
+  // A point moving from x = 0 to x = 1 over [0, 1] meets the plane of a
+  // square at x = 0.1 at t = 0.1: the double's value or exactly 1/10.
+  for (const bool as_double : {true, false}) {
+    const tmcert::Number x = as_double ? tmcert::Number(0.1) : tmcert::Number("0.1");
+    tmcert::SceneBuilder b;
+    b.add_body("square").polygon({{x, -1, -1}, {x, 1, -1}, {x, 1, 1}, {x, -1, 1}});
+    b.add_body("p").point({0, 0, 0}).motion(tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}));
+    const tmcert::Result r = tmcert::verify(b.build());
+    BOOST_REQUIRE(r.checks().size() == 1);
+    BOOST_REQUIRE(r.checks()[0].witness.has_value());
+    const tmcert::Time& t = r.checks()[0].witness->t;
+    BOOST_REQUIRE(t.is_rational());
+    BOOST_TEST(t.rational()->text == (as_double ? "3602879701896397/36028797018963968" : "1/10"));
+    BOOST_TEST(t.approx() == 0.1);  // both round to the same double
+    const tmcert::Time& first = (*r.checks()[0].first_contact)[0];
+    BOOST_TEST(first.text() == t.text());
+  }
+}
+
+BOOST_AUTO_TEST_CASE(result_doubles_agree_with_exact_values) {
+  // Rational witnesses, a transcendental one (point_box) and an algebraic time.
+  for (const char* file : {"/octagons-collision.json", "/planner-bar-slerp.json", "/vertex-face-linear.json"})
+    check_doubles(tmcert::verify(tmcert::Scene::from_file(kExamples + file)));
+  const tmcert::Result cubic = tmcert::verify(tmcert::Scene::from_file(std::string(TMCERT_TEST_DATA) + "/scenes/cubic-crossing-irrational.json"));
+  BOOST_REQUIRE(!cubic.checks().empty());
+  BOOST_REQUIRE(cubic.checks()[0].witness.has_value());
+  BOOST_TEST(!cubic.checks()[0].witness->t.is_rational());
+  BOOST_TEST(cubic.checks()[0].witness->t.text().rfind("root of [", 0) == 0);
+  check_doubles(cubic);
+  tmcert::SceneBuilder b;
+  b.epsilon("1/3");
+  b.add_body("a").point({0, 0, 0}).motion(tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}));
+  b.add_body("b").point({5, 5, 5});
+  const tmcert::Result r = tmcert::verify(b.build());
+  BOOST_TEST(r.epsilon().text == "1/3");
+  BOOST_TEST(r.epsilon().numerator == "1");
+  BOOST_TEST(r.epsilon().denominator == "3");
+  BOOST_TEST(r.epsilon().approx == 1.0 / 3.0);
+  BOOST_TEST(tmcert::to_string(r.verdict()) == std::string("safe"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(errors)
+
+BOOST_AUTO_TEST_CASE(builder_errors_name_the_field) {
+  auto two_bodies = [] {
+    tmcert::SceneBuilder b;
+    b.add_body("wall").polygon({{1, 0, 0}, {1, 1, 0}, {1, 1, 1}});
+    return b;
+  };
+  input_error([] { tmcert::SceneBuilder().build(); }, {"SceneBuilder: bodies", "at least one body"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("line").polygon({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}});
+    b.build();
+  }, {"bodies[1].polygons[0]", "(body \"line\")"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, std::nan(""), 0});
+    b.build();
+  }, {"bodies[1].points[0][1]", "not a number", "(body \"p\")"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, "1/0"});
+    b.build();
+  }, {"bodies[1].points[0][2]"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("wall").point({0, 0, 0});
+    b.build();
+  }, {"bodies[1].name", "duplicate body name"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("");
+    b.build();
+  }, {"bodies[1].name"});
+  input_error([&] {
+    auto b = two_bodies();
+    tmcert::RationalBezier m;
+    m.control_points = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}};
+    m.weights = {1, -1};
+    b.add_body("p").point({0, 0, 0}).motion(m);
+    b.build();
+  }, {"bodies[1].motion.weights", "(body \"p\")"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, 0}).motion(tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::quaternion(0, 0, 0, 0)}, {}}, {0, 1}});
+    b.build();
+  }, {"bodies[1].motion.poses[0].rotation"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, 0}).motion(tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::matrix({2, 0, 0, 0, 1, 0, 0, 0, 1})}, {}}, {0, 1}});
+    b.build();
+  }, {"bodies[1].motion.poses[0].rotation"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, 0}).motion(tmcert::Piecewise{{tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}),
+                                                              tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}, 1, 2)}});
+    b.build();
+  }, {"bodies[1].motion.pieces"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, 0}).mass({{0, 0, 0}, {1, 0, 0}}, {1, 1});
+    b.build();
+  }, {"bodies[1].mass"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, 0}).tolerance(-1);
+    b.build();
+  }, {"bodies[1].tolerance"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("open").polygon({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}).solid();
+    b.build();
+  }, {"bodies[1].solid"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("m").mesh("/nonexistent/file.off");
+    b.build();
+  }, {"bodies[1].mesh", "file.off"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.check("wall", "nobody");
+    b.build();
+  }, {"checks[0][1]", "unknown body"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_body("p").point({0, 0, 0});
+    b.check("wall", "p", -1);
+    b.build();
+  }, {"checks[0].clearance"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.epsilon("abc");
+    b.build();
+  }, {"SceneBuilder: epsilon", "not a number"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.max_depth(0);
+    b.build();
+  }, {"SceneBuilder: max_depth"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_robot("arm", kExamples + "/robot/arm.urdf").path({"shoulder", "elbow", "wrist"}, {0, 1}, {{0, 0, 0}, {9, 0, 0}});
+    b.build();
+  }, {"robots[0].path.positions[1]", "(robot \"arm\")"});
+  input_error([&] {
+    auto b = two_bodies();
+    b.add_robot("arm", "/nonexistent/arm.urdf");
+    b.build();
+  }, {"robots[0].urdf"});
+  // Array shapes are refused at once, naming the body.
+  input_error([] { tmcert::SceneBuilder().add_body("t").triangles(std::vector<double>{0, 0, 0, 1}, std::vector<std::size_t>{}); },
+              {"body \"t\"", "triangles", "not 3 per vertex"});
+  input_error([] {
+    tmcert::SceneBuilder().add_body("t").triangles(std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0}, std::vector<std::size_t>{0, 1, 3});
+  }, {"body \"t\"", "vertex index 3 is out of range"});
+  input_error([] { tmcert::SceneBuilder().add_body("s").segments(std::vector<double>{0, 0, 0, 1}); }, {"body \"s\"", "segments"});
+  input_error([] {
+    tmcert::SceneBuilder().add_body("q").polygons(std::vector<double>{0, 0, 0}, std::vector<std::size_t>{0, 0}, std::vector<std::size_t>{3});
+  }, {"body \"q\"", "polygons"});
+}
+
+BOOST_AUTO_TEST_CASE(option_and_file_errors) {
+  const tmcert::Scene scene = tmcert::Scene::from_file(kExamples + "/vertex-face-linear.json");
+  tmcert::VerifyOptions o;
+  o.epsilon = "-1";
+  input_error([&] { tmcert::verify(scene, o); }, {"epsilon"});
+  o = {};
+  o.max_depth = 0;
+  input_error([&] { tmcert::verify(scene, o); }, {"max_depth"});
+  o = {};
+  o.threads = 0;
+  input_error([&] { tmcert::verify(scene, o); }, {"threads"});
+  o = {};
+  o.time_limit = -1;
+  input_error([&] { tmcert::verify(scene, o); }, {"time_limit"});
+  o = {};
+  o.kernel = tmcert::Kernel::Fast;
+  o.certificate = true;
+  input_error([&] { tmcert::verify(scene, o); }, {"certificate"});
+  input_error([&] { tmcert::verify(scene).certificate(); }, {"certificate"});
+  input_error([] { tmcert::Scene::from_file("/nonexistent/scene.json"); }, {"/nonexistent/scene.json"});
+  input_error([] { tmcert::Scene::from_json(R"({"format": "tmcert-scene/1", "bodies": 3})", "mine"); }, {"mine: bodies"});
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(results)
+
+// Result::to_json is what `tmcert verify --json` prints (up to seconds).
+BOOST_AUTO_TEST_CASE(to_json_is_the_command_line_document) {
+  const std::string file = kExamples + "/octagons-collision.json";
+  const std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((std::string(TMCERT_CLI) + " verify --json " + file).c_str(), "r"), pclose);
+  BOOST_REQUIRE(pipe);
+  std::string printed;
+  char buffer[4096];
+  for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe.get())) > 0;) printed.append(buffer, n);
+  const tmcert::Result r = tmcert::verify(tmcert::Scene::from_file(file));
+  BOOST_TEST(without_seconds(r.to_json()) == without_seconds(printed));
+  BOOST_TEST(r.summary().rfind("tmcert: collision", 0) == 0);
+  BOOST_TEST(r.certified());
+  BOOST_TEST(tmcert::to_string(r.kernel()) == std::string("filtered"));
+}
+
+BOOST_AUTO_TEST_CASE(certificate_round_trip) {
+  const tmcert::Scene scene = tmcert::Scene::from_file(kExamples + "/octagons-near.json");
+  tmcert::VerifyOptions o;
+  o.certificate = true;
+  const tmcert::Result r = tmcert::verify(scene, o);
+  BOOST_TEST(tmcert::to_string(r.verdict()) == std::string("safe"));
+  const tmcert::CertificateCheck ok = tmcert::check_certificate_text(scene, r.certificate());
+  BOOST_TEST(ok.ok, ok.message);
+  BOOST_TEST(!ok.proven.empty());
+  // Through a file, as `tmcert check` reads it.
+  const std::string path = std::filesystem::temp_directory_path() / "tmcert_api_test_certificate.json";
+  r.write_certificate(path);
+  const tmcert::CertificateCheck from_file = tmcert::check_certificate(scene, path);
+  std::filesystem::remove(path);
+  BOOST_TEST(from_file.ok, from_file.message);
+  BOOST_TEST(from_file.proven == ok.proven, boost::test_tools::per_element());
+  // The same claims about the colliding octagons do not hold.
+  bool rejected = false;
+  try {
+    const tmcert::CertificateCheck other =
+        tmcert::check_certificate_text(tmcert::Scene::from_file(kExamples + "/octagons-collision.json"), r.certificate());
+    rejected = !other.ok && !other.message.empty();
+  } catch (const tmcert::InputError&) {
+    rejected = true;
+  }
+  BOOST_TEST(rejected);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
