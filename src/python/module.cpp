@@ -24,30 +24,19 @@ namespace api = tmcert::api;
 
 namespace {
 
-// Python modules the conversions use, imported once and kept for the life
-// of the interpreter (released handles: nothing to destroy at exit).
+// The Python types the conversions use, imported once and kept for the
+// life of the interpreter (released handles: nothing to destroy at exit).
+struct PythonTypes {
+  py::handle fraction, decimal, integral, rational, real;
+};
 py::handle python_attr(const char* module, const char* name) {
   return py::object(py::module_::import(module).attr(name)).release();
 }
-py::handle fraction_type() {
-  static const py::handle type = python_attr("fractions", "Fraction");
-  return type;
-}
-py::handle decimal_type() {
-  static const py::handle type = python_attr("decimal", "Decimal");
-  return type;
-}
-py::handle integral_abc() {
-  static const py::handle type = python_attr("numbers", "Integral");
-  return type;
-}
-py::handle rational_abc() {
-  static const py::handle type = python_attr("numbers", "Rational");
-  return type;
-}
-py::handle real_abc() {
-  static const py::handle type = python_attr("numbers", "Real");
-  return type;
+const PythonTypes& python_types() {
+  static const PythonTypes types{python_attr("fractions", "Fraction"), python_attr("decimal", "Decimal"),
+                                 python_attr("numbers", "Integral"), python_attr("numbers", "Rational"),
+                                 python_attr("numbers", "Real")};
+  return types;
 }
 
 bool is_instance(py::handle object, py::handle type) {
@@ -116,14 +105,14 @@ struct type_caster<api::Number> {
     if (!src || PyBool_Check(src.ptr())) return false;
     if (PyUnicode_Check(src.ptr())) {
       value = api::Number(src.cast<std::string>());
-    } else if (is_instance(src, integral_abc())) {
+    } else if (is_instance(src, python_types().integral)) {
       value = api::Number(int_text(py::int_(py::reinterpret_borrow<py::object>(src))));
-    } else if (is_instance(src, rational_abc())) {
+    } else if (is_instance(src, python_types().rational)) {
       const py::object numerator = src.attr("numerator"), denominator = src.attr("denominator");
       value = api::Number(int_text(py::int_(numerator)) + "/" + int_text(py::int_(denominator)));
-    } else if (is_instance(src, decimal_type())) {
+    } else if (is_instance(src, python_types().decimal)) {
       value = api::Number(std::string(py::str(src)));
-    } else if (is_instance(src, real_abc())) {
+    } else if (is_instance(src, python_types().real)) {
       const double d = PyFloat_AsDouble(src.ptr());
       if (d == -1.0 && PyErr_Occurred()) {
         PyErr_Clear();
@@ -158,7 +147,7 @@ py::sequence sequence(const py::handle& h, const char* what) {
 }
 
 py::object to_fraction(const api::Rational& r) {
-  return fraction_type()(int_from_text(r.numerator), int_from_text(r.denominator));
+  return python_types().fraction(int_from_text(r.numerator), int_from_text(r.denominator));
 }
 
 // A point of three numbers, or a (3, 4) / 12-number affine map, from any
