@@ -8,6 +8,7 @@ from concurrent.futures import ThreadPoolExecutor
 from fractions import Fraction
 
 import numpy as np
+import pytest
 
 import tmcert
 from conftest import DATA, SOURCE, assert_views_agree, run_cli, without_seconds
@@ -86,3 +87,20 @@ def test_verify_from_threads_gives_the_same_results() -> None:
     with ThreadPoolExecutor(max_workers=4) as pool:
         parallel = list(pool.map(lambda s: without_seconds(tmcert.verify(s, threads=2).to_dict()), scenes))
     assert parallel == sequential
+
+
+def test_to_json_is_the_cli_text() -> None:
+    seconds = re.compile(r'"seconds": [0-9.e+-]+')
+    for scene in (SCENES / "planner-tolerance-collision.json", SCENES / "cubic-crossing-irrational.json"):
+        done = run_cli("verify", str(scene), "--json")
+        assert seconds.sub('"seconds": S', tmcert.verify(scene).to_json()) == seconds.sub('"seconds": S', done.stdout)
+
+
+def test_scenes_from_json_text_name_their_source() -> None:
+    text = (SOURCE / "examples" / "octagons-near.json").read_text()
+    assert tmcert.Scene.from_json(text).source == "<json>"
+    assert tmcert.Scene.from_json(text, "near").source == "near"
+    with pytest.raises(tmcert.InputError, match=r"^near: invalid JSON at byte 0"):
+        tmcert.Scene.from_json("", "near")
+    with pytest.raises(TypeError, match="expected a Scene, SceneBuilder, dict or file path"):
+        tmcert.verify(42)
