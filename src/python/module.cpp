@@ -220,6 +220,7 @@ std::string point_repr(const api::Point& p) {
 
 PYBIND11_MODULE(_tmcert, m) {
   m.doc() = "tmcert's public C++ API (include/tmcert/), bound with pybind11; use the package tmcert.";
+  m.attr("__version__") = TMCERT_VERSION;
   m.def("_int_text", [](const py::int_& v) { return int_text(v); },
         "An int's decimal text, however long (str() stops at sys.get_int_max_str_digits()).");
 

@@ -104,3 +104,7 @@ def test_scenes_from_json_text_name_their_source() -> None:
         tmcert.Scene.from_json("", "near")
     with pytest.raises(TypeError, match="expected a Scene, SceneBuilder, dict or file path"):
         tmcert.verify(42)
+
+
+def test_version_is_the_cli_version() -> None:
+    assert run_cli("--version").stdout.strip() == f"tmcert {tmcert.__version__}"

@@ -49,6 +49,7 @@ from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _tmcert
+from ._tmcert import __version__
 from ._tmcert import (InputError, Keyframes, Motion, Piecewise, Pose, RationalBezier, ResourceLimit, Rotation,
                       Scene)
 
@@ -118,7 +119,7 @@ class Verdict(str, enum.Enum):
         return self.value
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # NumPy fields: compare the exact ones
 class Witness:
     """Where and when two bodies provably touch (world coordinates).
 
@@ -180,7 +181,7 @@ class Stats:
     seconds: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # holds a Witness
 class Check:
     """The result of one body pair.
 
