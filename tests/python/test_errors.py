@@ -119,6 +119,16 @@ def test_bad_options(kwargs, cli_options, field) -> None:
     assert field in cli_message
 
 
+def test_options_beyond_c_integers() -> None:
+    scene = SOURCE / "examples" / "octagons-near.json"
+    with pytest.raises(tmcert.InputError, match=r"^max_depth: must be between 1 and 200, got 10{30}$"):
+        tmcert.verify(scene, max_depth=10 ** 30)
+    with pytest.raises(tmcert.InputError, match=r"^threads: must be between 1 and 256, got 1099511627776$"):
+        tmcert.verify(scene, threads=2 ** 40)
+    with pytest.raises(TypeError, match="max_depth: expected an integer"):
+        tmcert.verify(scene, max_depth=2.5)
+
+
 def test_bad_kernel() -> None:
     with pytest.raises(tmcert.InputError, match="kernel"):
         tmcert.verify(SOURCE / "examples" / "octagons-near.json", kernel="approximate")

@@ -470,6 +470,8 @@ class Body:
 
     def segments(self, segments: Any) -> "Body":
         """Segments: an (m, 2, 3) array of endpoint pairs (distinct endpoints)."""
+        if len(segments) == 0:
+            return self
         if isinstance(segments, np.ndarray) and segments.dtype.kind == "f":
             array = np.ascontiguousarray(segments, dtype=np.float64)
             if array.ndim != 3 or array.shape[1:] != (2, 3):
@@ -591,7 +593,7 @@ class SceneBuilder:
 
     def max_depth(self, depth: int) -> "SceneBuilder":
         """Subdivision depth limit, 1 to 200 (default 40)."""
-        self._raw.max_depth(int(depth))
+        self._raw.max_depth(_bounded(depth, "max_depth", 1, 200))
         return self
 
     def clearance(self, d: NumberLike) -> "SceneBuilder":
@@ -631,9 +633,20 @@ def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str =
     Runs without holding the GIL.  Raises InputError for bad options or a
     scene that cannot be verified, ResourceLimit, MemoryError.
     """
-    return Result(_tmcert.verify(load(scene), str(kernel), epsilon, max_depth, int(threads),
+    return Result(_tmcert.verify(load(scene), str(kernel), epsilon,
+                                 None if max_depth is None else _bounded(max_depth, "max_depth", 1, 200),
+                                 _bounded(threads, "threads", 1, 256),
                                  None if time_limit is None else float(time_limit), bool(all_pairs),
                                  bool(certificate)))
+
+
+def _bounded(value: Any, what: str, low: int, high: int) -> int:
+    """An integer option in [low, high], with the library's message otherwise."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{what}: expected an integer, got {value!r}")
+    if not low <= int(value) <= high:
+        raise InputError(f"{what}: must be between {low} and {high}, got {int(value)}")
+    return int(value)
 
 
 def check(certificate: Union[PathLike, Result, Mapping[str, Any]], scene: SceneLike) -> CertificateCheck:
