@@ -24,9 +24,10 @@ import tmcert
 #
 # A square table in the plane z = 0 and a tetrahedron falling onto it.
 # The motion is a rational Bezier curve of affine maps: control points are
-# (k, 3, 4) arrays [A | a] (x -> A x + a); here a straight fall from
-# z = 2 to z = -1/2 over t in [0, 1], so the tip (at z = 0 in the body's
-# frame) reaches the table when 2 - 5t/2 = 0, at t = 4/5.
+# (k, 3, 4) arrays [A | a] (x -> A x + a); here a straight slanted fall
+# from z = 2 to z = -1/2 while x goes from 0 to 1/2 over t in [0, 1], so the
+# tip (the body's origin) reaches the table when 2 - 5t/2 = 0, at t = 4/5,
+# at the point (2/5, 0, 0).
 
 # %%
 table_xyz = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float64)
@@ -37,6 +38,7 @@ fall = np.zeros((2, 3, 4), dtype=object)
 fall[:, :, :3] = np.eye(3, dtype=int)  # no turn
 fall[0, 2, 3] = 2                     # start: z + 2
 fall[1, 2, 3] = Fraction(-1, 2)       # end: z - 1/2
+fall[1, 0, 3] = Fraction(1, 2)        #      and x + 1/2
 
 builder = tmcert.SceneBuilder()
 builder.add_body("table").polygons(table_xyz, [[0, 1, 2, 3]])

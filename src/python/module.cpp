@@ -11,10 +11,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace py = pybind11;
@@ -22,36 +24,65 @@ namespace api = tmcert::api;
 
 namespace {
 
-// Python modules the conversions use, imported once and kept for the life
-// of the interpreter (released handles: nothing to destroy at exit).
+// The Python types the conversions use, imported once and kept for the
+// life of the interpreter (released handles: nothing to destroy at exit).
+struct PythonTypes {
+  py::handle fraction, decimal, integral, rational, real;
+};
 py::handle python_attr(const char* module, const char* name) {
   return py::object(py::module_::import(module).attr(name)).release();
 }
-py::handle fraction_type() {
-  static const py::handle type = python_attr("fractions", "Fraction");
-  return type;
-}
-py::handle decimal_type() {
-  static const py::handle type = python_attr("decimal", "Decimal");
-  return type;
-}
-py::handle integral_abc() {
-  static const py::handle type = python_attr("numbers", "Integral");
-  return type;
-}
-py::handle rational_abc() {
-  static const py::handle type = python_attr("numbers", "Rational");
-  return type;
-}
-py::handle real_abc() {
-  static const py::handle type = python_attr("numbers", "Real");
-  return type;
+const PythonTypes& python_types() {
+  static const PythonTypes types{python_attr("fractions", "Fraction"), python_attr("decimal", "Decimal"),
+                                 python_attr("numbers", "Integral"), python_attr("numbers", "Rational"),
+                                 python_attr("numbers", "Real")};
+  return types;
 }
 
 bool is_instance(py::handle object, py::handle type) {
   const int r = PyObject_IsInstance(object.ptr(), type.ptr());
   if (r < 0) throw py::error_already_set();
   return r == 1;
+}
+
+// Python refuses to convert ints of more than 4300 digits to and from
+// decimal text (sys.get_int_max_str_digits(), Python 3.11); a scene's or a
+// result's exact numbers may be longer (up to 10 000 digits in a scene, more
+// in a result), so both conversions go by chunks of kChunk digits.
+constexpr std::size_t kChunk = 4000;
+
+py::handle chunk_power() {  // 10^kChunk
+  static const py::handle power = py::int_(10).attr("__pow__")(kChunk).release();
+  return power;
+}
+
+std::string int_text(const py::handle& value) {
+  py::object v = py::reinterpret_borrow<py::object>(value);
+  const bool negative = v < py::int_(0);
+  if (negative) v = -v;
+  std::vector<std::string> chunks;  // least significant first
+  while (v >= chunk_power()) {
+    const py::tuple qr = py::reinterpret_steal<py::tuple>(PyNumber_Divmod(v.ptr(), chunk_power().ptr()));
+    if (!qr) throw py::error_already_set();
+    std::string digits = py::str(qr[1]);
+    chunks.push_back(std::string(kChunk - digits.size(), '0') + digits);
+    v = qr[0];
+  }
+  std::string text = (negative ? "-" : "") + std::string(py::str(v));
+  for (auto it = chunks.rbegin(); it != chunks.rend(); ++it) text += *it;
+  return text;
+}
+
+py::object int_from_text(std::string_view text) {
+  const bool negative = !text.empty() && text[0] == '-';
+  if (negative) text.remove_prefix(1);
+  py::object v = py::int_(0);
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t n = std::min(kChunk, text.size() - start);
+    v = v * py::int_(10).attr("__pow__")(n) + py::int_(py::str(std::string(text.substr(start, n))));
+    start += n;
+  }
+  return negative ? py::object(-v) : v;
 }
 
 }  // namespace
@@ -74,14 +105,14 @@ struct type_caster<api::Number> {
     if (!src || PyBool_Check(src.ptr())) return false;
     if (PyUnicode_Check(src.ptr())) {
       value = api::Number(src.cast<std::string>());
-    } else if (is_instance(src, integral_abc())) {
-      value = api::Number(std::string(py::str(py::int_(py::reinterpret_borrow<py::object>(src)))));
-    } else if (is_instance(src, rational_abc())) {
+    } else if (is_instance(src, python_types().integral)) {
+      value = api::Number(int_text(py::int_(py::reinterpret_borrow<py::object>(src))));
+    } else if (is_instance(src, python_types().rational)) {
       const py::object numerator = src.attr("numerator"), denominator = src.attr("denominator");
-      value = api::Number(std::string(py::str(numerator)) + "/" + std::string(py::str(denominator)));
-    } else if (is_instance(src, decimal_type())) {
+      value = api::Number(int_text(py::int_(numerator)) + "/" + int_text(py::int_(denominator)));
+    } else if (is_instance(src, python_types().decimal)) {
       value = api::Number(std::string(py::str(src)));
-    } else if (is_instance(src, real_abc())) {
+    } else if (is_instance(src, python_types().real)) {
       const double d = PyFloat_AsDouble(src.ptr());
       if (d == -1.0 && PyErr_Occurred()) {
         PyErr_Clear();
@@ -101,22 +132,38 @@ struct type_caster<api::Number> {
 
 namespace {
 
-py::object to_fraction(const api::Rational& r) { return fraction_type()(py::int_(py::str(r.numerator)), py::int_(py::str(r.denominator))); }
+// One number, or a TypeError naming what came instead.
+api::Number number(const py::handle& h) {
+  py::detail::make_caster<api::Number> caster;
+  if (!caster.load(h, true))
+    throw py::type_error("expected a number (int, Fraction, Decimal, str or float), got " + std::string(py::repr(h)));
+  return py::detail::cast_op<api::Number>(std::move(caster));
+}
+
+py::sequence sequence(const py::handle& h, const char* what) {
+  if (!PySequence_Check(h.ptr()) || PyUnicode_Check(h.ptr()))
+    throw py::type_error(std::string(what) + ": expected a sequence, got " + std::string(py::repr(h)));
+  return py::reinterpret_borrow<py::sequence>(h);
+}
+
+py::object to_fraction(const api::Rational& r) {
+  return python_types().fraction(int_from_text(r.numerator), int_from_text(r.denominator));
+}
 
 // A point of three numbers, or a (3, 4) / 12-number affine map, from any
 // nested Python sequence (lists, tuples, NumPy arrays).
 api::AffineMap affine_map(const py::handle& m) {
   api::AffineMap out;
-  const py::sequence rows = py::reinterpret_borrow<py::sequence>(m);
+  const py::sequence rows = sequence(m, "an affine map");
   if (py::len(rows) == 12) {
-    for (std::size_t i = 0; i < 12; ++i) out[i] = rows[i].cast<api::Number>();
+    for (std::size_t i = 0; i < 12; ++i) out[i] = number(rows[i]);
     return out;
   }
   if (py::len(rows) != 3) throw py::value_error("an affine map is a 3x4 matrix [A | a] (or 12 numbers, row by row)");
   for (std::size_t r = 0; r < 3; ++r) {
-    const py::sequence row = rows[r].cast<py::sequence>();
+    const py::sequence row = sequence(py::object(rows[r]), "a row of an affine map");
     if (py::len(row) != 4) throw py::value_error("an affine map is a 3x4 matrix [A | a] (or 12 numbers, row by row)");
-    for (std::size_t c = 0; c < 4; ++c) out[4 * r + c] = row[c].cast<api::Number>();
+    for (std::size_t c = 0; c < 4; ++c) out[4 * r + c] = number(row[c]);
   }
   return out;
 }
@@ -173,6 +220,9 @@ std::string point_repr(const api::Point& p) {
 
 PYBIND11_MODULE(_tmcert, m) {
   m.doc() = "tmcert's public C++ API (include/tmcert/), bound with pybind11; use the package tmcert.";
+  m.attr("__version__") = TMCERT_VERSION;
+  m.def("_int_text", [](const py::int_& v) { return int_text(v); },
+        "An int's decimal text, however long (str() stops at sys.get_int_max_str_digits()).");
 
   // Exceptions: the API's, with their messages (the command line prints
   // them after "tmcert: ").  InputError is a ValueError.
@@ -191,13 +241,13 @@ PYBIND11_MODULE(_tmcert, m) {
           [](const py::sequence& rows) {
             std::array<api::Number, 9> v;
             if (py::len(rows) == 9) {
-              for (std::size_t i = 0; i < 9; ++i) v[i] = rows[i].cast<api::Number>();
+              for (std::size_t i = 0; i < 9; ++i) v[i] = number(rows[i]);
             } else {
               if (py::len(rows) != 3) throw py::value_error("a rotation matrix is 3x3 (or 9 numbers, row by row)");
               for (std::size_t r = 0; r < 3; ++r) {
-                const py::sequence row = rows[r].cast<py::sequence>();
+                const py::sequence row = sequence(py::object(rows[r]), "a row of a rotation matrix");
                 if (py::len(row) != 3) throw py::value_error("a rotation matrix is 3x3 (or 9 numbers, row by row)");
-                for (std::size_t c = 0; c < 3; ++c) v[3 * r + c] = row[c].cast<api::Number>();
+                for (std::size_t c = 0; c < 3; ++c) v[3 * r + c] = number(row[c]);
               }
             }
             return api::Rotation::matrix(v);

@@ -82,14 +82,20 @@ def exact(value: Any) -> Any:
     """A document number as an exact Python number (int or Fraction)."""
     if isinstance(value, int):
         return value
-    return Fraction(str(value))
+    text = str(value)
+    if text.lstrip("-").replace("/", "", 1).isdigit():
+        return fraction(text)  # "p/q" or "p" of any length
+    return Fraction(text)  # a decimal
 
 
 def points_array(points: Any) -> np.ndarray:
     """(n, 3) points: a float64 array when every coordinate is a double, else an object array of Fractions."""
     values = np.array([[exact(c) for c in p] for p in points], dtype=object).reshape(-1, 3)
-    if all(Fraction(float(v)) == v for v in values.flat):
-        return values.astype(np.float64)
+    try:
+        if all(Fraction(float(v)) == v for v in values.flat):
+            return values.astype(np.float64)
+    except OverflowError:  # beyond the doubles
+        pass
     return values
 
 
@@ -165,6 +171,7 @@ def builder_from_document(doc: Dict[str, Any], base: Path) -> tmcert.SceneBuilde
             elif key == "solid":
                 body.solid(value)
             elif key == "mass":
+                assert set(value) == {"points", "weights"}, value
                 body.mass(points_array(value["points"]), [exact(w) for w in value["weights"]])
             elif key == "tolerance":
                 body.tolerance(exact(value))
@@ -172,7 +179,9 @@ def builder_from_document(doc: Dict[str, Any], base: Path) -> tmcert.SceneBuilde
                 body.motion(motion(value))
             else:
                 raise AssertionError(f"body field {key} not rebuilt")
+    assert doc["format"] == "tmcert-scene/1"
     for c in doc.get("checks", []):
+        assert len(c) == 2 or isinstance(c, dict) and set(c) <= {"bodies", "clearance"}, c
         if isinstance(c, dict):
             b.check(c["bodies"][0], c["bodies"][1], exact(c["clearance"]) if "clearance" in c else None)
         else:
@@ -196,15 +205,30 @@ def data() -> Path:
 
 # ------------------------------------------------- exact and float views of a result
 
+def fraction(text: str) -> Fraction:
+    """A result's rational string ("p/q", "p") as a Fraction, however long
+    (int() stops at 4300 digits: by chunks)."""
+    def integer(digits: str) -> int:
+        negative = digits.startswith("-")
+        digits = digits.lstrip("-")
+        value = 0
+        for start in range(0, len(digits), 4000):
+            chunk = digits[start:start + 4000]
+            value = value * 10 ** len(chunk) + int(chunk)
+        return -value if negative else value
+    numerator, _, denominator = text.partition("/")
+    return Fraction(integer(numerator), integer(denominator or "1"))
+
+
 def assert_time(doc: Any, time: tmcert.Time, approx: float) -> None:
     """A result time against its document form and its float view."""
     if isinstance(doc, str):
-        assert isinstance(time, Fraction) and time == Fraction(doc)
+        assert isinstance(time, Fraction) and time == fraction(doc)
         assert approx == float(time)  # both the nearest double
         return
     assert isinstance(time, tmcert.AlgebraicNumber)
     assert list(time.root_of) == [int(c) for c in doc["root_of"]]
-    lo, hi = (Fraction(x) for x in doc["interval"])
+    lo, hi = (fraction(x) for x in doc["interval"])
     assert time.interval == (lo, hi) and lo < hi
     # The interval isolates a root: the polynomial changes sign across it
     # (exact arithmetic, independent of the library).
@@ -216,7 +240,7 @@ def assert_time(doc: Any, time: tmcert.Time, approx: float) -> None:
 
 
 def assert_point(doc: List[str], exact_point: Any, floats: Any) -> None:
-    assert exact_point == tuple(Fraction(c) for c in doc)
+    assert exact_point == tuple(fraction(c) for c in doc)
     assert list(floats) == [float(c) for c in exact_point]
 
 
@@ -226,11 +250,11 @@ def assert_views_agree(result: tmcert.Result) -> None:
     assert doc["format"] == "tmcert-result/1"
     assert result.verdict == doc["verdict"] and result.kernel == doc["kernel"]
     assert result.certified == doc["certified"]
-    assert result.epsilon == Fraction(doc["epsilon"]) and result.epsilon_float == float(result.epsilon)
+    assert result.epsilon == fraction(doc["epsilon"]) and result.epsilon_float == float(result.epsilon)
     assert len(result.checks) == len(doc["checks"])
     for check, c in zip(result.checks, doc["checks"]):
         assert list(check.bodies) == c["bodies"] and check.verdict == c["verdict"]
-        assert check.clearance == Fraction(c.get("clearance", "0"))
+        assert check.clearance == fraction(c.get("clearance", "0"))
         assert check.clearance_violated == c.get("clearance_violated", False)
         if "first_contact" in c:
             for k in range(2):
@@ -250,7 +274,7 @@ def assert_views_agree(result: tmcert.Result) -> None:
             else:
                 assert witness.point is None
             if "point_box" in w:
-                assert witness.point_box == tuple((Fraction(lo), Fraction(hi)) for lo, hi in w["point_box"])
+                assert witness.point_box == tuple((fraction(lo), fraction(hi)) for lo, hi in w["point_box"])
                 for (lo, hi), x in zip(witness.point_box, witness.point_float):
                     assert lo <= hi and float(lo) <= x <= float(hi)
             if "points" in w:
@@ -265,7 +289,7 @@ def assert_views_agree(result: tmcert.Result) -> None:
                 assert witness.displacement is None and witness.displaced is None
         assert len(check.undecided) == len(c["undecided"])
         for u, d in zip(check.undecided, c["undecided"]):
-            assert u.t == (Fraction(d["t"][0]), Fraction(d["t"][1])) and u.reason == d["reason"]
+            assert u.t == (fraction(d["t"][0]), fraction(d["t"][1])) and u.reason == d["reason"]
             assert u.t_float == (float(u.t[0]), float(u.t[1]))
         for key in ("nodes", "max_depth", "predicate_calls", "exact_fallbacks", "stops", "exact_pieces",
                     "exact_undecided", "prefiltered"):

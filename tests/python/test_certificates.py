@@ -21,7 +21,9 @@ def cli_check_lines(certificate: Path, scene: Path) -> list:
     return [line[2:] for line in lines[1:]]
 
 
-@pytest.mark.parametrize("scene", [SOURCE / "examples" / "octagons-collision.json",
+@pytest.mark.parametrize("scene", [SOURCE / "examples" / "octagons-near.json",
+                                   SOURCE / "examples" / "vertex-face-linear.json",
+                                   DATA / "scenes" / "planner-piecewise-second-piece.json",
                                    DATA / "scenes" / "planner-wall1-slerp.json",
                                    DATA / "scenes" / "cubic-crossing-irrational.json"],
                          ids=lambda p: p.name)

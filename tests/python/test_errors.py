@@ -4,13 +4,14 @@ message (without its "tmcert: " prefix), whichever way the scene comes in."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import tmcert
-from conftest import DATA, SOURCE, builder_from_document, cli_error, read_document
+from conftest import DATA, SOURCE, builder_from_document, cli_error, run_cli
 
 BAD = [(DATA / "bad" / name, substring)
        for name, substring in (line.split("\t") for line in (DATA / "bad" / "EXPECTED").read_text().splitlines()
@@ -72,11 +73,14 @@ def test_bad_dict_and_builder_same_message_as_cli(path: Path, doc) -> None:
     # malformed document, e.g. a missing field, cannot).
     try:
         builder = builder_from_document(doc, path.parent)
-    except (KeyError, TypeError, ValueError, AssertionError, AttributeError, IndexError):
+    except (KeyError, TypeError, ValueError, AssertionError, AttributeError, IndexError, ArithmeticError):
         return
     with pytest.raises(tmcert.InputError) as error:
         builder.build()
-    assert str(error.value) == f"SceneBuilder: {field_and_what}"
+    # The builder adds the body's name, e.g. ' (body "table")'.
+    message = str(error.value)
+    assert message == f"SceneBuilder: {field_and_what}" or \
+        re.fullmatch(re.escape(f"SceneBuilder: {field_and_what}") + r' \((body|robot) "[^"]*"\)', message), message
 
 
 @pytest.mark.parametrize("path,substring", BAD_CLI, ids=[p.name for p, _ in BAD_CLI])
@@ -106,11 +110,23 @@ def test_missing_file_same_message_as_cli(tmp_path: Path) -> None:
 ])
 def test_bad_options(kwargs, cli_options, field) -> None:
     scene = SOURCE / "examples" / "octagons-near.json"
-    cli_message = cli_error("verify", str(scene), *cli_options)
+    done = run_cli("verify", str(scene), *cli_options)
+    assert done.returncode == 3 and done.stdout == ""
+    cli_message = done.stderr
     with pytest.raises(tmcert.InputError) as error:
         tmcert.verify(scene, **kwargs)
     assert field.replace("-", "_") in str(error.value).replace("-", "_")
     assert field in cli_message
+
+
+def test_options_beyond_c_integers() -> None:
+    scene = SOURCE / "examples" / "octagons-near.json"
+    with pytest.raises(tmcert.InputError, match=r"^max_depth: must be between 1 and 200, got 10{30}$"):
+        tmcert.verify(scene, max_depth=10 ** 30)
+    with pytest.raises(tmcert.InputError, match=r"^threads: must be between 1 and 256, got 1099511627776$"):
+        tmcert.verify(scene, threads=2 ** 40)
+    with pytest.raises(TypeError, match="max_depth: expected an integer"):
+        tmcert.verify(scene, max_depth=2.5)
 
 
 def test_bad_kernel() -> None:
@@ -135,9 +151,9 @@ def test_bad_arrays_name_the_argument() -> None:
 
 def test_builder_index_out_of_range_and_duplicates() -> None:
     b = tmcert.SceneBuilder()
-    b.add_body("box").polygons(np.eye(3), [[0, 1, 7]])
-    with pytest.raises(tmcert.InputError, match=r"^SceneBuilder: bodies\[0\]"):
-        b.build()
+    with pytest.raises(tmcert.InputError,
+                       match=r'^SceneBuilder: body "box": polygons: face 0: vertex index 7 is out of range'):
+        b.add_body("box").polygons(np.eye(3), [[0, 1, 7]])
     b = tmcert.SceneBuilder()
     b.add_body("a").points(np.zeros((1, 3)))
     b.add_body("a").points(np.ones((1, 3)))

@@ -8,6 +8,7 @@ from concurrent.futures import ThreadPoolExecutor
 from fractions import Fraction
 
 import numpy as np
+import pytest
 
 import tmcert
 from conftest import DATA, SOURCE, assert_views_agree, run_cli, without_seconds
@@ -68,13 +69,14 @@ def test_summary_is_the_cli_output() -> None:
 
 def test_scene_properties() -> None:
     scene = tmcert.Scene.from_file(str(SCENES / "robots" / "arm-swing-collision.json"))
-    assert scene.body_names[-1] == "block" and all(n.startswith("arm/") for n in scene.body_names[:-1])
+    assert scene.body_names[0] == "block" and all(n.startswith("arm/") for n in scene.body_names[1:])
     assert len(scene) == len(scene.body_names)
-    assert not scene.moves(len(scene) - 1)
+    assert not scene.moves(0)
     assert all(b == "block" for _, b in scene.checks)
     assert scene.epsilon is None and scene.default_epsilon > 0 and scene.max_depth == 40
     near = tmcert.Scene.from_file(str(SOURCE / "examples" / "octagons-near.json"))
-    assert near.checks == [("moving", "fixed")] and near.moves(0) and not near.moves(1)
+    assert near.checks == [("moving", "fixed")] and near.body_names == ["fixed", "moving"]
+    assert near.moves(1) and not near.moves(0)
     assert tmcert.verify(near).epsilon == (near.epsilon or near.default_epsilon)
 
 
@@ -85,3 +87,24 @@ def test_verify_from_threads_gives_the_same_results() -> None:
     with ThreadPoolExecutor(max_workers=4) as pool:
         parallel = list(pool.map(lambda s: without_seconds(tmcert.verify(s, threads=2).to_dict()), scenes))
     assert parallel == sequential
+
+
+def test_to_json_is_the_cli_text() -> None:
+    seconds = re.compile(r'"seconds": [0-9.e+-]+')
+    for scene in (SCENES / "planner-tolerance-collision.json", SCENES / "cubic-crossing-irrational.json"):
+        done = run_cli("verify", str(scene), "--json")
+        assert seconds.sub('"seconds": S', tmcert.verify(scene).to_json()) == seconds.sub('"seconds": S', done.stdout)
+
+
+def test_scenes_from_json_text_name_their_source() -> None:
+    text = (SOURCE / "examples" / "octagons-near.json").read_text()
+    assert tmcert.Scene.from_json(text).source == "<json>"
+    assert tmcert.Scene.from_json(text, "near").source == "near"
+    with pytest.raises(tmcert.InputError, match=r"^near: invalid JSON at byte 0"):
+        tmcert.Scene.from_json("", "near")
+    with pytest.raises(TypeError, match="expected a Scene, SceneBuilder, dict or file path"):
+        tmcert.verify(42)
+
+
+def test_version_is_the_cli_version() -> None:
+    assert run_cli("--version").stdout.strip() == f"tmcert {tmcert.__version__}"

@@ -49,6 +49,7 @@ from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _tmcert
+from ._tmcert import __version__
 from ._tmcert import (InputError, Keyframes, Motion, Piecewise, Pose, RationalBezier, ResourceLimit, Rotation,
                       Scene)
 
@@ -118,7 +119,7 @@ class Verdict(str, enum.Enum):
         return self.value
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # NumPy fields: compare the exact ones
 class Witness:
     """Where and when two bodies provably touch (world coordinates).
 
@@ -180,7 +181,7 @@ class Stats:
     seconds: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # holds a Witness
 class Check:
     """The result of one body pair.
 
@@ -320,9 +321,9 @@ def _json_value(value: Any, path: str) -> Any:
         return value
     if isinstance(value, numbers.Integral):
         v = int(value)
-        return v if -_INT64 < v < _INT64 else str(v)
+        return v if -_INT64 < v < _INT64 else _tmcert._int_text(v)
     if isinstance(value, numbers.Rational):
-        return f"{value.numerator}/{value.denominator}"
+        return f"{_tmcert._int_text(int(value.numerator))}/{_tmcert._int_text(int(value.denominator))}"
     if isinstance(value, decimal.Decimal):
         return str(value)
     if isinstance(value, numbers.Real):
@@ -330,7 +331,7 @@ def _json_value(value: Any, path: str) -> Any:
         if not math.isfinite(f):
             return str(f)  # "nan", "inf": the reader names the field
         n, d = f.as_integer_ratio()
-        return f"{n}/{d}"
+        return f"{_tmcert._int_text(n)}/{_tmcert._int_text(d)}"
     if isinstance(value, Mapping):
         out = {}
         for key, item in value.items():
@@ -415,6 +416,12 @@ def _faces(faces: Any, what: str) -> list:
     return out
 
 
+def _flag(value: Any, what: str) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{what}: expected True or False, got {value!r}")
+    return bool(value)
+
+
 class Body:
     """One body of a :class:`SceneBuilder`; every method adds to it and returns it.
 
@@ -463,6 +470,8 @@ class Body:
 
     def segments(self, segments: Any) -> "Body":
         """Segments: an (m, 2, 3) array of endpoint pairs (distinct endpoints)."""
+        if len(segments) == 0:
+            return self
         if isinstance(segments, np.ndarray) and segments.dtype.kind == "f":
             array = np.ascontiguousarray(segments, dtype=np.float64)
             if array.ndim != 3 or array.shape[1:] != (2, 3):
@@ -493,7 +502,7 @@ class Body:
 
     def solid(self, value: bool = True) -> "Body":
         """The inside counts as part of the body (its polygons must form closed shells)."""
-        self._raw.solid(bool(value))
+        self._raw.solid(_flag(value, f"{self.name}: solid"))
         return self
 
     def mass(self, points: Any, weights: Iterable[NumberLike]) -> "Body":
@@ -536,7 +545,7 @@ class Robot:
 
     def self_collision(self, value: bool = True) -> "Robot":
         """Check pairs of its own links (not parent and child, not allowed)."""
-        self._raw.self_collision(bool(value))
+        self._raw.self_collision(_flag(value, f"{self.name}: self_collision"))
         return self
 
     def allow(self, link_a: str, link_b: str) -> "Robot":
@@ -584,7 +593,7 @@ class SceneBuilder:
 
     def max_depth(self, depth: int) -> "SceneBuilder":
         """Subdivision depth limit, 1 to 200 (default 40)."""
-        self._raw.max_depth(int(depth))
+        self._raw.max_depth(_bounded(depth, "max_depth", 1, 200))
         return self
 
     def clearance(self, d: NumberLike) -> "SceneBuilder":
@@ -624,9 +633,20 @@ def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str =
     Runs without holding the GIL.  Raises InputError for bad options or a
     scene that cannot be verified, ResourceLimit, MemoryError.
     """
-    return Result(_tmcert.verify(load(scene), str(kernel), epsilon, max_depth, int(threads),
+    return Result(_tmcert.verify(load(scene), str(kernel), epsilon,
+                                 None if max_depth is None else _bounded(max_depth, "max_depth", 1, 200),
+                                 _bounded(threads, "threads", 1, 256),
                                  None if time_limit is None else float(time_limit), bool(all_pairs),
                                  bool(certificate)))
+
+
+def _bounded(value: Any, what: str, low: int, high: int) -> int:
+    """An integer option in [low, high], with the library's message otherwise."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{what}: expected an integer, got {value!r}")
+    if not low <= int(value) <= high:
+        raise InputError(f"{what}: must be between {low} and {high}, got {int(value)}")
+    return int(value)
 
 
 def check(certificate: Union[PathLike, Result, Mapping[str, Any]], scene: SceneLike) -> CertificateCheck:
