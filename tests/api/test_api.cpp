@@ -356,111 +356,77 @@ BOOST_AUTO_TEST_SUITE_END()
 BOOST_AUTO_TEST_SUITE(errors)
 
 BOOST_AUTO_TEST_CASE(builder_errors_name_the_field) {
-  auto two_bodies = [] {
-    tmcert::SceneBuilder b;
-    b.add_body("wall").polygon({{1, 0, 0}, {1, 1, 0}, {1, 1, 1}});
-    return b;
+  // The scene of one triangle "wall" changed by `edit` must fail to build.
+  auto build_error = [](const std::function<void(tmcert::SceneBuilder&)>& edit, const std::vector<std::string>& parts) {
+    input_error([&] {
+      tmcert::SceneBuilder b;
+      b.add_body("wall").polygon({{1, 0, 0}, {1, 1, 0}, {1, 1, 1}});
+      edit(b);
+      b.build();
+    }, parts);
   };
   input_error([] { tmcert::SceneBuilder().build(); }, {"SceneBuilder: bodies", "at least one body"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("line").polygon({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}});
-    b.build();
   }, {"bodies[1].polygons[0]", "(body \"line\")"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, std::nan(""), 0});
-    b.build();
   }, {"bodies[1].points[0][1]", "not a number", "(body \"p\")"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, "1/0"});
-    b.build();
   }, {"bodies[1].points[0][2]"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("wall").point({0, 0, 0});
-    b.build();
   }, {"bodies[1].name", "duplicate body name"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("");
-    b.build();
   }, {"bodies[1].name"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     tmcert::RationalBezier m;
     m.control_points = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}};
     m.weights = {1, -1};
     b.add_body("p").point({0, 0, 0}).motion(m);
-    b.build();
   }, {"bodies[1].motion.weights", "(body \"p\")"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, 0}).motion(tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::quaternion(0, 0, 0, 0)}, {}}, {0, 1}});
-    b.build();
   }, {"bodies[1].motion.poses[0].rotation"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, 0}).motion(tmcert::Keyframes{{{{0, 0, 0}, tmcert::Rotation::matrix({2, 0, 0, 0, 1, 0, 0, 0, 1})}, {}}, {0, 1}});
-    b.build();
   }, {"bodies[1].motion.poses[0].rotation"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, 0}).motion(tmcert::Piecewise{{tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}),
                                                               tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}, 1, 2)}});
-    b.build();
   }, {"bodies[1].motion.pieces"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, 0}).mass({{0, 0, 0}, {1, 0, 0}}, {1, 1});
-    b.build();
   }, {"bodies[1].mass"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, 0}).tolerance(-1);
-    b.build();
   }, {"bodies[1].tolerance"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("open").polygon({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}).solid();
-    b.build();
   }, {"bodies[1].solid"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("m").mesh("/nonexistent/file.off");
-    b.build();
   }, {"bodies[1].mesh", "file.off"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.check("wall", "nobody");
-    b.build();
   }, {"checks[0][1]", "unknown body"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_body("p").point({0, 0, 0});
     b.check("wall", "p", -1);
-    b.build();
   }, {"checks[0].clearance"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.epsilon("abc");
-    b.build();
   }, {"SceneBuilder: epsilon", "not a number"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.max_depth(0);
-    b.build();
   }, {"SceneBuilder: max_depth"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_robot("arm", kExamples + "/robot/arm.urdf").path({"shoulder", "elbow", "wrist"}, {0, 1}, {{0, 0, 0}, {9, 0, 0}});
-    b.build();
   }, {"robots[0].path.positions[1]", "(robot \"arm\")"});
-  input_error([&] {
-    auto b = two_bodies();
+  build_error([&](tmcert::SceneBuilder& b) {
     b.add_robot("arm", "/nonexistent/arm.urdf");
-    b.build();
   }, {"robots[0].urdf"});
   // Array shapes are refused at once, naming the body.
   input_error([] { tmcert::SceneBuilder().add_body("t").triangles(std::vector<double>{0, 0, 0, 1}, std::vector<std::size_t>{}); },
