@@ -60,8 +60,9 @@ def main():
         subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "ccd_csv_to_scene.py"), *files, "-o", scene,
                         "--truth-out", truth], check=True, capture_output=True)
         for kernel in kernels:
+            extra = [] if kernel == "filtered" else ["--kernel", kernel]  # (builds before --kernel existed)
             out = subprocess.run([os.path.join(args.build, "tmcert_ccd_bench"), "--scene", scene, "--truth", truth,
-                                  "--cpu-time", "--kernel", kernel], capture_output=True, text=True)
+                                  "--cpu-time", *extra], capture_output=True, text=True)
             rows = {line.split("|")[1].strip(): [c.strip() for c in line.split("|")[2:-1]]
                     for line in out.stdout.splitlines() if line.startswith("| ")}
             if "all" not in rows:

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <utility>
 
@@ -121,17 +122,90 @@ CGAL::Sign range_sign(const PolyZ& q, const Exact& lo, const Exact& hi) {
   return CGAL::ZERO;
 }
 
-Exact simplest_between(const Exact& lo, const Exact& hi) {
-  if (lo <= 0 && hi >= 0) return Exact(0);
-  if (hi < 0) return -simplest_between(-hi, -lo);
-  Integer fl;
-  mpz_fdiv_q(fl.mpz(), lo.numerator().mpz(), lo.denominator().mpz());
-  if (Exact(fl) == lo) return lo;
-  if (Exact(fl + 1) <= hi) return Exact(fl + 1);
-  return Exact(fl) + Exact(1) / simplest_between(Exact(1) / (hi - Exact(fl)), Exact(1) / (lo - Exact(fl)));
+// simplest_between for 0 < a/b <= c/d in 64-bit integers (b, d > 0): the
+// same descent as below (the integer parts of the two continued fractions
+// while they agree), folded back into p/q.  Every quantity stays between 0
+// and max(a, b, c, d); false if the expansion is deeper than expected (it
+// never is: each step at least halves a denominator), leaving the exact path.
+bool simplest_between_small(std::int64_t a, std::int64_t b, std::int64_t c, std::int64_t d, Exact& out) {
+  std::int64_t terms[130];
+  int n = 0;
+  for (;;) {
+    if (n == 128) return false;
+    const std::int64_t q = a / b;  // floor: both positive
+    if (q * b == a) {  // lo is the integer q
+      terms[n++] = q;
+      break;
+    }
+    if (c - q * d >= d) {  // q + 1 <= hi
+      terms[n++] = q + 1;
+      break;
+    }
+    // Both in (q, q + 1): recurse on 1 / (hi - q) <= 1 / (lo - q).
+    terms[n++] = q;
+    const std::int64_t na = d, nb = c - q * d, nc = b, nd = a - q * b;
+    a = na, b = nb, c = nc, d = nd;
+  }
+  // Fold q0 + 1 / (q1 + 1 / (... + 1 / q_last)).
+  CGAL::Gmpz num(static_cast<long>(terms[n - 1])), den(1);
+  for (int k = n - 2; k >= 0; --k) {
+    CGAL::Gmpz next = CGAL::Gmpz(static_cast<long>(terms[k])) * num + den;
+    den = num;
+    num = next;
+  }
+  out = Exact(num, den);
+  return true;
 }
 
 }  // namespace
+
+Exact simplest_between(const Exact& lo, const Exact& hi) {
+  if (lo > 0 && hi > lo && mpz_fits_slong_p(lo.numerator().mpz()) && mpz_fits_slong_p(lo.denominator().mpz()) &&
+      mpz_fits_slong_p(hi.numerator().mpz()) && mpz_fits_slong_p(hi.denominator().mpz())) {
+    Exact out;
+    if (simplest_between_small(mpz_get_si(lo.numerator().mpz()), mpz_get_si(lo.denominator().mpz()),
+                               mpz_get_si(hi.numerator().mpz()), mpz_get_si(hi.denominator().mpz()), out))
+      return out;
+  }
+  if (lo <= 0 && hi >= 0) return Exact(0);
+  if (hi < 0) return -simplest_between(-hi, -lo);  // one level: then 0 < -hi
+  // 0 < lo = a/b <= hi = c/d: the same descent as simplest_between_small,
+  // on GMP integers.
+  // (CGAL::Gmpz values share their limbs when copied: only its operators,
+  // never writes through mpz(), so no copy changes with another.)
+  CGAL::Gmpz a = lo.numerator(), b = lo.denominator(), c = hi.numerator(), d = hi.denominator();
+  std::vector<CGAL::Gmpz> terms;
+  for (;;) {
+    if (terms.size() == kSimplestTerms) return (lo + hi) / 2;
+    const CGAL::Gmpz q = a / b;  // floor: both positive
+    const CGAL::Gmpz r = a - q * b;
+    if (r == 0) {  // lo is the integer q
+      terms.push_back(q);
+      break;
+    }
+    const CGAL::Gmpz c_minus_qd = c - q * d;
+    if (c_minus_qd >= d) {  // q + 1 <= hi
+      terms.push_back(q + 1);
+      break;
+    }
+    // Both in (q, q + 1): continue with 1 / (hi - q) <= 1 / (lo - q).
+    terms.push_back(q);
+    // (a, b, c, d) <- (d, c - q d, b, a - q b).
+    c = b;
+    a = d;
+    b = c_minus_qd;
+    d = r;
+  }
+  // Fold q0 + 1 / (q1 + 1 / (... + 1 / q_last)).
+  CGAL::Gmpz num = terms.back(), den(1);
+  for (std::size_t k = terms.size() - 1; k-- > 0;) {
+    CGAL::Gmpz next = terms[k] * num + den;
+    den = std::move(num);
+    num = std::move(next);
+  }
+  return Exact(num, den);
+}
+
 
 namespace {
 

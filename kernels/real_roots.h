@@ -10,6 +10,7 @@
 
 #include <CGAL/Gmpz.h>
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -85,6 +86,16 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r);
 
 // The exact order of two roots (refines them as needed).
 CGAL::Comparison_result compare(RealRoot& a, RealRoot& b);
+
+// The rational with the smallest denominator in the closed interval
+// [lo, hi] (continued fractions, i.e. the Stern-Brocot descent), for
+// lo <= hi.  Iterative: one step per partial quotient, at most
+// kSimplestTerms of them; an expansion deeper than that (ends with tens of
+// thousands of digits, e.g. ratios of consecutive Fibonacci numbers) gives
+// the midpoint instead, which is in [lo, hi] as well (the callers only need
+// a point of the interval; the simplest one is a preference).
+inline constexpr std::size_t kSimplestTerms = 1024;
+Exact simplest_between(const Exact& lo, const Exact& hi);
 
 // Makes r rational (lo == hi) when its value is rational; true if so.
 bool settle_rational(RealRoot& r);

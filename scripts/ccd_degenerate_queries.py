@@ -600,42 +600,6 @@ def write_family(root, family, queries):
 # ---------------------------------------------------------------- --check
 
 
-def compare(c, truth, where):
-    """Mismatch messages for one tmcert check against the oracle's first contact."""
-    if truth is None:
-        return [] if c["verdict"] == "safe" else [f"{where}: oracle no contact, tmcert {c['verdict']}"]
-    p, r = truth
-    if c["verdict"] != "collision":
-        return [f"{where}: oracle contact at {float(r[0]):.17g}, tmcert {c['verdict']}"]
-    fc = c["first_contact"]["t"]
-    if fc[0] != fc[1]:
-        return [f"{where}: first contact not exact"]
-    t = fc[0]
-    if isinstance(t, str):
-        x = F(t)
-        ok = x == r[0] if r[0] == r[1] else (r[0] < x < r[1] and xo.ev(p, x) == 0)
-        return [] if ok else [f"{where}: oracle first contact in [{r[0]}, {r[1]}], tmcert {t}"]
-    if r[0] == r[1]:
-        return [f"{where}: oracle first contact {r[0]}, tmcert an irrational root"]
-    poly, lo, hi = [F(int(x)) for x in t["root_of"]], F(t["interval"][0]), F(t["interval"][1])
-    rlo, rhi = r
-    for _ in range(300):
-        if lo <= rlo and rhi <= hi:
-            break
-        m = (rlo + rhi) / 2
-        if xo.ev(p, m) == 0:
-            rlo = rhi = m
-            break
-        if xo.sgn(xo.ev(p, m)) == xo.sgn(xo.ev(p, rlo)):
-            rlo = m
-        else:
-            rhi = m
-    inside = lo <= rlo and rhi <= hi and (rlo < rhi or lo < rlo < hi)
-    if not inside or At(p, (rlo, rhi)).sign(poly) != 0:
-        return [f"{where}: oracle root in ({float(r[0])}, {float(r[1])}) is not tmcert's root in ({lo}, {hi})"]
-    return []
-
-
 def check(tmcert, n, seed, kernels, families):
     convert = os.path.join(HERE, "ccd_csv_to_scene.py")
     bad = 0
@@ -661,11 +625,11 @@ def check(tmcert, n, seed, kernels, families):
                 for k, truth in enumerate(truths):
                     c = next(checks)
                     where = f"{family} {kind} query {k} ({kernel})"
-                    msgs += compare(c, truth, where)
+                    msgs += xo.mismatches(c, truth, where)
                     # the comparison can fail: the opposite truth must be a mismatch
                     if c["verdict"] in ("safe", "collision"):
                         flipped = None if truth is not None else ([F(0), F(1)], (F(0), F(0)))
-                        if not compare(c, flipped, ""):
+                        if not xo.mismatches(c, flipped, ""):
                             msgs.append(f"{where}: a flipped truth is not caught")
                 total += len(truths)
                 bad += len(msgs)

@@ -308,10 +308,40 @@ def body(name, kind, pts):
     return b
 
 
-def tmcert_root(t):
+def mismatches(c, truth, where):
+    """Mismatch messages for one tmcert check against the oracle's first contact."""
+    if truth is None:
+        return [] if c["verdict"] == "safe" else [f"{where}: oracle no contact, tmcert {c['verdict']}"]
+    p, r = truth
+    if c["verdict"] != "collision":
+        return [f"{where}: oracle contact at {float(r[0]):.17g}, tmcert {c['verdict']}"]
+    fc = c["first_contact"]["t"]
+    if fc[0] != fc[1]:
+        return [f"{where}: first contact not exact"]
+    t = fc[0]
     if isinstance(t, str):
-        return F(t), None
-    return None, ([F(int(c)) for c in t["root_of"]], F(t["interval"][0]), F(t["interval"][1]))
+        x = F(t)
+        ok = x == r[0] if r[0] == r[1] else (r[0] < x < r[1] and ev(p, x) == 0)
+        return [] if ok else [f"{where}: oracle first contact in [{r[0]}, {r[1]}], tmcert {t}"]
+    if r[0] == r[1]:
+        return [f"{where}: oracle first contact {r[0]}, tmcert an irrational root"]
+    poly, lo, hi = [F(int(x)) for x in t["root_of"]], F(t["interval"][0]), F(t["interval"][1])
+    rlo, rhi = r
+    for _ in range(300):
+        if lo <= rlo and rhi <= hi:
+            break
+        m = (rlo + rhi) / 2
+        if ev(p, m) == 0:
+            rlo = rhi = m
+            break
+        if sgn(ev(p, m)) == sgn(ev(p, rlo)):
+            rlo = m
+        else:
+            rhi = m
+    inside = lo <= rlo and rhi <= hi and (rlo < rhi or lo < rlo < hi)
+    if not inside or sign_at(poly, p, (rlo, rhi)) != 0:
+        return [f"{where}: oracle root in ({float(r[0])}, {float(r[1])}) is not tmcert's root in ({lo}, {hi})"]
+    return []
 
 
 def main():
@@ -348,49 +378,8 @@ def main():
     for (mode, kind, truth), c in zip(queries, result["checks"]):
         key = (mode, kind, "contact" if truth else "free")
         stats[key] = stats.get(key, 0) + 1
-        where = f"{c['bodies'][0]} ({mode} {kind})"
-        if truth is None:
-            if c["verdict"] != "safe":
-                print(f"MISMATCH {where}: oracle no contact, tmcert {c['verdict']}")
-                bad += 1
-            continue
-        p, r = truth
-        if c["verdict"] != "collision":
-            print(f"MISMATCH {where}: oracle contact at {r}, tmcert {c['verdict']}")
-            bad += 1
-            continue
-        exact, alg = tmcert_root(c["witness"]["t"])
-        if exact is not None:
-            # tmcert's rational time must be the oracle's root (the oracle
-            # isolates a rational root in an open interval unless bisection
-            # hits it).
-            same = exact == r[0] if r[0] == r[1] else r[0] < exact < r[1] and ev(p, exact) == 0
-            if not same:
-                print(f"MISMATCH {where}: oracle first contact in [{r[0]}, {r[1]}], tmcert {exact}")
-                bad += 1
-            continue
-        if r[0] == r[1]:
-            print(f"MISMATCH {where}: oracle first contact {r[0]}, tmcert an irrational root")
-            bad += 1
-            continue
-        poly, lo, hi = alg
-        # The oracle's root lies in tmcert's interval and is a root of its polynomial.
-        rlo, rhi = r
-        if not (lo <= rlo and rhi <= hi):
-            # narrow the oracle's interval first
-            for _ in range(200):
-                m = (rlo + rhi) / 2
-                if sgn(ev(p, m)) == sgn(ev(p, rlo)):
-                    rlo = m
-                else:
-                    rhi = m
-                if lo <= rlo and rhi <= hi:
-                    break
-        if not (lo <= rlo and rhi <= hi) or sign_at(poly, p, (rlo, rhi)) != 0:
-            print(f"MISMATCH {where}: oracle root in ({float(r[0])}, {float(r[1])}) is not tmcert's root in ({lo}, {hi})")
-            bad += 1
-        if c["first_contact"]["t"][0] != c["first_contact"]["t"][1]:
-            print(f"MISMATCH {where}: first contact not exact")
+        for m in mismatches(c, truth, f"{c['bodies'][0]} ({mode} {kind})"):
+            print(f"MISMATCH {m}")
             bad += 1
     for k in sorted(stats):
         print(f"  {k[0]:6s} {k[1]} {k[2]:7s} {stats[k]}")
