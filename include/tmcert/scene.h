@@ -36,9 +36,11 @@ class TMCERT_API Scene {
   std::vector<std::pair<std::string, std::string>> checks() const;
   // The scene's epsilon as written (none: the default applies).
   std::optional<Rational> epsilon() const;
-  // The default epsilon: 1/1000 of the bounding-box diagonal of everything
-  // the bodies sweep, to six significant digits.
-  Rational default_epsilon() const;
+  // The epsilon a check of bodies `a` and `b` (names) uses when neither the
+  // scene nor VerifyOptions gives one: 1/1000 of the diagonal of the box of
+  // everything the two bodies sweep, to six significant digits.  Throws
+  // std::out_of_range for an unknown name.
+  Rational default_epsilon(const std::string& a, const std::string& b) const;
   int max_depth() const;
   // The file name, "SceneBuilder", or the source given to from_json.
   const std::string& source() const;

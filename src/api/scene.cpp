@@ -50,7 +50,14 @@ std::optional<Rational> Scene::epsilon() const {
   return to_rational(*impl_->scene->epsilon);
 }
 
-Rational Scene::default_epsilon() const { return to_rational(tmcert::default_epsilon(*impl_->scene)); }
+Rational Scene::default_epsilon(const std::string& a, const std::string& b) const {
+  const auto body = [&](const std::string& name) -> const tmcert::Body& {
+    for (const tmcert::Body& x : impl_->scene->bodies)
+      if (x.name == name) return x;
+    throw std::out_of_range("Scene::default_epsilon: no body named \"" + name + "\"");
+  };
+  return to_rational(tmcert::default_epsilon(body(a), body(b)));
+}
 
 int Scene::max_depth() const { return impl_->scene->max_depth; }
 

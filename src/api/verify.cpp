@@ -88,6 +88,7 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   const tmcert::Body& b = scene.bodies[c.bodies[1]];
   out.bodies = {a.name, b.name};
   out.verdict = same_enum<Verdict>(c.verdict);
+  out.epsilon = to_rational(c.epsilon);
   out.clearance = to_rational(c.clearance);
   out.clearance_violated = c.clearance > 0 && c.verdict == tmcert::Verdict::Collision;
   out.enlarged_model = !a.enlarged.empty() || !b.enlarged.empty();
@@ -127,7 +128,7 @@ tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyO
       throw InputError("epsilon: must be a positive number (decimal or p/q), got " + tmcert::quote_text(o.epsilon->text()));
     options.epsilon = e;
   } else {
-    options.epsilon = scene.epsilon ? *scene.epsilon : tmcert::default_epsilon(scene);
+    options.epsilon = scene.epsilon;  // absent: each check's own default
   }
   if (o.max_depth && (*o.max_depth < 1 || *o.max_depth > 200))
     throw InputError("max_depth: must be between 1 and 200, got " + std::to_string(*o.max_depth));

@@ -340,9 +340,12 @@ PYBIND11_MODULE(_tmcert, m) {
             return e ? to_fraction(*e) : py::none();
           },
           "The scene's epsilon as written (None: the default applies), a Fraction.")
-      .def_property_readonly(
-          "default_epsilon", [](const api::Scene& s) { return to_fraction(s.default_epsilon()); },
-          "1/1000 of the bounding-box diagonal of everything the bodies sweep (six significant digits).")
+      .def(
+          "default_epsilon",
+          [](const api::Scene& s, const std::string& a, const std::string& b) { return to_fraction(s.default_epsilon(a, b)); },
+          py::arg("a"), py::arg("b"),
+          "The epsilon a check of bodies a and b uses when none is given: 1/1000 of the diagonal of the box of "
+          "everything the two bodies sweep (six significant digits), a Fraction.")
       .def_property_readonly("max_depth", &api::Scene::max_depth)
       .def_property_readonly("source", &api::Scene::source)
       .def("__len__", &api::Scene::body_count)
@@ -442,6 +445,7 @@ PYBIND11_MODULE(_tmcert, m) {
   py::class_<api::CheckResult>(m, "_CheckResult")
       .def_readonly("bodies", &api::CheckResult::bodies)
       .def_property_readonly("verdict", [](const api::CheckResult& c) { return api::to_string(c.verdict); })
+      .def_readonly("epsilon", &api::CheckResult::epsilon)
       .def_readonly("clearance", &api::CheckResult::clearance)
       .def_readonly("clearance_violated", &api::CheckResult::clearance_violated)
       .def_readonly("enlarged_model", &api::CheckResult::enlarged_model)

@@ -15,6 +15,7 @@
 #include <gmp.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -348,7 +349,23 @@ BOOST_AUTO_TEST_CASE(result_doubles_agree_with_exact_values) {
   BOOST_TEST(r.epsilon().numerator == "1");
   BOOST_TEST(r.epsilon().denominator == "3");
   BOOST_TEST(r.epsilon().approx == 1.0 / 3.0);
+  BOOST_REQUIRE(r.checks().size() == 1u);
+  BOOST_TEST(r.checks()[0].epsilon.text == "1/3");
   BOOST_TEST(tmcert::to_string(r.verdict()) == std::string("safe"));
+  // Without one, each check has its own default: 1/1000 of the box of its
+  // two bodies (a (0,0,0)-(5,5,5) box here, a far third body changes nothing).
+  tmcert::SceneBuilder d;
+  d.add_body("a").point({0, 0, 0}).motion(tmcert::Motion::translation({0, 0, 0}, {1, 0, 0}));
+  d.add_body("b").point({5, 5, 5});
+  d.add_body("far").point({5000, 0, 0});
+  d.check("a", "b");
+  const tmcert::Scene ds = d.build();
+  const tmcert::Result dr = tmcert::verify(ds);
+  BOOST_REQUIRE(dr.checks().size() == 1u);
+  BOOST_TEST(dr.checks()[0].epsilon.text == ds.default_epsilon("a", "b").text);
+  BOOST_TEST(dr.checks()[0].epsilon.approx == std::sqrt(75.0) / 1000, boost::test_tools::tolerance(1e-5));
+  BOOST_TEST(dr.epsilon().text == dr.checks()[0].epsilon.text);
+  BOOST_CHECK_THROW(ds.default_epsilon("a", "nobody"), std::out_of_range);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

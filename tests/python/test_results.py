@@ -73,11 +73,17 @@ def test_scene_properties() -> None:
     assert len(scene) == len(scene.body_names)
     assert not scene.moves(0)
     assert all(b == "block" for _, b in scene.checks)
-    assert scene.epsilon is None and scene.default_epsilon > 0 and scene.max_depth == 40
+    assert scene.epsilon is None and scene.max_depth == 40
+    assert all(scene.default_epsilon(a, b) > 0 for a, b in scene.checks)
     near = tmcert.Scene.from_file(str(SOURCE / "examples" / "octagons-near.json"))
     assert near.checks == [("moving", "fixed")] and near.body_names == ["fixed", "moving"]
     assert near.moves(1) and not near.moves(0)
-    assert tmcert.verify(near).epsilon == (near.epsilon or near.default_epsilon)
+    result = tmcert.verify(near)
+    defaults = [near.default_epsilon(a, b) for a, b in near.checks]
+    assert [c.epsilon for c in result.checks] == ([near.epsilon] * len(defaults) if near.epsilon else defaults)
+    assert result.epsilon == (near.epsilon or max(defaults))
+    with pytest.raises(IndexError):
+        near.default_epsilon("moving", "no such body")
 
 
 def test_verify_from_threads_gives_the_same_results() -> None:

@@ -189,11 +189,15 @@ class Check:
     ``first_contact_float`` for people): everything before its lower end is
     certified free of contact; None when the check is safe.  With
     ``first_contact_exact`` the witness's time is the first contact.
-    ``witness`` is set iff the verdict is collision.
+    ``witness`` is set iff the verdict is collision.  ``epsilon`` is the
+    termination tolerance this check ran with: the one given, or else its
+    own default, 1/1000 of the box of its two bodies' motion.
     """
 
     bodies: Tuple[str, str]
     verdict: Verdict
+    epsilon: Fraction
+    epsilon_float: float
     clearance: Fraction
     clearance_violated: bool
     enlarged_model: bool
@@ -209,7 +213,8 @@ class Check:
         fc = c.first_contact
         s = c.stats
         return Check(
-            bodies=(c.bodies[0], c.bodies[1]), verdict=Verdict(c.verdict), clearance=c.clearance.fraction(),
+            bodies=(c.bodies[0], c.bodies[1]), verdict=Verdict(c.verdict),
+            epsilon=c.epsilon.fraction(), epsilon_float=c.epsilon.approx, clearance=c.clearance.fraction(),
             clearance_violated=c.clearance_violated, enlarged_model=c.enlarged_model,
             first_contact=None if fc is None else (_time(fc[0]), _time(fc[1])),
             first_contact_float=None if fc is None else (fc[0].value.approx, fc[1].value.approx),
@@ -249,7 +254,8 @@ class Result:
 
     @property
     def epsilon(self) -> Fraction:
-        """The termination tolerance used, exact."""
+        """The termination tolerance given (scene or ``epsilon=``), or else the
+        largest of the checks' own defaults (``Check.epsilon``), exact."""
         return self._raw.epsilon.fraction()
 
     @property
