@@ -75,6 +75,18 @@ class TMCERT_API BodyBuilder {
   // earlier one.
   BodyBuilder& motion(Motion m);
 
+  // A continuous-collision primitive whose vertices move linearly from
+  // `start` to `end` (one vertex: a point; two: a segment; three: a
+  // triangle) over the parameters [t0, t1] (README "Linear per-vertex
+  // motion"): adds the canonical point (0,0,0), segment (0,0,0)-(1,0,0) or
+  // triangle (0,0,0),(1,0,0),(0,1,0) and sets the motion to the degree-1
+  // curve of the maps [v1 - v0, v2 - v0, 0 | v0] at both ends (they may be
+  // singular).  Give the body no other features: they would move with the
+  // same maps.  Throws InputError at once when start and end differ in
+  // size, the size is not 1 to 3, or a coordinate is not a number.
+  BodyBuilder& linear_primitive(const std::vector<Point>& start, const std::vector<Point>& end, Number t0 = 0,
+                                Number t1 = 1);
+
   const std::string& name() const { return name_; }
 
   // Internal (SceneBuilder::add_body).

@@ -3,6 +3,7 @@
 // text, and build() reads that document with the scene reader.  So a scene
 // built in code is validated by exactly the checks of a scene file, and
 // its errors name the same fields; there is no second validator.
+#include "kernels/number_types.h"
 #include "src/scene/parse.h"
 
 #include "src/api/internal.h"
@@ -242,6 +243,35 @@ BodyBuilder& BodyBuilder::tolerance(Number r) {
 BodyBuilder& BodyBuilder::motion(Motion m) {
   motion_ = std::move(m);
   return *this;
+}
+
+BodyBuilder& BodyBuilder::linear_primitive(const std::vector<Point>& start, const std::vector<Point>& end, Number t0,
+                                           Number t1) {
+  if (start.size() != end.size() || start.empty() || start.size() > 3)
+    fail(name_, "linear_primitive", "expected 1 to 3 vertices at both ends, got " + std::to_string(start.size()) +
+                                        " and " + std::to_string(end.size()));
+  // [v1 - v0, v2 - v0, 0 | v0], columns of the vertices' differences (zero
+  // where the primitive has no such vertex), exactly.
+  auto map = [&](const std::vector<Point>& v, const char* which) {
+    std::array<std::array<tmcert::Exact, 3>, 3> x;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        if (!tmcert::parse_exact(v[i][k].text(), x[i][k]))
+          fail(name_, "linear_primitive", std::string(which) + "[" + std::to_string(i) + "][" + std::to_string(k) +
+                                              "]: not a number: " + tmcert::quote_text(v[i][k].text()));
+    AffineMap m;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c)
+        m[4 * r + c] = c + 1 < static_cast<int>(v.size()) ? Number(tmcert::to_string(x[c + 1][r] - x[0][r])) : Number(0);
+      m[4 * r + 3] = Number(tmcert::to_string(x[0][r]));
+    }
+    return m;
+  };
+  const AffineMap from = map(start, "start"), to = map(end, "end");
+  if (start.size() == 1) point({0, 0, 0});
+  else if (start.size() == 2) segment({0, 0, 0}, {1, 0, 0});
+  else polygon({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  return motion(RationalBezier{{from, to}, {}, {std::move(t0), std::move(t1)}});
 }
 
 // ---------------------------------------------------------------- robots

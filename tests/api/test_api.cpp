@@ -301,6 +301,27 @@ BOOST_AUTO_TEST_CASE(robot_and_mesh) {
   BOOST_TEST(scene.body_names().back().rfind("arm/", 0) == 0);
 }
 
+// Vertices moving linearly (continuous-collision queries): the scene of
+// examples/vertex-face-linear.json.
+BOOST_AUTO_TEST_CASE(linear_primitive) {
+  tmcert::SceneBuilder b;
+  b.add_body("p").linear_primitive({{"0.2", "0.2", 1}}, {{"0.2", "0.2", -1}});
+  b.add_body("f").linear_primitive({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{"0.1", 0, 0}, {"1.1", 0, 0}, {"0.1", 1, 0}});
+  const std::string json = R"({ "format": "tmcert-scene/1",
+    "bodies": [
+      { "name": "p", "points": [[0,0,0]],
+        "motion": { "type": "rational_bezier", "control_points": [
+          [[0,0,0,0.2],[0,0,0,0.2],[0,0,0,1]], [[0,0,0,0.2],[0,0,0,0.2],[0,0,0,-1]] ] } },
+      { "name": "f", "polygons": [[[0,0,0],[1,0,0],[0,1,0]]],
+        "motion": { "type": "rational_bezier", "control_points": [
+          [[1,0,0,0],[0,1,0,0],[0,0,0,0]], [[1,0,0,0.1],[0,1,0,0],[0,0,0,0]] ] } } ] })";
+  same_result(b, json, tmcert::Verdict::Collision);
+  BOOST_TEST(tmcert::verify(b.build()).checks()[0].witness->t.text() == "1/2");
+  input_error([] { tmcert::SceneBuilder().add_body("q").linear_primitive({{0, 0, 0}}, {}); }, {"body \"q\"", "linear_primitive"});
+  input_error([] { tmcert::SceneBuilder().add_body("q").linear_primitive({{0, "x", 0}}, {{0, 0, 0}}); },
+              {"body \"q\"", "start[0][1]", "not a number"});
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(exact_numbers)
