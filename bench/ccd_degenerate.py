@@ -43,8 +43,8 @@ def main():
     else:
         families = [line.split()[0] for line in subprocess.run(gen, check=True, capture_output=True,
                                                                  text=True).stdout.splitlines()]
-    print(f"held-out degenerate CCD families: {args.n} queries each (seed {args.seed}), truth from the exact oracle; "
-          "CPU time per query")
+    made = f"as written in {args.out}" if args.reuse else f"{args.n} queries each (seed {args.seed})"
+    print(f"held-out degenerate CCD families: {made}, truth from the exact oracle; CPU time per query")
     print()
     print("| family | kernel | n | colliding | false | undecided | median us | mean us | max us |")
     print("|---|---|--:|--:|--:|--:|--:|--:|--:|")
