@@ -78,6 +78,17 @@ if cmp -s "$work/out" "$work/example.jsonl"; then pass; else fail "--threads 2: 
 expect_code 1 "-o" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" -o "$work/o.jsonl"
 if [ ! -s "$work/out" ] && cmp -s "$work/o.jsonl" "$work/example.jsonl"; then pass; else fail "-o: other bytes"; fi
 
+# Inside a solid without touching its surface: a collision (the start
+# containment), not cleared by the boxes; and the same cube far from
+# everything: safe.
+cat >"$work/inside.jsonl" <<'END'
+{"id":"inside","body":"cube","checks":["pillar"],"motion":{"type":"keyframes","poses":[{"translation":["1.5","1.5",1]},{"translation":["1.5","1.5",2]}]}}
+{"id":"far","body":"cube","motion":{"type":"keyframes","poses":[{"translation":[20,20,20]},{"translation":[21,20,20]}]}}
+END
+expect_code 1 "inside a solid" "$tmcert" batch "$work/inside.jsonl" --scene "$example/environment.json"
+if grep -q '"id":"inside","verdict":"collision".*"features":\["cube [^"]*","pillar interior"' "$work/out" &&
+  grep -q '"id":"far","verdict":"safe"' "$work/out"; then pass; else fail "inside a solid: $(cat "$work/out")"; fi
+
 # ---------------------------------------------------------------- 2. shards
 # 26 requests: the example's, repeated with other ids (blank lines between
 # do not count), so that every shard holds several, of both verdicts.
