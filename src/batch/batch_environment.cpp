@@ -1,6 +1,7 @@
 #include "src/batch/batch_environment.h"
 
 #include "src/cli/report.h"
+#include "src/robot/robot.h"
 #include "src/scene/parse.h"
 #include "src/verify/fixed_environment.h"
 
@@ -18,42 +19,51 @@ std::string json_string(const std::string& s) {
   return nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-// The motion as a trajectory (FixedEnvironment::check takes trajectories).
-Trajectory as_trajectory(const RequestLine& request) {
-  if (request.trajectory) return *request.trajectory;
+// A body's motion as a trajectory (FixedEnvironment::check takes those).
+Trajectory as_trajectory(const std::optional<Motion>& motion, const std::optional<Trajectory>& trajectory) {
+  if (trajectory) return *trajectory;
   MotionSegment seg;
-  seg.t0 = request.motion->t0;
-  seg.t1 = request.motion->t1;
-  seg.rational = *request.motion;
+  seg.t0 = motion->t0;
+  seg.t1 = motion->t1;
+  seg.rational = *motion;
   return Trajectory{{seg}};
 }
 
-// The moved body with the request's motion (the general path's scene).
-Body with_motion(const Body& body, const RequestLine& request) {
-  Body b = body;
-  b.motion = request.motion;
-  b.trajectory = request.trajectory;
-  return b;
+// "path.positions[1][2]" for a JointPathError of a request's path.
+std::string path_field(const JointPathError& e) {
+  std::string field = "path." + e.field;
+  if (e.field == "joints") field = "path";  // the environment's joints do not fit this path
+  for (std::size_t i : e.index) field += "[" + std::to_string(i) + "]";
+  return field;
 }
 
 }  // namespace
 
-BatchEnvironment::BatchEnvironment(Scene scene, const VerifyOptions& options, std::string base, bool stats)
-    : scene_(std::move(scene)), options_(options), base_(std::move(base)), stats_(stats) {
+BatchEnvironment::BatchEnvironment(Scene scene, std::vector<SceneRobot> robots, const VerifyOptions& options,
+                                   std::string base, bool stats)
+    : scene_(std::move(scene)), robots_list_(std::move(robots)), options_(options), base_(std::move(base)),
+      stats_(stats) {
   if (!(options_.epsilon > 0)) throw InputError("epsilon: must be > 0");
+  robot_of_.assign(scene_.bodies.size(), -1);
+  for (std::size_t r = 0; r < robots_list_.size(); ++r) {
+    robots_.emplace(robots_list_[r].robot->name(), static_cast<int>(r));
+    for (int b : robots_list_[r].bodies) robot_of_[b] = static_cast<int>(r);
+  }
   for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
     const Body& b = scene_.bodies[i];
-    if (b.trajectory && !b.trajectory->segments.empty() && b.trajectory->segments.front().link)
-      throw InputError(scene_.source + ": robots: robots cannot be part of a batch environment (its bodies are fixed)");
-    if (b.moves())
+    names_.emplace(b.name, static_cast<int>(i));
+    if (robot_of_[i] < 0 && b.moves())
       throw InputError(scene_.source + ": bodies[" + std::to_string(i) +
                        "].motion: the bodies of a batch environment are fixed (each request gives the moved "
                        "body's motion)");
-    names_.emplace(b.name, static_cast<int>(i));
   }
-  if (!scene_.checks.empty())
-    throw InputError(scene_.source + ": checks: not used in a batch environment (each request names the bodies "
-                                     "it is checked against, by default every other body)");
+  // Each request names its checks: the environment's would say nothing.
+  // Only robot links move in it, so its default checks all involve a link;
+  // a check of two other bodies was written, and is refused.
+  for (const auto& [a, b] : scene_.checks)
+    if (robot_of_[a] < 0 && robot_of_[b] < 0)
+      throw InputError(scene_.source + ": checks: not used in a batch environment (each request names the bodies "
+                                       "it is checked against, by default every other body)");
 }
 
 BatchEnvironment::~BatchEnvironment() = default;
@@ -61,6 +71,41 @@ BatchEnvironment::~BatchEnvironment() = default;
 BatchEnvironment::Worker::Worker(const BatchEnvironment& environment) : environment_(environment) {}
 
 BatchEnvironment::Worker::~Worker() = default;
+
+CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory& trajectory, int obstacle,
+                                            const Exact& clearance, std::tuple<int, int, int> key,
+                                            const std::string& source) {
+  const BatchEnvironment& env = environment_;
+  const Body& other = env.scene_.bodies[obstacle];
+  if (clearance > 0 || moved.tolerance > 0 || other.tolerance > 0) {
+    // Clearances and tolerances: the general check of the pair as a scene
+    // of its own (FixedEnvironment has neither); both bodies are prepared
+    // for this check.
+    Scene pair;
+    pair.source = source;
+    pair.bodies = {moved, other};
+    pair.bodies[0].motion.reset();
+    pair.bodies[0].trajectory = trajectory;
+    pair.checks = {{0, 1}};
+    pair.clearance = clearance;
+    return Verifier(pair, env.options_).check(0, 1, clearance);
+  }
+  auto prepare = [&] {
+    return std::make_unique<FixedEnvironment>(other, std::vector<Body>{moved}, std::vector<std::pair<int, int>>{},
+                                              env.options_);
+  };
+  std::unique_ptr<FixedEnvironment> own;
+  const FixedEnvironment* fixed = nullptr;
+  if (std::get<0>(key) < 0 && std::get<1>(key) < 0) {  // an inline body: prepared for its request only
+    own = prepare();
+    fixed = own.get();
+  } else {
+    std::unique_ptr<FixedEnvironment>& cached = prepared_[key];
+    if (!cached) cached = prepare();
+    fixed = cached.get();
+  }
+  return fixed->check({trajectory}).checks.at(0);  // bodies {1: the moved body, 0: the obstacle}
+}
 
 RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_t index, std::size_t line_number) {
   const BatchEnvironment& env = environment_;
@@ -71,9 +116,15 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
   const std::string head = "{\"index\":" + std::to_string(index) + ",\"id\":";
   try {
     parse_request_line(text, source, env.base_, request);
-    // The moved body: a body of the environment, or the request's own.
-    int mover = -1;
-    if (request.inline_body) {
+    // What moves: a body of the environment, the request's own body, or
+    // the links of a robot of the environment.
+    int mover = -1, robot = -1;
+    if (!request.robot.empty()) {
+      const auto it = env.robots_.find(request.robot);
+      if (it == env.robots_.end())
+        throw InputError(source + ": robot: unknown robot " + quote_text(request.robot) + " (not in the environment)");
+      robot = it->second;
+    } else if (request.inline_body) {
       if (env.names_.count(request.body))
         throw InputError(source + ": body.name: " + quote_text(request.body) +
                          " is a body of the environment (give its name instead, or another name)");
@@ -82,8 +133,12 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
       if (it == env.names_.end())
         throw InputError(source + ": body: unknown body " + quote_text(request.body) + " (not in the environment)");
       mover = it->second;
+      if (env.robot_of_[mover] >= 0)
+        throw InputError(source + ": body: " + quote_text(request.body) +
+                         " is a link of a robot (move the robot along a path instead)");
     }
-    const Body& moved = request.inline_body ? *request.inline_body : scene.bodies[mover];
+    // The obstacles: the bodies named, or every other body; never a
+    // robot's link (where a robot stands is a request's business).
     std::vector<int> obstacles;
     for (std::size_t k = 0; k < request.checks.size(); ++k) {
       const auto it = env.names_.find(request.checks[k]);
@@ -91,61 +146,68 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
       if (it == env.names_.end())
         throw InputError(field + "unknown body " + quote_text(request.checks[k]) + " (not in the environment)");
       if (it->second == mover) throw InputError(field + "a body cannot be checked against itself");
+      if (env.robot_of_[it->second] >= 0)
+        throw InputError(field + quote_text(request.checks[k]) + " is a link of a robot, not an obstacle");
       obstacles.push_back(it->second);
     }
     if (request.checks.empty())
       for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
-        if (b != mover) obstacles.push_back(b);
-    if (obstacles.empty())
-      throw InputError(source + ": body: the environment has no other body to check " + quote_text(request.body) +
-                       " against");
+        if (b != mover && env.robot_of_[b] < 0) obstacles.push_back(b);
     const Exact clearance = request.clearance ? *request.clearance : scene.clearance;
 
-    // The check's bodies for the report: the moved body, then the obstacle.
+    // The moved bodies and their motions: one body, or a robot's links.
+    Scene moved;
+    std::vector<std::pair<int, int>> self_pairs;  // pairs of links (indices into moved.bodies)
+    if (robot >= 0) {
+      const SceneRobot& r = env.robots_list_[robot];
+      const JointPath path{r.joints, request.path_times, request.path_positions};
+      RobotBodies links;
+      try {
+        links = add_robot(moved, *r.robot, path);
+      } catch (const JointPathError& e) {
+        throw InputError(source + ": " + path_field(e) + ": " + e.what());
+      }
+      if (r.self_collision) self_pairs = robot_default_checks(*r.robot, links, {}, true, r.allowed_pairs);
+    } else {
+      moved.bodies.push_back(request.inline_body ? *request.inline_body : scene.bodies[mover]);
+      moved.bodies[0].motion = request.motion;
+      moved.bodies[0].trajectory = request.trajectory;
+    }
+    if (obstacles.empty() && self_pairs.empty())
+      throw InputError(source + ": " + (robot >= 0 ? "robot" : "body") +
+                       ": the environment has nothing to check it against");
+
+    // Each check's bodies for the report, in the order of the check.
     Scene names;
     names.bodies.resize(2);
-    names.bodies[0].name = moved.name;
-    names.bodies[0].enlarged = moved.enlarged;
-    const Trajectory trajectory = as_trajectory(request);
     Verdict verdict = Verdict::Safe;
     std::string checks;
-    for (const int o : obstacles) {
-      const Body& obstacle = scene.bodies[o];
-      CheckResult r;
-      if (clearance > 0 || moved.tolerance > 0 || obstacle.tolerance > 0) {
-        // Clearances and tolerances: the general check of the pair as a
-        // scene of its own (FixedEnvironment has neither); both bodies
-        // are prepared for this request.
-        Scene pair;
-        pair.source = source;
-        pair.bodies = {with_motion(moved, request), obstacle};
-        pair.checks = {{0, 1}};
-        pair.clearance = clearance;
-        r = Verifier(pair, env.options_).check(0, 1, clearance);
-      } else {
-        std::unique_ptr<FixedEnvironment> own;
-        const FixedEnvironment* fixed = nullptr;
-        if (mover >= 0) {
-          std::unique_ptr<FixedEnvironment>& cached = prepared_[{mover, o}];
-          if (!cached) cached = std::make_unique<FixedEnvironment>(obstacle, std::vector<Body>{moved},
-                                                                   std::vector<std::pair<int, int>>{}, env.options_);
-          fixed = cached.get();
-        } else {  // an inline body is prepared for its request only
-          own = std::make_unique<FixedEnvironment>(obstacle, std::vector<Body>{moved},
-                                                   std::vector<std::pair<int, int>>{}, env.options_);
-          fixed = own.get();
-        }
-        r = fixed->check({trajectory}).checks.at(0);  // bodies {1: the mover, 0: the obstacle}
-      }
+    auto add = [&](CheckResult r, const Body& a, const Body& b) {
       r.bodies = {0, 1};
-      names.bodies[1].name = obstacle.name;
-      names.bodies[1].enlarged = obstacle.enlarged;
+      names.bodies[0].name = a.name;
+      names.bodies[0].enlarged = a.enlarged;
+      names.bodies[1].name = b.name;
+      names.bodies[1].enlarged = b.enlarged;
       nlohmann::ordered_json check = nlohmann::ordered_json::parse(check_json(names, r));
       if (!env.stats_) check.erase("stats");  // work counters and seconds: only on request
       if (!checks.empty()) checks += ',';
       checks += check.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
       if (r.verdict == Verdict::Collision) verdict = Verdict::Collision;
       else if (r.verdict == Verdict::Undecided && verdict == Verdict::Safe) verdict = Verdict::Undecided;
+    };
+    for (std::size_t m = 0; m < moved.bodies.size(); ++m) {
+      const Body& body = moved.bodies[m];
+      const Trajectory trajectory = as_trajectory(body.motion, body.trajectory);
+      for (const int o : obstacles) {
+        const std::tuple<int, int, int> key{robot, robot >= 0 ? static_cast<int>(m) : mover, o};
+        add(check(body, trajectory, o, clearance, key, source), body, scene.bodies[o]);
+      }
+    }
+    if (!self_pairs.empty()) {
+      // Two links both move: checked as in a scene of the robot's links.
+      moved.source = source;
+      const Verifier links(moved, env.options_);
+      for (const auto& [a, b] : self_pairs) add(links.check(a, b, clearance), moved.bodies[a], moved.bodies[b]);
     }
     out.kind = verdict == Verdict::Safe        ? RequestOutcome::Kind::Safe
                : verdict == Verdict::Collision ? RequestOutcome::Kind::Collision

@@ -5,14 +5,17 @@
 #pragma once
 
 #include "src/scene/model.h"
+#include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
 #include <cstddef>
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace tmcert {
 
@@ -28,13 +31,14 @@ struct RequestOutcome {
 
 class BatchEnvironment {
  public:
-  // `scene`: the environment (every body fixed: no motion, or a one-pose
-  // motion; no robots, no checks); `base`: the directory inline bodies'
+  // `scene`: the environment (every body but robot links fixed: no motion,
+  // or a one-pose motion; no checks), `robots` its robots (parse_scene_file); `base`: the directory inline bodies'
   // mesh files are relative to.  `options.epsilon` must be > 0.  `stats`:
   // give each check its "stats" (work counters and wall-clock seconds: not
   // reproducible); without it results are the same bytes on every run.
   // Throws InputError naming the field when the scene cannot be one.
-  BatchEnvironment(Scene scene, const VerifyOptions& options, std::string base, bool stats);
+  BatchEnvironment(Scene scene, std::vector<SceneRobot> robots, const VerifyOptions& options, std::string base,
+                   bool stats);
   ~BatchEnvironment();
   BatchEnvironment(const BatchEnvironment&) = delete;
   BatchEnvironment& operator=(const BatchEnvironment&) = delete;
@@ -55,9 +59,15 @@ class BatchEnvironment {
     RequestOutcome run(const std::string& text, std::size_t index, std::size_t line_number);
 
    private:
+    // One check of the moved body (the request's body, or a robot's link
+    // moving along its path) against an obstacle of the environment.
+    CheckResult check(const Body& moved, const Trajectory& trajectory, int obstacle, const Exact& clearance,
+                      std::tuple<int, int, int> key, const std::string& source);
+
     const BatchEnvironment& environment_;
-    // (moved body, obstacle) -> the pair prepared, made on first use.
-    std::map<std::pair<int, int>, std::unique_ptr<FixedEnvironment>> prepared_;
+    // (robot or -1, moved body or link, obstacle) -> the pair prepared,
+    // made on first use; robot -1 and body -1 (an inline body) is never kept.
+    std::map<std::tuple<int, int, int>, std::unique_ptr<FixedEnvironment>> prepared_;
   };
 
   const Scene& scene() const { return scene_; }
@@ -65,10 +75,13 @@ class BatchEnvironment {
 
  private:
   Scene scene_;
+  std::vector<SceneRobot> robots_list_;
   VerifyOptions options_;
   std::string base_;
   bool stats_;
-  std::unordered_map<std::string, int> names_;
+  std::unordered_map<std::string, int> names_;   // bodies, links included
+  std::unordered_map<std::string, int> robots_;  // index into robots_list_
+  std::vector<int> robot_of_;                    // per body: its robot, or -1
 };
 
 }  // namespace tmcert

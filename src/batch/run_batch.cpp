@@ -154,8 +154,9 @@ int run_batch(const BatchOptions& options) {
   std::string line;
   std::size_t line_number = 0;
   Scene scene;
+  std::vector<SceneRobot> robots;
   if (!options.scene.empty()) {
-    scene = parse_scene_file(options.scene);
+    scene = parse_scene_file(options.scene, robots);
   } else {
     bool found = false;
     while (next_line(in, line, line_number))
@@ -165,13 +166,13 @@ int run_batch(const BatchOptions& options) {
       }
     if (!found) throw InputError(requests_name + ": no environment (the first line must be a tmcert-scene/1 document, "
                                                  "or give --scene)");
-    scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base);
+    scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base, robots);
   }
   VerifyOptions verify = options.verify;
   verify.epsilon = options.epsilon ? *options.epsilon : scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   verify.max_depth = options.max_depth ? *options.max_depth : scene.max_depth;
   verify.threads = 1;  // requests run in parallel instead
-  const BatchEnvironment environment(std::move(scene), verify, base, options.stats);
+  const BatchEnvironment environment(std::move(scene), std::move(robots), verify, base, options.stats);
 
   const int threads = std::max(1, options.threads);
   std::vector<std::unique_ptr<BatchEnvironment::Worker>> workers;

@@ -84,6 +84,25 @@ class Progress {
   double last_ = -1;
 };
 
+// --epsilon: a positive number (decimal or p/q), exactly.
+tmcert::Exact epsilon_option(const std::string& text) {
+  tmcert::Exact e;
+  if (!tmcert::parse_exact(text, e) || !(e > 0))
+    throw tmcert::InputError("--epsilon: must be a positive number (decimal or p/q), got '" + text + "'");
+  return e;
+}
+
+// --time-limit: a positive, finite number of seconds, at most 10^9 (about 31 years).
+double time_limit_option(const std::string& option) {
+  const char* text = option.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double seconds = std::strtod(text, &end);
+  if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(seconds) || !(seconds > 0) || seconds > 1e9)
+    throw tmcert::InputError("--time-limit: must be a number of seconds, > 0 and at most 1e9, got '" + option + "'");
+  return seconds;
+}
+
 int run_verify(const VerifyArgs& args) {
   using namespace tmcert;
   auto owned = std::make_unique<Scene>(parse_scene_file(args.scene));
@@ -93,26 +112,13 @@ int run_verify(const VerifyArgs& args) {
                    : args.kernel == "fast" ? KernelKind::Fast
                                            : KernelKind::Filtered;
   if (!args.epsilon.empty()) {
-    Exact e;
-    if (!parse_exact(args.epsilon, e) || !(e > 0))
-      throw InputError("--epsilon: must be a positive number (decimal or p/q), got '" + args.epsilon + "'");
-    options.epsilon = e;
+    options.epsilon = epsilon_option(args.epsilon);
   } else {
     options.epsilon = scene.epsilon;  // absent: each check's own default
   }
   options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
   options.hierarchy = !args.all_pairs;
-  if (!args.time_limit.empty()) {
-    // A positive, finite number of seconds, at most 10^9 (about 31 years).
-    const char* text = args.time_limit.c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double seconds = std::strtod(text, &end);
-    if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(seconds) || !(seconds > 0) ||
-        seconds > 1e9)
-      throw InputError("--time-limit: must be a number of seconds, > 0 and at most 1e9, got '" + args.time_limit + "'");
-    options.time_limit = seconds;
-  }
+  if (!args.time_limit.empty()) options.time_limit = time_limit_option(args.time_limit);
   options.record_cover = !args.certificate.empty();
   if (options.record_cover && options.kernel == KernelKind::Fast)
     throw InputError("--certificate: the fast kernel is not certified; use --kernel filtered or exact");
@@ -188,23 +194,9 @@ int run_batch_command(BatchArgs& args) {
   o.verify.kernel = args.kernel == "exact" ? KernelKind::Exact
                     : args.kernel == "fast" ? KernelKind::Fast
                                             : KernelKind::Filtered;
-  if (!args.epsilon.empty()) {
-    Exact e;
-    if (!parse_exact(args.epsilon, e) || !(e > 0))
-      throw InputError("--epsilon: must be a positive number (decimal or p/q), got '" + args.epsilon + "'");
-    o.epsilon = e;
-  }
+  if (!args.epsilon.empty()) o.epsilon = epsilon_option(args.epsilon);
   if (args.max_depth >= 0) o.max_depth = args.max_depth;
-  if (!args.time_limit.empty()) {
-    const char* text = args.time_limit.c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double seconds = std::strtod(text, &end);
-    if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(seconds) || !(seconds > 0) ||
-        seconds > 1e9)
-      throw InputError("--time-limit: must be a number of seconds, > 0 and at most 1e9, got '" + args.time_limit + "'");
-    o.verify.time_limit = seconds;
-  }
+  if (!args.time_limit.empty()) o.verify.time_limit = time_limit_option(args.time_limit);
   return run_batch(o);
 }
 

@@ -817,6 +817,13 @@ class SceneReader {
     const std::size_t plain_bodies = scene.bodies.size();
     std::vector<RobotInScene> placed;
     if (robots_node) placed = robots(scene, *robots_node, document.member("robots"), names);
+    if (robots_out_)
+      for (const RobotInScene& r : placed) {
+        SceneRobot kept{r.robot, r.joints, {}, r.self_collision, r.allowed};
+        for (int b : r.bodies.body)
+          if (b >= 0) kept.bodies.push_back(b);
+        robots_out_->push_back(std::move(kept));
+      }
     if (scene.bodies.empty()) fail(bodies_path, "at least one body is required (the robots have no collision geometry)");
 
     if (const Node* checks = find(doc, "checks"))
@@ -827,16 +834,34 @@ class SceneReader {
   }
 
   // A request line of a batch run (docs/scene-format.md "Batch runs"):
-  // {"id", "body", "motion", "checks", "clearance"}.  `out.id` is set first,
+  // {"id", "body", "motion" or "robot", "path"; "checks", "clearance"}.  `out.id` is set first,
   // so that a request rejected later is still reported under its id.
   void read_request(RequestLine& out) const {
     const Path document;
     const Members doc = object(tree_.root, document);
     if (const Node* id = find(doc, "id")) out.id = compact(*id);
-    reject_unknown_keys(doc, document, {"id", "body", "motion", "checks", "clearance"});
+    reject_unknown_keys(doc, document, {"id", "body", "motion", "robot", "path", "checks", "clearance"});
     const Path body_path = document.member("body");
     const Node* b = find(doc, "body");
-    if (!b) fail(body_path, "missing required field (a body name of the environment, or a body)");
+    if (const Node* r = find(doc, "robot")) {
+      // A robot's path segment: {"robot": name, "path": {"times", "positions"}}.
+      const Path robot_path = document.member("robot");
+      if (b) fail(body_path, "a request moves a body or a robot, not both");
+      if (find(doc, "motion")) fail(document.member("motion"), "a robot moves along its \"path\", not a motion");
+      if (r->kind != Node::Kind::String || text(*r).empty()) fail(robot_path, "expected a robot name (a string)");
+      out.robot = text(*r);
+      const Path path_path = document.member("path");
+      const Node* p = find(doc, "path");
+      if (!p) fail(path_path, "missing required field");
+      JointPath jp;
+      joint_path_values(*p, path_path, jp);
+      out.path_times = std::move(jp.times);
+      out.path_positions = std::move(jp.positions);
+      read_request_checks(out);
+      return;
+    }
+    if (find(doc, "path")) fail(document.member("path"), "a path moves a robot (give \"robot\")");
+    if (!b) fail(body_path, "missing required field (a body name of the environment, or a body; or a robot)");
     if (b->kind == Node::Kind::String) {
       out.body = text(*b);
       if (out.body.empty()) fail(body_path, "a body name must be a non-empty string");
@@ -859,6 +884,13 @@ class SceneReader {
     if (!moved.moves()) fail(motion_path, "the motion must move (a one-pose motion is not a request)");
     out.motion = std::move(moved.motion);
     out.trajectory = std::move(moved.trajectory);
+    read_request_checks(out);
+  }
+
+  // A request's "checks" and "clearance".
+  void read_request_checks(RequestLine& out) const {
+    const Path document;
+    const Members doc = object(tree_.root, document);
     if (const Node* c = find(doc, "checks")) {
       const Path checks_path = document.member("checks");
       const std::span<const Node> list = array(*c, checks_path);
@@ -1449,10 +1481,31 @@ class SceneReader {
     return out;
   }
 
+  // A joint-space path's "times" and "positions" (exact numbers; their
+  // meaning is checked by validate_joint_path).
+  void joint_path_values(const Node& node, const Path& path, JointPath& jp) const {
+    const Members pobj = object(node, path);
+    reject_unknown_keys(pobj, path, {"times", "positions"});
+    const Path tpath = path.member("times"), qpath = path.member("positions");
+    const Node* times_node = find(pobj, "times");
+    if (!times_node) fail(tpath, "missing required field");
+    for (std::size_t k = 0; const Node& t : array(*times_node, tpath)) jp.times.push_back(number(t, tpath.index(k++)));
+    const Node* positions = find(pobj, "positions");
+    if (!positions) fail(qpath, "missing required field");
+    const std::span<const Node> rows = array(*positions, qpath);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const Path row_path = qpath.index(k);
+      std::vector<Exact> row;
+      for (std::size_t c = 0; const Node& v : array(rows[k], row_path)) row.push_back(number(v, row_path.index(c++)));
+      jp.positions.push_back(std::move(row));
+    }
+  }
+
   // A robot of the scene after its links were added (for default checks).
   struct RobotInScene {
     std::shared_ptr<const PlacedRobot> robot;
     RobotBodies bodies;
+    std::vector<std::string> joints;
     bool self_collision = false;
     std::vector<std::pair<std::string, std::string>> allowed;
   };
@@ -1505,22 +1558,10 @@ class SceneReader {
       const Path ppath = rpath.member("path");
       const Node* pnode = find(obj, "path");
       if (!pnode) fail(ppath, "missing required field");
-      const Members pobj = object(*pnode, ppath);
-      reject_unknown_keys(pobj, ppath, {"times", "positions"});
+      joint_path_values(*pnode, ppath, jp);
       const Path tpath = ppath.member("times"), qpath = ppath.member("positions");
-      const Node* times_node = find(pobj, "times");
-      if (!times_node) fail(tpath, "missing required field");
-      for (std::size_t k = 0; const Node& t : array(*times_node, tpath)) jp.times.push_back(number(t, tpath.index(k++)));
-      const Node* positions = find(pobj, "positions");
-      if (!positions) fail(qpath, "missing required field");
-      const std::span<const Node> rows = array(*positions, qpath);
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        const Path row_path = qpath.index(k);
-        std::vector<Exact> row;
-        for (std::size_t c = 0; const Node& v : array(rows[k], row_path)) row.push_back(number(v, row_path.index(c++)));
-        jp.positions.push_back(std::move(row));
-      }
       RobotInScene placed;
+      placed.joints = jp.joints;
       placed.robot = std::make_shared<const PlacedRobot>(model, name, base);
       try {
         placed.bodies = add_robot(scene, *placed.robot, jp);
@@ -1601,6 +1642,10 @@ class SceneReader {
   std::string source_;
   std::filesystem::path base_;
   const Tree& tree_;
+
+ public:
+  // Where read() puts the scene's robots (none: nowhere).
+  std::vector<SceneRobot>* robots_out_ = nullptr;
 };
 
 Scene parse_with_base(const std::string& text, const std::string& source, const std::filesystem::path& base) {
@@ -1647,8 +1692,12 @@ Scene parse_scene_text(const std::string& text, const std::string& source) {
   return parse_with_base(text, source, base);
 }
 
-Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base) {
-  return parse_with_base(text, source, base);
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
+                       std::vector<SceneRobot>& robots) {
+  const Tree tree = parse_json(text, source);
+  SceneReader reader(source, base, tree);
+  reader.robots_out_ = &robots;
+  return reader.read();
 }
 
 void parse_request_line(const std::string& text, const std::string& source, const std::string& base,
@@ -1657,14 +1706,26 @@ void parse_request_line(const std::string& text, const std::string& source, cons
   SceneReader(source, base, tree).read_request(out);
 }
 
-Scene parse_scene_file(const std::string& path) {
+namespace {
+
+Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots) {
   // Only a regular file, and at most kMaxFileBytes of it (docs/scene-format.md).
   std::string text = read_regular_file(path, kMaxFileBytes);
   // The text goes once it is parsed: for a large scene it is a good part of
   // the memory that reading the scene takes.
   const Tree tree = parse_json(text, path);
   std::string().swap(text);
-  return SceneReader(path, std::filesystem::path(path).parent_path(), tree).read();
+  SceneReader reader(path, std::filesystem::path(path).parent_path(), tree);
+  reader.robots_out_ = robots;
+  return reader.read();
+}
+
+}  // namespace
+
+Scene parse_scene_file(const std::string& path) { return read_scene_file(path, nullptr); }
+
+Scene parse_scene_file(const std::string& path, std::vector<SceneRobot>& robots) {
+  return read_scene_file(path, &robots);
 }
 
 }  // namespace tmcert

@@ -4,6 +4,7 @@
 #include "src/scene/model.h"
 #include "src/scene/solid.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -11,11 +12,25 @@
 
 namespace tmcert {
 
+class PlacedRobot;
+
+// A robot of a scene ("robots"), kept so that it can be moved along other
+// paths (batch runs, docs/scene-format.md "Batch runs").
+struct SceneRobot {
+  std::shared_ptr<const PlacedRobot> robot;
+  std::vector<std::string> joints;  // the path's column order, as written
+  std::vector<int> bodies;          // its link bodies (indices into Scene::bodies)
+  bool self_collision = false;
+  std::vector<std::pair<std::string, std::string>> allowed_pairs;  // link names
+};
+
 // Reads and validates a scene file.  Every number is read exactly from its
 // JSON text.  Throws InputError with a one-line message naming the file and
 // the JSON path (e.g. "scene.json: bodies[1].motion.weights[2]: weight must
 // be positive") on any malformed input.
 Scene parse_scene_file(const std::string& path);
+// The same, and the scene's robots into `robots`.
+Scene parse_scene_file(const std::string& path, std::vector<SceneRobot>& robots);
 
 // A user string made safe for a one-line message: quoted, control
 // characters escaped, strings longer than 60 characters shortened.
@@ -31,16 +46,23 @@ std::pair<std::vector<Vec3E>, std::vector<ConvexPiece>> split_scene_polygon(cons
 // The same for a document held in memory; `source` names it in messages.
 Scene parse_scene_text(const std::string& text, const std::string& source);
 
-// The same, with mesh and URDF files relative to the directory `base`.
-Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base);
+// The same, with mesh and URDF files relative to the directory `base`, and
+// the scene's robots into `robots`.
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
+                       std::vector<SceneRobot>& robots);
 
 // One request of a batch run (docs/scene-format.md "Batch runs"), read as
 // scenes are: exact numbers, the same motion objects and messages.
 struct RequestLine {
   std::string id = "null";   // the "id" value as compact JSON, numbers as written
-  std::string body;          // the moved body's name
+  std::string body;          // the moved body's name (empty for a robot)
+  // A robot's path segment: the robot's name, and its path in the column
+  // order of the environment's "joints" (else empty).
+  std::string robot;
+  std::vector<Exact> path_times;
+  std::vector<std::vector<Exact>> path_positions;
   std::optional<Body> inline_body;  // the body itself, when the request gives it
-  // The motion, as Body::motion and Body::trajectory hold one (it moves).
+  // A body's motion, as Body::motion and Body::trajectory hold one (it moves).
   std::optional<Motion> motion;
   std::optional<Trajectory> trajectory;
   std::vector<std::string> checks;  // bodies to check against; empty: every other body

@@ -470,6 +470,14 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     start[k] = start_pose_of(motions[k - 1]);
   }
   const Exact t1 = motions.front().t1();
+  // A check cleared by boxes alone, without a search.
+  auto prefiltered = [&](int a, int b) {
+    CheckResult r;
+    r.bodies = {a, b};
+    r.verdict = Verdict::Safe;
+    r.stats.prefiltered = true;
+    out.checks.push_back(r);
+  };
   for (const auto& [a, b] : pairs) {
     // A mover whose swept box misses the box of the whole environment never
     // meets it, insides of solids included (every point of a solid lies in
@@ -477,11 +485,7 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     // solids places a surface exactly at every check.
     if (b == 0 && swept[a].valid && !index_->nodes.empty() &&
         !EnvironmentIndex::overlap(swept[a].lo, swept[a].hi, index_->nodes[0].lo, index_->nodes[0].hi)) {
-      CheckResult r;
-      r.bodies = {a, b};
-      r.verdict = Verdict::Safe;
-      r.stats.prefiltered = true;
-      out.checks.push_back(r);
+      prefiltered(a, b);
       continue;
     }
     // A solid's inside counts as contact: at the start, a component of one
@@ -519,11 +523,7 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     const bool cleared = b == 0 ? swept[a].valid && !index_->any(swept[a].lo, swept[a].hi)
                                 : disjoint(swept[a], swept[b]);
     if (cleared) {
-      CheckResult r;
-      r.bodies = {a, b};
-      r.verdict = Verdict::Safe;
-      r.stats.prefiltered = true;
-      out.checks.push_back(r);
+      prefiltered(a, b);
       continue;
     }
     // A mover's start against the environment through the index (the

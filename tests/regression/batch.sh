@@ -78,6 +78,17 @@ if cmp -s "$work/out" "$work/example.jsonl"; then pass; else fail "--threads 2: 
 expect_code 1 "-o" "$tmcert" batch "$example/requests.jsonl" --scene "$example/environment.json" -o "$work/o.jsonl"
 if [ ! -s "$work/out" ] && cmp -s "$work/o.jsonl" "$work/example.jsonl"; then pass; else fail "-o: other bytes"; fi
 
+# Inside a solid without touching its surface: a collision (the start
+# containment), not cleared by the boxes; and the same cube far from
+# everything: safe.
+cat >"$work/inside.jsonl" <<'END'
+{"id":"inside","body":"cube","checks":["pillar"],"motion":{"type":"keyframes","poses":[{"translation":["1.5","1.5",1]},{"translation":["1.5","1.5",2]}]}}
+{"id":"far","body":"cube","motion":{"type":"keyframes","poses":[{"translation":[20,20,20]},{"translation":[21,20,20]}]}}
+END
+expect_code 1 "inside a solid" "$tmcert" batch "$work/inside.jsonl" --scene "$example/environment.json"
+if grep -q '"id":"inside","verdict":"collision".*"features":\["cube [^"]*","pillar interior"' "$work/out" &&
+  grep -q '"id":"far","verdict":"safe"' "$work/out"; then pass; else fail "inside a solid: $(cat "$work/out")"; fi
+
 # ---------------------------------------------------------------- 2. shards
 # 26 requests: the example's, repeated with other ids (blank lines between
 # do not count), so that every shard holds several, of both verdicts.
@@ -215,6 +226,64 @@ while IFS= read -r line; do
   if [ -n "$single" ] && [ "$single" = "$batch" ]; then pass; else fail "request $k: batch $batch, verify $single"; fi
   k=$((k + 1))
 done <"$work/example.jsonl"
+
+# ---------------------------------------------------------------- 6. robot path segments
+# The environment examples/robot/reach-panel.json (the arm, a panel); its
+# path is not used: each request gives one.
+robots=$(cd "$2/robot" && pwd)
+cat >"$work/robot.jsonl" <<'END'
+{"id":"sweep","robot":"arm","path":{"times":[0,1],"positions":[[0,0,0],[-1,0,0]]}}
+{"id":"away","robot":"arm","path":{"times":[0,1,2],"positions":[[0,0,0],["1/2","-0.5",1],[1,-1,0]]}}
+{"id":"limits","robot":"arm","path":{"times":[0,1],"positions":[[0,0,0],[0,9,0]]}}
+{"id":"columns","robot":"arm","path":{"times":[0,1],"positions":[[0,0],[1,0]]}}
+{"id":"ghost","robot":"hand","path":{"times":[0,1],"positions":[[0,0,0],[1,0,0]]}}
+{"id":"link","body":"arm/forearm","motion":{"type":"keyframes","poses":[{"translation":[0,0,0]},{"translation":[1,0,0]}]}}
+{"id":"both","robot":"arm","motion":{"type":"keyframes","poses":[{"translation":[0,0,0]},{"translation":[1,0,0]}]}}
+END
+expect_code 1 "robot requests" "$tmcert" batch "$work/robot.jsonl" --scene "$robots/reach-panel.json"
+cp "$work/out" "$work/robot-out.jsonl"
+got=$(python3 -c '
+import json, sys
+for line in open(sys.argv[1]):
+    r = json.loads(line)
+    print(r["index"], r["id"], r.get("verdict", "-"), r.get("error", "-"))
+' "$work/robot-out.jsonl")
+while IFS='|' read -r index needle; do
+  if printf '%s\n' "$got" | grep -q "^$index .*$needle"; then pass; else
+    fail "robot line $index: no '$needle' in: $(printf '%s\n' "$got" | grep "^$index ")"
+  fi
+done <<'END'
+0|sweep collision -
+1|away safe -
+2|limits - line 3: path.positions\[1\]\[1\]: waypoint 1: joint "elbow"
+3|columns - line 4: path.positions\[0\]
+4|ghost - line 5: robot: unknown robot "hand"
+5|link - line 6: body: "arm/forearm" is a link of a robot
+6|both - line 7: motion: a robot moves along its "path"
+END
+# The first two against verify of the scene with their path.
+python3 - "$robots" "$work/robot.jsonl" "$work" <<'END'
+import json, sys
+env = json.load(open(sys.argv[1] + "/reach-panel.json"))
+for k, line in enumerate(open(sys.argv[2])):
+    if k > 1:
+        break
+    scene = json.loads(json.dumps(env))
+    scene["robots"][0]["path"] = json.loads(line)["path"]
+    scene["robots"][0]["urdf"] = sys.argv[1] + "/" + scene["robots"][0]["urdf"]
+    json.dump(scene, open("%s/robot-%d.json" % (sys.argv[3], k), "w"))
+END
+for k in 0 1; do
+  timeout 120 "$tmcert" verify --json "$work/robot-$k.json" >"$work/verify.json" 2>"$work/err"
+  single=$(python3 -c '
+import json, sys
+print(sorted((c["bodies"][0], c["bodies"][1], c["verdict"]) for c in json.load(open(sys.argv[1]))["checks"]))' \
+    "$work/verify.json")
+  batch=$(sed -n "$((k + 1))p" "$work/robot-out.jsonl" | python3 -c '
+import json, sys
+print(sorted((c["bodies"][0], c["bodies"][1], c["verdict"]) for c in json.loads(sys.stdin.read())["checks"]))')
+  if [ "$single" = "$batch" ] && [ "$single" != "[]" ]; then pass; else fail "robot request $k: batch $batch, verify $single"; fi
+done
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
