@@ -1,5 +1,5 @@
-// simplest_between (src/verify/search.h): the rational with the smallest
-// denominator in [lo, hi].  Iterative and bounded: ends with tens of
+// simplest_between (kernels/real_roots.h, used by src/verify/search.h):
+// the rational with the smallest denominator in [lo, hi].  Iterative and bounded: ends with tens of
 // thousands of digits (ratios of consecutive Fibonacci numbers, one partial
 // quotient per step) used to overflow the stack of the recursive version.
 #include "src/verify/search.h"
@@ -89,7 +89,7 @@ BOOST_AUTO_TEST_CASE(huge_fibonacci_ratios_end_in_the_interval) {
   const Exact neg = tmcert::detail::simplest_between(-hi, -lo);
   BOOST_TEST(neg == -got);
   // Within the bound, the simplest rational itself.
-  const auto [lo2, hi2] = fibonacci_ratios(static_cast<int>(tmcert::detail::kSimplestTerms) - 30);
+  const auto [lo2, hi2] = fibonacci_ratios(static_cast<int>(tmcert::kSimplestTerms) - 30);
   BOOST_TEST(tmcert::detail::simplest_between(lo2, hi2) == reference(lo2, hi2));
 }
 
