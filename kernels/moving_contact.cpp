@@ -189,7 +189,7 @@ bool in_polygon(const ZPoint& v, const Points& poly, const V3& n, RealRoot& r, c
 // Where two coplanar segments (points 0 1 and 2 3 of p) meet at r: the
 // indices of the points that locate it, or nothing.
 std::optional<std::vector<int>> meet(const Points& p, RealRoot& r, const PolyZ& w = kNoFactor) {
-  const V3 da = diff(p[1], p[0]), db = diff(p[3], p[2]);
+  const V3 da = reduced_all(diff(p[1], p[0]), w), db = reduced_all(diff(p[3], p[2]), w);
   const V3 n = cross(da, db);
   if (zero_at(n, r, w)) {
     // Parallel (or a segment reduced to a point): they meet exactly when an
@@ -285,7 +285,8 @@ class Solver {
 
   // Edges p[0] p[1] and p[2] p[3].
   std::optional<Found> edge_edge(const Points& p) const {
-    const PolyZ d = reduced(dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0])));
+    const V3 da = reduced_all(diff(p[1], p[0]), positive_), db = reduced_all(diff(p[3], p[2]), positive_);
+    const PolyZ d = reduced(dot(cross(da, db), diff(p[2], p[0])));
     if (d.empty()) {
       // In one plane throughout (parallel, coplanar or degenerate): the
       // segments first meet at the start or with an endpoint on the other.
