@@ -92,6 +92,24 @@ PolyZ reduced(PolyZ p, const PolyZ& w) {
   return p;
 }
 
+// a / w^k for the largest k with w^k dividing every component (w positive
+// on the piece or empty): the same direction at every u of the piece, so
+// every sign and zero of a product with it is that of a (§3). A fixed
+// polygon's points are w y: its edges lose a factor w, its area vector w².
+V3 reduced_all(V3 a, const PolyZ& w) {
+  if (w.empty() || is_zero(a)) return a;
+  for (;;) {
+    V3 q;
+    for (int i = 0; i < 3; ++i) {
+      if (a[i].empty()) continue;
+      std::optional<PolyZ> d = divided(a[i], w);
+      if (!d) return a;
+      q[i] = std::move(*d);
+    }
+    a = std::move(q);
+  }
+}
+
 CGAL::Sign sign(const PolyZ& p, RealRoot& r, const PolyZ& w = kNoFactor) {
   if (p.empty()) return CGAL::ZERO;
   if (w.empty() || r.is_rational()) return sign_at(p, r);
@@ -152,8 +170,9 @@ bool on_segment(const ZPoint& v, const ZPoint& e0, const ZPoint& e1, RealRoot& r
 }
 
 // Vertex v (coplanar with the polygon at r) in the closed convex polygon.
-bool in_polygon(const ZPoint& v, const Points& poly, RealRoot& r, const PolyZ& w = kNoFactor) {
-  const V3 n = area_vector(poly);
+// n: the polygon's area vector (area_vector(poly)), computed once by callers
+// that test several roots.
+bool in_polygon(const ZPoint& v, const Points& poly, const V3& n, RealRoot& r, const PolyZ& w = kNoFactor) {
   const std::size_t m = poly.size();
   if (zero_at(n, r, w)) {  // collapsed: the polygon is the union of its edges
     for (std::size_t k = 0; k < m; ++k)
@@ -161,7 +180,7 @@ bool in_polygon(const ZPoint& v, const Points& poly, RealRoot& r, const PolyZ& w
     return false;
   }
   for (std::size_t k = 0; k < m; ++k) {
-    const V3 e = diff(poly[(k + 1) % m], poly[k]);
+    const V3 e = reduced_all(diff(poly[(k + 1) % m], poly[k]), w);
     if (sign(dot(cross(e, diff(v, poly[k])), n), r, w) == CGAL::NEGATIVE) return false;
   }
   return true;
@@ -170,7 +189,7 @@ bool in_polygon(const ZPoint& v, const Points& poly, RealRoot& r, const PolyZ& w
 // Where two coplanar segments (points 0 1 and 2 3 of p) meet at r: the
 // indices of the points that locate it, or nothing.
 std::optional<std::vector<int>> meet(const Points& p, RealRoot& r, const PolyZ& w = kNoFactor) {
-  const V3 da = diff(p[1], p[0]), db = diff(p[3], p[2]);
+  const V3 da = reduced_all(diff(p[1], p[0]), w), db = reduced_all(diff(p[3], p[2]), w);
   const V3 n = cross(da, db);
   if (zero_at(n, r, w)) {
     // Parallel (or a segment reduced to a point): they meet exactly when an
@@ -245,12 +264,13 @@ class Solver {
   // Vertex p[0] and the polygon p[1..].
   std::optional<Found> vertex_face(const Points& p) const {
     const Points poly(p.begin() + 1, p.end());
-    const PolyZ d = reduced(dot(area_vector(poly), diff(p[0], poly[0])));
+    const V3 n = reduced_all(area_vector(poly), positive_);
+    const PolyZ d = reduced(dot(n, diff(p[0], poly[0])));
     if (d.empty()) {
       // In the polygon's plane throughout (or the polygon is collapsed): the
       // vertex first meets it at the start or on an edge.
       RealRoot start = rational_root(u0_);
-      if (in_polygon(p[0], poly, start, positive_)) return Found{start, {0}};
+      if (in_polygon(p[0], poly, n, start, positive_)) return Found{start, {0}};
       std::optional<Found> best;
       const int m = static_cast<int>(poly.size());
       for (int k = 0; k < m; ++k) best = first(std::move(best), vertex_edge(p, 0, 1 + k, 1 + (k + 1) % m));
@@ -258,14 +278,15 @@ class Solver {
     }
     for (RealRoot& r : roots(d)) {
       if (past_bound(r)) break;
-      if (in_polygon(p[0], poly, r, positive_)) return Found{r, {0}};
+      if (in_polygon(p[0], poly, n, r, positive_)) return Found{r, {0}};
     }
     return std::nullopt;
   }
 
   // Edges p[0] p[1] and p[2] p[3].
   std::optional<Found> edge_edge(const Points& p) const {
-    const PolyZ d = reduced(dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0])));
+    const V3 da = reduced_all(diff(p[1], p[0]), positive_), db = reduced_all(diff(p[3], p[2]), positive_);
+    const PolyZ d = reduced(dot(cross(da, db), diff(p[2], p[0])));
     if (d.empty()) {
       // In one plane throughout (parallel, coplanar or degenerate): the
       // segments first meet at the start or with an endpoint on the other.
@@ -353,7 +374,7 @@ bool ContactSolver::in_polygon(const MovingPoint& v, const std::vector<MovingPoi
   const std::vector<MovingPoint> vertex{v};
   Scaled s = scaled({&vertex, &poly});
   const Points p(s.points.begin() + 1, s.points.end());
-  return ::tmcert::in_polygon(s.points[0], p, r);
+  return ::tmcert::in_polygon(s.points[0], p, area_vector(p), r);
 }
 
 bool ContactSolver::segments_meet(const MovingPoint& a0, const MovingPoint& a1, const MovingPoint& b0,
@@ -370,7 +391,8 @@ bool ContactSolver::touch(const std::vector<MovingPoint>& a, const std::vector<M
     if (b.size() == 1) return ::tmcert::on_segment(p[0], p[1], p[1], r);  // a segment reduced to the point b
     if (b.size() == 2) return ::tmcert::on_segment(p[0], p[1], p[2], r);
     const Points poly(p.begin() + 1, p.end());
-    return sign(dot(area_vector(poly), diff(p[0], poly[0])), r) == CGAL::ZERO && ::tmcert::in_polygon(p[0], poly, r);
+    const V3 n = area_vector(poly);
+    return sign(dot(n, diff(p[0], poly[0])), r) == CGAL::ZERO && ::tmcert::in_polygon(p[0], poly, n, r);
   }
   if (a.size() == 2 && b.size() == 2)
     return sign(dot(cross(diff(p[1], p[0]), diff(p[3], p[2])), diff(p[2], p[0])), r) == CGAL::ZERO && meet(p, r);

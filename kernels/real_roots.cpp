@@ -398,7 +398,13 @@ std::vector<RealRoot> real_roots(const PolyZ& p0, const Exact& a, const Exact& b
   return out;
 }
 
-void refine(RealRoot& r) {
+namespace {
+
+// One bisection of r's interval given slo, poly's sign at r.lo: it is the
+// sign of poly just left of the root (its only root in [lo, hi], poly
+// nonzero at lo), so it stays the same while lo moves, and loops of
+// bisections evaluate it once.
+void bisect(RealRoot& r, CGAL::Sign slo) {
   if (r.is_rational()) return;
   const Exact m = (r.lo + r.hi) / 2;
   const CGAL::Sign sm = sign_at(r.poly, m);
@@ -406,8 +412,15 @@ void refine(RealRoot& r) {
     r.lo = r.hi = m;
     return;
   }
-  if (sm == sign_at(r.poly, r.lo)) r.lo = m;
+  if (sm == slo) r.lo = m;
   else r.hi = m;
+}
+
+}  // namespace
+
+void refine(RealRoot& r) {
+  if (r.is_rational()) return;
+  bisect(r, sign_at(r.poly, r.lo));
 }
 
 namespace {
@@ -476,6 +489,8 @@ void qir_step(RealRoot& r, unsigned long& e, unsigned long max_e) {
 
 void refine_to(RealRoot& r, const Exact& width) {
   // Quadratic interval refinement when far from the width, else bisection.
+  if (r.is_rational()) return;
+  const CGAL::Sign slo = sign_at(r.poly, r.lo);  // the same for every valid interval of r
   unsigned long e = 2;
   for (int k = 0; !r.is_rational() && r.hi - r.lo > width; ++k) {
     if (k > kMaxBisections) throw ExactLimit("refine_to: too many bisections");
@@ -487,7 +502,7 @@ void refine_to(RealRoot& r, const Exact& width) {
       const unsigned long max_e = static_cast<unsigned long>(std::max(1l, bits));
       qir_step(r, e, max_e);
     } else {
-      refine(r);
+      bisect(r, slo);
     }
   }
 }
@@ -500,6 +515,7 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   if (q.empty()) return CGAL::ZERO;
   if (r.is_rational()) return sign_at(q, r.lo);
   if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
+  const CGAL::Sign slo = sign_at(r.poly, r.lo);
   // At low degrees the gcd below costs a few pseudo-remainders, less than
   // one exact interval enclosure: decide q(r) = 0 first (the contact
   // predicates of linear motions, often exactly zero at a contact).
@@ -511,7 +527,7 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   // A few bisections first: cheaper than the gcd below when q(r) != 0
   // (high degrees, large coefficients).
   for (int k = 0; k < 24; ++k) {
-    refine(r);
+    bisect(r, slo);
     if (r.is_rational()) return sign_at(q, r.lo);
     if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
   }
@@ -524,7 +540,7 @@ CGAL::Sign sign_at(const PolyZ& q, RealRoot& r) {
   }
   // q(r) != 0: a small enough interval around r proves q's sign.
   for (int k = 0; k < kMaxBisections; ++k) {
-    refine(r);
+    bisect(r, slo);
     if (r.is_rational()) return sign_at(q, r.lo);
     if (const CGAL::Sign s = range_sign(q, r.lo, r.hi); s != CGAL::ZERO) return s;
   }

@@ -1,5 +1,5 @@
-// simplest_between (src/verify/search.h): the rational with the smallest
-// denominator in [lo, hi].  Iterative and bounded: ends with tens of
+// simplest_between (kernels/real_roots.h, used by src/verify/search.h):
+// the rational with the smallest denominator in [lo, hi].  Iterative and bounded: ends with tens of
 // thousands of digits (ratios of consecutive Fibonacci numbers, one partial
 // quotient per step) used to overflow the stack of the recursive version.
 #include "src/verify/search.h"
