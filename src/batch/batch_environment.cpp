@@ -43,7 +43,7 @@ BatchEnvironment::BatchEnvironment(Scene scene, std::vector<SceneRobot> robots, 
                                    std::string base, bool stats)
     : scene_(std::move(scene)), robots_list_(std::move(robots)), options_(options), base_(std::move(base)),
       stats_(stats) {
-  if (!(options_.epsilon > 0)) throw InputError("epsilon: must be > 0");
+  if (!options_.epsilon || !(*options_.epsilon > 0)) throw InputError("epsilon: must be given and > 0");
   robot_of_.assign(scene_.bodies.size(), -1);
   for (std::size_t r = 0; r < robots_list_.size(); ++r) {
     robots_.emplace(robots_list_[r].robot->name(), static_cast<int>(r));
