@@ -11,7 +11,8 @@ block tagged `sh` (a line "```sh"):
 - the lines after it, up to the next "$ " line or the end of the block, are
   its expected stdout, compared line by line (trailing blanks ignored):
   a line ending in " ..." matches any line that starts with what precedes
-  the "...", and a line that is exactly "..." matches any number of lines;
+  the " ..." (so a prefix may end in the middle of a word or a JSON
+  line), and a line that is exactly "..." matches any number of lines;
 - exit code: a line "# exit N" among the expected lines (not part of the
   output) says that the command exits with N; without one it must exit 0.
 
@@ -92,8 +93,7 @@ def commands_of(path):
 
 def line_matches(pattern, actual):
     if pattern.endswith(" ..."):
-        prefix = pattern[:-3]
-        return actual.startswith(prefix) or actual == prefix.rstrip()
+        return actual.startswith(pattern[:-4])
     return actual == pattern
 
 

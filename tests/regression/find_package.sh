@@ -50,7 +50,11 @@ for target in tmcert::tmcert tmcert::tmcert_static; do
   fi
 done
 # The shared example needs the shared library; the static one does not.
-if ldd "$work/app-tmcert/drop_box" | grep -q 'libtmcert\.so' && ! ldd "$work/app-tmcert_static/drop_box" | grep -q 'libtmcert\.so'; then
+# (ldd's output is read whole first: `ldd | grep -q` under pipefail fails
+# whenever grep stops reading early and ldd dies of SIGPIPE.)
+shared_libs=$(ldd "$work/app-tmcert/drop_box")
+static_libs=$(ldd "$work/app-tmcert_static/drop_box")
+if grep -q 'libtmcert\.so' <<<"$shared_libs" && ! grep -q 'libtmcert\.so' <<<"$static_libs"; then
   passed=$((passed + 1))
 else
   fail "drop_box is not linked as expected (shared: libtmcert.so; static: none)"
