@@ -1,6 +1,7 @@
 // What the public API (include/tmcert/) wraps: the internal scene and
 // result behind Scene and Result, and the conversions between internal and
-// public values.  Only src/api/*.cpp include this.
+// public values.  Only src/api/*.cpp and the OMPL adapter
+// (src/ompl/public_ompl.cpp) include this.
 //
 // Internal headers come first: the public headers put a using-directive
 // for tmcert::api into namespace tmcert, after which an unqualified name
@@ -10,12 +11,14 @@
 #pragma once
 
 #include "src/scene/model.h"
+#include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
 #include "tmcert/errors.h"
 #include "tmcert/numbers.h"
 #include "tmcert/result.h"
 #include "tmcert/scene.h"
+#include "tmcert/verify.h"
 
 #include <memory>
 #include <new>
@@ -26,6 +29,7 @@ namespace tmcert::api {
 
 struct Scene::Impl {
   std::shared_ptr<const tmcert::Scene> scene;
+  std::vector<tmcert::SceneRobot> robots;  // its "robots" (for the OMPL adapter, src/ompl/public_ompl.cpp)
 };
 
 struct Result::Impl {
@@ -39,6 +43,14 @@ struct Result::Impl {
 
 // The exact value of q with its nearest double.
 Rational to_rational(const tmcert::Exact& q);
+
+// A witness as Result shows it; `bodies` are what c.bodies index.
+Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::CheckResult& c, const tmcert::Witness& w);
+
+// The command line's rules for the options (src/cli/main.cpp), with the
+// option's name in the message; epsilon and max_depth default to the
+// scene's (epsilon may stay absent: each check's own default).
+tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o);
 
 // Runs f, turning the internal exceptions into the public ones (same
 // messages).  std::bad_alloc and other standard exceptions pass through.

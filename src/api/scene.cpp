@@ -3,15 +3,17 @@
 
 #include "src/api/internal.h"
 
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 namespace tmcert::api {
 
 namespace {
 
-Scene wrap(tmcert::Scene&& scene) {
+Scene wrap(tmcert::Scene&& scene, std::vector<tmcert::SceneRobot>&& robots) {
   return Scene(std::make_shared<const Scene::Impl>(
-      Scene::Impl{std::make_shared<const tmcert::Scene>(std::move(scene))}));
+      Scene::Impl{std::make_shared<const tmcert::Scene>(std::move(scene)), std::move(robots)}));
 }
 
 }  // namespace
@@ -19,11 +21,25 @@ Scene wrap(tmcert::Scene&& scene) {
 Scene::Scene(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
 Scene Scene::from_file(const std::string& path) {
-  return public_errors([&] { return wrap(tmcert::parse_scene_file(path)); });
+  return public_errors([&] {
+    std::vector<tmcert::SceneRobot> robots;
+    tmcert::Scene scene = tmcert::parse_scene_file(path, robots);
+    return wrap(std::move(scene), std::move(robots));
+  });
 }
 
 Scene Scene::from_json(const std::string& text, const std::string& source) {
-  return public_errors([&] { return wrap(tmcert::parse_scene_text(text, source)); });
+  return public_errors([&] {
+    // As parse_scene_text(text, source): files relative to the directory
+    // of `source` when it names a file, else to the current directory.
+    std::error_code ec;
+    std::string base;
+    if (!source.empty() && std::filesystem::is_regular_file(source, ec))
+      base = std::filesystem::path(source).parent_path().string();
+    std::vector<tmcert::SceneRobot> robots;
+    tmcert::Scene scene = tmcert::parse_scene_text(text, source, base, robots);
+    return wrap(std::move(scene), std::move(robots));
+  });
 }
 
 std::vector<std::string> Scene::body_names() const {

@@ -411,8 +411,10 @@ std::string SceneBuilder::to_json() const {
 Scene SceneBuilder::build() const {
   const std::string text = to_json();
   try {
+    std::vector<tmcert::SceneRobot> robots;  // URDF files are absolute (add_robot)
+    tmcert::Scene scene = tmcert::parse_scene_text(text, kSource, "", robots);
     return Scene(std::make_shared<const Scene::Impl>(
-        Scene::Impl{std::make_shared<const tmcert::Scene>(tmcert::parse_scene_text(text, kSource))}));
+        Scene::Impl{std::make_shared<const tmcert::Scene>(std::move(scene)), std::move(robots)}));
   } catch (const tmcert::InputError& e) {
     // The reader names bodies and robots by their index; add the name.
     std::string message = e.what();

@@ -58,7 +58,9 @@ AlgebraicNumber public_root(const tmcert::AlgebraicTime& a) {
   return out;
 }
 
-Witness public_witness(const tmcert::Scene& scene, const tmcert::CheckResult& c, const tmcert::Witness& w) {
+}  // namespace
+
+Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::CheckResult& c, const tmcert::Witness& w) {
   Witness out;
   out.t = w.root ? Time{public_root(*w.root)} : Time{to_rational(w.t)};
   out.features = w.features;
@@ -76,10 +78,12 @@ Witness public_witness(const tmcert::Scene& scene, const tmcert::CheckResult& c,
   if (w.points) out.points = std::array{public_point((*w.points)[0]), public_point((*w.points)[1])};
   if (w.displacement) {
     out.displacement = public_point(*w.displacement);
-    out.displaced = scene.bodies[c.bodies[w.displaced]].name;
+    out.displaced = bodies[c.bodies[w.displaced]].name;
   }
   return out;
 }
+
+namespace {
 
 // As result_json writes a check (src/cli/report.cpp).
 CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& c) {
@@ -92,7 +96,7 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   out.clearance = to_rational(c.clearance);
   out.clearance_violated = c.clearance > 0 && c.verdict == tmcert::Verdict::Collision;
   out.enlarged_model = !a.enlarged.empty() || !b.enlarged.empty();
-  if (c.witness) out.witness = public_witness(scene, c, *c.witness);
+  if (c.witness) out.witness = public_witness(scene.bodies, c, *c.witness);
   if (c.first_contact) {
     // With an algebraic witness the bracket ends at its time, and starts
     // there too when that is the exact first contact.
@@ -117,8 +121,8 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   return out;
 }
 
-// The command line's rules for its options (src/cli/main.cpp), with the
-// option's name in the message.
+}  // namespace
+
 tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o) {
   tmcert::VerifyOptions options;
   options.kernel = same_enum<tmcert::KernelKind>(o.kernel);
@@ -147,8 +151,6 @@ tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyO
     throw InputError("certificate: the fast kernel is not certified; use the filtered or the exact kernel");
   return options;
 }
-
-}  // namespace
 
 Result verify(const Scene& scene, const VerifyOptions& options) {
   return public_errors([&] {
