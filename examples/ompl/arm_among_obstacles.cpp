@@ -12,8 +12,8 @@
 // Exit status: 0 when a path was found and every edge of it is certified
 // safe, 1 otherwise.  Usage: ompl_arm_among_obstacles [--seed N]
 // [--time SECONDS] [--urdf FILE]
-#include "src/ompl/certified_arm.h"
-#include "src/scene/parse.h"
+#include <tmcert/ompl.h>
+#include <tmcert/tmcert.h>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -24,7 +24,9 @@
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <string>
+#include <vector>
 
 #ifndef TMCERT_SOURCE_DIR
 #define TMCERT_SOURCE_DIR "."
@@ -35,13 +37,21 @@ namespace og = ompl::geometric;
 
 namespace {
 
-const char* kObstacles = R"({"format": "tmcert-scene/1", "bodies": [{"name": "obstacles", "polygons": [
-  [[-1,-1,"-0.01"],[1,-1,"-0.01"],[1,1,"-0.01"],[-1,1,"-0.01"]],
-  [["0.29","-0.03",0],["0.29","0.03",0],["0.29","0.03","0.5"],["0.29","-0.03","0.5"]],
-  [["0.35","-0.03",0],["0.35","0.03",0],["0.35","0.03","0.5"],["0.35","-0.03","0.5"]],
-  [["0.29","-0.03",0],["0.35","-0.03",0],["0.35","-0.03","0.5"],["0.29","-0.03","0.5"]],
-  [["0.29","0.03",0],["0.35","0.03",0],["0.35","0.03","0.5"],["0.29","0.03","0.5"]],
-  [["0.29","-0.03","0.5"],["0.35","-0.03","0.5"],["0.35","0.03","0.5"],["0.29","0.03","0.5"]]]}]})";
+// The arm at the origin and the obstacles (exact decimals).  A scene's
+// robot has a joint path; the planner ignores it (here: standing at q0).
+tmcert::Scene planning_scene(const std::string& urdf, const std::vector<std::string>& joints,
+                             const std::vector<tmcert::Number>& q0) {
+  tmcert::SceneBuilder b;
+  b.add_body("floor").polygon({{-1, -1, "-0.01"}, {1, -1, "-0.01"}, {1, 1, "-0.01"}, {-1, 1, "-0.01"}});
+  b.add_body("pillar")
+      .polygon({{"0.29", "-0.03", 0}, {"0.29", "0.03", 0}, {"0.29", "0.03", "0.5"}, {"0.29", "-0.03", "0.5"}})
+      .polygon({{"0.35", "-0.03", 0}, {"0.35", "0.03", 0}, {"0.35", "0.03", "0.5"}, {"0.35", "-0.03", "0.5"}})
+      .polygon({{"0.29", "-0.03", 0}, {"0.35", "-0.03", 0}, {"0.35", "-0.03", "0.5"}, {"0.29", "-0.03", "0.5"}})
+      .polygon({{"0.29", "0.03", 0}, {"0.35", "0.03", 0}, {"0.35", "0.03", "0.5"}, {"0.29", "0.03", "0.5"}})
+      .polygon({{"0.29", "-0.03", "0.5"}, {"0.35", "-0.03", "0.5"}, {"0.35", "0.03", "0.5"}, {"0.29", "0.03", "0.5"}});
+  b.add_robot("arm", urdf).path(joints, {0, 1}, {q0, q0});
+  return b.build();
+}
 
 }  // namespace
 
@@ -62,32 +72,24 @@ int main(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
-  std::shared_ptr<const tmcert::PlacedRobot> arm;
-  tmcert::Body obstacles;
+  const std::vector<std::string> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
+  const double q0[6] = {-1.2, 1.0, 0.8, 0, 0.3, 0}, q1[6] = {1.2, 1.0, 0.8, 0, 0.3, 0};
+  auto space = std::make_shared<ob::RealVectorStateSpace>(joints.size());
+  og::SimpleSetup setup(space);
+  std::shared_ptr<ob::MotionValidator> validator;
   try {
-    arm = std::make_shared<const tmcert::PlacedRobot>(tmcert::load_urdf(urdf), "arm", tmcert::Pose{});
-    obstacles = tmcert::parse_scene_text(kObstacles, "obstacles").bodies[0];
+    const tmcert::Scene scene = planning_scene(urdf, joints, std::vector<tmcert::Number>(q0, q0 + 6));
+    space->setBounds(tmcert::joint_bounds(scene, "arm", joints));  // the URDF limits, rounded inward
+    tmcert::VerifyOptions options;
+    options.epsilon = tmcert::Number("1/10000");  // 0.1 mm
+    // Every link against the floor and the pillar, and self-collision on.
+    validator = tmcert::use_certified_arm(setup.getSpaceInformation(), scene, "arm", joints, true, {}, options);
   } catch (const tmcert::InputError& e) {
     std::cerr << e.what() << "\n";
     return 3;
   }
-  const std::vector<std::string> joints = {"j1", "j2", "j3", "j4", "j5", "j6"};
-  auto space = std::make_shared<ob::RealVectorStateSpace>(joints.size());
-  ob::RealVectorBounds bounds(joints.size());
-  for (std::size_t k = 0; k < joints.size(); ++k) {  // the URDF limits
-    const tmcert::RobotJoint& j = arm->model().joints[arm->model().joint_index(joints[k])];
-    bounds.setLow(k, CGAL::to_double(*j.lower));
-    bounds.setHigh(k, CGAL::to_double(*j.upper));
-  }
-  space->setBounds(bounds);
-  og::SimpleSetup setup(space);
-  tmcert::VerifyOptions options;
-  options.epsilon = tmcert::Exact(1, 10000);  // 0.1 mm
-  const auto validator =
-      tmcert::use_certified_arm(setup.getSpaceInformation(), arm, joints, obstacles, true, {}, options);
 
   ob::ScopedState<ob::RealVectorStateSpace> start(space), goal(space);
-  const double q0[6] = {-1.2, 1.0, 0.8, 0, 0.3, 0}, q1[6] = {1.2, 1.0, 0.8, 0, 0.3, 0};
   for (int k = 0; k < 6; ++k) {
     start[k] = q0[k];
     goal[k] = q1[k];
@@ -95,7 +97,7 @@ int main(int argc, char** argv) {
   setup.setStartAndGoalStates(start, goal);
   setup.setPlanner(std::make_shared<og::RRTConnect>(setup.getSpaceInformation()));
   std::cout << "the straight joint edge from start to goal: "
-            << tmcert::to_string(validator->certify(start.get(), goal.get()).check.verdict) << "\n";
+            << tmcert::to_string(tmcert::certify_edge(*validator, start.get(), goal.get()).verdict) << "\n";
 
   const auto t0 = std::chrono::steady_clock::now();
   const ob::PlannerStatus status = setup.solve(seconds);
@@ -115,11 +117,11 @@ int main(int argc, char** argv) {
     for (std::size_t j = 0; j < joints.size(); ++j) std::cout << (j ? ", " : "") << q->values[j];
     std::cout << ")\n";
     if (k + 1 == path.getStateCount()) break;
-    const tmcert::EdgeCertificate edge = validator->certify(path.getState(k), path.getState(k + 1));
-    std::cout << "    edge " << k << " -> " << k + 1 << ": " << tmcert::to_string(edge.check.verdict);
+    const tmcert::EdgeResult edge = tmcert::certify_edge(*validator, path.getState(k), path.getState(k + 1));
+    std::cout << "    edge " << k << " -> " << k + 1 << ": " << tmcert::to_string(edge.verdict);
     if (!edge.problem.empty()) std::cout << " (" << edge.problem << ")";
     std::cout << "\n";
-    if (edge.check.verdict != tmcert::Verdict::Safe) ++failures;
+    if (edge.verdict != tmcert::Verdict::Safe) ++failures;
   }
   std::cout << (failures == 0 ? "every edge of the path is certified safe\n"
                               : std::to_string(failures) + " edge(s) not certified safe\n");

@@ -11,8 +11,8 @@
 // Exit status: 0 when a path was found and every edge of it is certified
 // safe, 1 otherwise (no path in the time limit, or an edge not certified).
 // Usage: ompl_rigid_passage [--seed N] [--time SECONDS]
-#include "src/ompl/certified_motion_validator.h"
-#include "src/scene/parse.h"
+#include <tmcert/ompl.h>
+#include <tmcert/tmcert.h>
 
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -95,7 +96,6 @@ int main(int argc, char** argv) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(seed);
 
-  const tmcert::Scene scene = tmcert::parse_scene_text(scene_text(), "rigid_passage");
   auto space = std::make_shared<ob::SE3StateSpace>();
   ob::RealVectorBounds bounds(3);
   bounds.setLow(0, -1.5);
@@ -106,9 +106,17 @@ int main(int argc, char** argv) {
   }
   space->setBounds(bounds);
   og::SimpleSetup setup(space);
-  tmcert::VerifyOptions options;
-  options.epsilon = tmcert::Exact(1, 1000);
-  const auto validator = tmcert::use_certified_se3(setup.getSpaceInformation(), scene.bodies[1], scene.bodies[0], options);
+  std::shared_ptr<ob::MotionValidator> validator;
+  try {
+    const tmcert::Scene scene = tmcert::Scene::from_json(scene_text(), "rigid_passage");
+    tmcert::VerifyOptions options;
+    options.epsilon = tmcert::Number("1/1000");
+    // The cube moves; every other body of the scene (the wall) is an obstacle.
+    validator = tmcert::use_certified_se3(setup.getSpaceInformation(), scene, "cube", options);
+  } catch (const tmcert::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 3;
+  }
 
   ob::ScopedState<ob::SE3StateSpace> start(space), goal(space);
   start->setXYZ(-1, 1.2, 0.5);
@@ -137,11 +145,11 @@ int main(int argc, char** argv) {
     print_state(path.getState(k));
     std::cout << "\n";
     if (k + 1 == path.getStateCount()) break;
-    const tmcert::EdgeCertificate edge = validator->certify(path.getState(k), path.getState(k + 1));
-    std::cout << "    edge " << k << " -> " << k + 1 << ": " << tmcert::to_string(edge.check.verdict);
+    const tmcert::EdgeResult edge = tmcert::certify_edge(*validator, path.getState(k), path.getState(k + 1));
+    std::cout << "    edge " << k << " -> " << k + 1 << ": " << tmcert::to_string(edge.verdict);
     if (!edge.problem.empty()) std::cout << " (" << edge.problem << ")";
     std::cout << "\n";
-    if (edge.check.verdict != tmcert::Verdict::Safe) ++failures;
+    if (edge.verdict != tmcert::Verdict::Safe) ++failures;
   }
   std::cout << (failures == 0 ? "every edge of the path is certified safe\n"
                               : std::to_string(failures) + " edge(s) not certified safe\n");
