@@ -22,10 +22,13 @@
 // tolerances, clearances, and solid obstacles next to other obstacles.
 //
 // Epsilon (the termination tolerance of each edge): VerifyOptions::epsilon,
-// else the scene's, else 1/1000 of the diagonal of the box of every body of
-// the scene as written (`tmcert batch` makes the same choice).  Also used:
-// kernel, max_depth (else the scene's), time_limit (per edge); threads and
-// certificate are not (edges are certified one at a time).
+// else the scene's, else 1/1000 of the diagonal of the box of everything
+// the scene's bodies sweep along their motions as written (`tmcert batch`
+// makes the same choice).  Also used: kernel (filtered or exact; the fast
+// kernel is not certified: InputError), max_depth (else the scene's),
+// time_limit (per check of an edge: one moving body against the obstacles
+// or another link), all_pairs; threads and certificate are not (an edge is
+// one search; no certificates of edges).
 //
 // This header is not installed with the library: the adapter is the
 // in-tree CMake target tmcert_ompl (add tmcert with add_subdirectory and

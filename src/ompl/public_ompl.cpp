@@ -24,6 +24,8 @@ namespace {
 // epsilon as the options give it, else the scene's, else the default of the
 // whole scene (as `tmcert batch`: FixedEnvironment needs one for all edges).
 tmcert::VerifyOptions edge_options(const tmcert::Scene& scene, const VerifyOptions& o) {
+  if (o.kernel == Kernel::Fast)
+    throw InputError("kernel: the fast kernel is not certified; the OMPL validator accepts only certified edges");
   tmcert::VerifyOptions options = internal_options(scene, o);
   if (!options.epsilon) options.epsilon = tmcert::default_epsilon(scene);
   options.threads = 1;          // an edge is one search; planners run edges in their own threads

@@ -138,6 +138,9 @@ BOOST_AUTO_TEST_CASE(input_errors) {
   tmcert::VerifyOptions bad;
   bad.epsilon = "-1";
   require_input_error([&] { tmcert::use_certified_se3(si, scene, "cube", bad); }, {"epsilon"});
+  tmcert::VerifyOptions fast;
+  fast.kernel = tmcert::Kernel::Fast;
+  require_input_error([&] { tmcert::use_certified_se3(si, scene, "cube", fast); }, {"kernel", "not certified"});
 
   auto joints = std::make_shared<ob::RealVectorStateSpace>(3);
   auto si_joints = std::make_shared<ob::SpaceInformation>(joints);
