@@ -3,7 +3,9 @@
 #   make test  - install missing Debian packages, build, run the whole test
 #                suite, then the sanitizer stage (make sanitize)
 #   make sanitize - the unit, crosscheck, property (fewer cases) and CLI
-#                suites again, and a short run of each fuzz target
+#                suites again (the CLI suite without the bundled
+#                examples' certificate round trips: minutes under ASan,
+#                covered by the normal run), and a short run of each fuzz target
 #                (tests/fuzz), in a second build folder with
 #                AddressSanitizer and UndefinedBehaviorSanitizer, where any
 #                report fails the run.  Built at -O1 (faster to compile than
