@@ -85,7 +85,7 @@ BOOST_AUTO_TEST_CASE(time_limit_returns_promptly) {
   const tmcert::Scene scene =
       tmcert::parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/resting-within-epsilon.json");
   tmcert::VerifyOptions options;
-  options.epsilon = Exact(1, 1000000000000LL);
+  options.epsilon = Exact(1, CGAL::Gmpz("1000000000000"));  // 1e-12 (a long long denominator would be cut to 32 bits)
   options.max_depth = 200;
   options.max_nodes = std::uint64_t(1) << 40;
   options.max_stops = std::uint64_t(1) << 40;
