@@ -44,7 +44,8 @@ for f in ccd interval interval_root_finder avx; do
   g++ $flags -c "$ti/src/tight_inclusion/$f.cpp" -o "$out/$f.o"
   objs+=("$out/$f.o")
 done
-g++ $flags "$here/bench/ccd_side_by_side.cpp" "${objs[@]}" "$build/libtmcert.a" -lgmp -lmpfr -lpthread \
+g++ $flags "$here/bench/ccd_side_by_side.cpp" "${objs[@]}" "$build/libtmcert.a" -lgmpxx -lgmp -lmpfr -lflint-arb -lflint \
+  -lurdfdom_model -ltinyxml -lconsole_bridge -lpthread \
   -o "$out/ccd_side_by_side"
 mapfile -t files < <(find "$queries" -name '*.csv' | sort)
 "$out/ccd_side_by_side" "$rounds" "${files[@]}"
