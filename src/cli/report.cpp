@@ -607,7 +607,8 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
     for (std::size_t k = 0; k < undecided.size() && k < kUndecidedShown; ++k) {
       const UndecidedInterval& u = undecided[k];
       // The stopped piece a witness was found in, up to the witness.
-      const bool before_witness = wit && !root && u.t1 == wit->t;
+      const bool before_witness =
+          wit && !root && u.t1 == wit->t && (u.reason == StopReason::Epsilon || u.reason == StopReason::Depth);
       out << "    undecided t in [" << to_decimal(u.t0).text << ", " << to_decimal(u.t1).text << "] ("
           << to_string(u.reason) << "): "
           << (before_witness ? "the bodies come within about epsilon there; the first contact lies in here or at the witness"

@@ -4,6 +4,8 @@
 // scenes of issue 21, finding 1: a point entering a solid after an undecided
 // stop at an enclosed pose, at a keyframe join, with two moving bodies; and
 // finding 2: the witness ends the claims ("not_searched").
+#include "src/certificate/check.h"
+#include "src/certificate/writer.h"
 #include "src/cli/report.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
@@ -154,6 +156,40 @@ BOOST_AUTO_TEST_CASE(the_witness_ends_the_claims) {
   const nlohmann::json& check = doc["checks"][0];
   BOOST_TEST(check["not_searched"][0] == nlohmann::json(to_string(t)));
   BOOST_TEST(check["not_searched"][1] == nlohmann::json(to_string(c.interval.second)));
+}
+
+// Certificates: the pieces after an undecided interval are claimed with
+// start claims at their run's start (exact poses).  Where that instant's
+// pose is only enclosed, the writer leaves the run to the undecided
+// intervals; the checker accepts the certificate either way.
+BOOST_AUTO_TEST_CASE(certificates_claim_runs_after_undecided_intervals_only_with_start_claims) {
+  {
+    const Scene scene = parse_scene_file(scene_path("solid-clearance-undecided-then-clear.json"));
+    VerifyOptions options;
+    options.record_cover = true;
+    const SceneResult r = verify_scene(scene, options);
+    BOOST_REQUIRE(r.checks[0].verdict == Verdict::Undecided);
+    const nlohmann::json cert = nlohmann::json::parse(certificate::certificate_json(scene, r));
+    const nlohmann::json& c = cert["checks"][0];
+    // A start claim at t0 and one where the run after the undecided interval starts.
+    BOOST_REQUIRE_EQUAL(c["start"].size(), 2u);
+    BOOST_TEST(c["start"][1]["t"] == nlohmann::json(to_string(r.checks[0].undecided.back().t1)));
+    BOOST_TEST(certificate::check_certificate(scene, cert, "cert").ok);
+  }
+  {
+    const Scene scene = parse_scene_file(scene_path("solid-graze-enclosed-run-start.json"));
+    VerifyOptions options;
+    options.record_cover = true;
+    const SceneResult r = verify_scene(scene, options);
+    const CheckResult& c = r.checks[0];
+    BOOST_REQUIRE(c.verdict == Verdict::Undecided);
+    BOOST_REQUIRE(c.undecided.back().t1 < Exact(1));  // the verifier certifies the run after it
+    const nlohmann::json cert = nlohmann::json::parse(certificate::certificate_json(scene, r));
+    const nlohmann::json& u = cert["checks"][0]["undecided"];
+    BOOST_TEST(u.back()[1] == nlohmann::json("1"));  // the certificate does not claim it
+    BOOST_TEST(cert["checks"][0]["start"].size() == 1u);
+    BOOST_TEST(certificate::check_certificate(scene, cert, "cert").ok);
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
