@@ -65,7 +65,6 @@ inline bool merge_result(CheckResult& total, const CheckResult& part) {
   for (const UndecidedInterval& u : part.undecided) {
     if (!total.undecided.empty() && total.undecided.back().t1 == u.t0 && total.undecided.back().reason == u.reason) {
       total.undecided.back().t1 = u.t1;
-      total.undecided.back().end_free = total.undecided.back().end_free && u.end_free;
     } else {
       total.undecided.push_back(u);
     }
@@ -438,13 +437,7 @@ struct Check {
   // to the parts that still have a live feature pair (all parts when a pair
   // of hierarchy nodes is still alive); then, with a tolerance or a
   // clearance, the distance witness.
-  //
-  // `free` (when given) is set when no witness is found and the test
-  // proves the configuration at u free of contact (surfaces apart for every
-  // simplex pair of those parts, and solids' insides decided exactly): with
-  // `alive` the pairs not cleared on a piece that starts free and ends at
-  // u, the bodies are then apart at u (proofs/partition.md §2).
-  bool try_witness(const Exact& u, const std::vector<PairRef>& alive, bool* free = nullptr) {
+  bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
     std::set<std::pair<int, int>> parts;
     bool all = false;
     for (const PairRef& p : alive) {
@@ -454,15 +447,11 @@ struct Check {
       }
       parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
     }
-    bool uncertain = false;
-    if (auto hit = static_test(u, all ? nullptr : &parts, &uncertain)) {
+    if (auto hit = static_test(u, all ? nullptr : &parts)) {
       set_witness(u, *hit);
       return true;
     }
-    const Apartness inside = interior_witness(u);
-    if (inside == Apartness::Contact || distance_witness(u, all ? nullptr : &parts)) return true;
-    if (free) *free = !uncertain && inside == Apartness::Free;
-    return false;
+    return interior_witness(u) == Apartness::Contact || distance_witness(u, all ? nullptr : &parts);
   }
 
   // A solid's inside counts as contact: a vertex of one body inside a
@@ -556,18 +545,14 @@ struct Check {
     if (options.record_cover) result.cleared.push_back({n.index, n.depth});
   }
 
-  // Records the piece as undecided; `end_free`: the configuration at its
-  // end is proven free (try_witness).
-  void record(const Node& n, StopReason reason, bool end_free = false) { record_range(n.u0(), n.u1(), reason, end_free); }
+  void record(const Node& n, StopReason reason) { record_range(n.u0(), n.u1(), reason); }
 
-  void record_range(const Exact& u0, const Exact& u1, StopReason reason, bool end_free) {
+  void record_range(const Exact& u0, const Exact& u1, StopReason reason) {
     const Exact t0 = scene_t(u0), t1 = scene_t(u1);
-    if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason) {
+    if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
       result.undecided.back().t1 = t1;
-      result.undecided.back().end_free = result.undecided.back().end_free && end_free;
-    } else {
-      result.undecided.push_back({t0, t1, reason, end_free});
-    }
+    else
+      result.undecided.push_back({t0, t1, reason});
     if (!result.first_contact) result.first_contact = std::pair{t0, t1};
   }
 
@@ -917,24 +902,21 @@ struct Check {
       // simplest one when anything is; a contact lasting over the piece is
       // found at any of them.  Exact static tests at deep dyadic times are
       // what a colliding check spends most on, so the likeliest goes first.
-      // The test at the end also tells whether the bodies are proven apart
-      // there (proofs/partition.md §2).
       const Exact mid = node.mid();
       const Exact end = node.u1();
       const Exact simple = curve_u(simplest_between(scene_t(node.u0()), scene_t(end)));
-      bool end_free = false;
       for (const Exact* u : {&simple, &mid, &end}) {
         if (u != &simple && *u == simple) continue;  // tried already
-        if (try_witness(*u, node.alive, *u == end ? &end_free : nullptr)) {
+        if (try_witness(*u, node.alive)) {
           // The piece before the witness was not cleared: undecided, for
           // the stop's reason (the witness ends the claims).
-          if (node.u0() < *u) record_range(node.u0(), *u, *stop, false);
+          if (node.u0() < *u) record_range(node.u0(), *u, *stop);
           const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
           result.first_contact = std::pair{lo, scene_t(*u)};
           return Outcome::Witness;
         }
       }
-      record(node, *stop, end_free);
+      record(node, *stop);
       ++stats.stops;
       return Outcome::Stopped;
     }
@@ -1252,12 +1234,13 @@ struct Check {
   // contact when the bodies are apart at its start.  In parameter order:
   // the bodies are apart at the range's start (its start check), and stay
   // so over a cleared run that starts apart; after an undecided interval
-  // they are known apart only when every stop in it ended with a clean end
-  // test (`end_free`) and it started apart.  A run that starts where the
-  // bodies are not known apart gets the test of the whole configuration
-  // there: free, the run stands; contact, that instant is the witness and
-  // nothing after it is claimed; neither, the run is undecided
-  // "after_undecided", and the next run is tested in turn.
+  // nothing is known (a stop's witness candidates test only the parts that
+  // own its live pairs, which need not hold a contact that began in the
+  // stop: an edge is listed with one of the faces that share it).  So a run
+  // that follows an undecided interval gets the test of the whole
+  // configuration at its start: free, the run stands; contact, that
+  // instant is the witness and nothing after it is claimed; neither, the
+  // run is undecided "after_undecided", and the next run is tested in turn.
   void secure_partition() {
     std::vector<UndecidedInterval>& list = result.undecided;
     // The end of the claims: the witness's time, else the range's end.
@@ -1291,7 +1274,7 @@ struct Check {
         }
       }
       if (k >= list.size()) break;
-      apart = apart && list[k].end_free;
+      apart = false;  // after an undecided interval
       cursor = list[k].t1;
     }
   }

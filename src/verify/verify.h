@@ -115,11 +115,6 @@ struct Witness {
 struct UndecidedInterval {
   Exact t0, t1;
   StopReason reason;
-  // The configuration at t1 is proven free of contact (solids' insides
-  // included): the end test of the stop that ended this interval
-  // (proofs/partition.md §2).  Internal to the search: a part cleared after
-  // an interval without it needs a test of its own start.
-  bool end_free = false;
 };
 
 struct CheckStats {
