@@ -28,6 +28,7 @@
 // per qualified name.  Only the library's own sources (src/api/) see both.
 #pragma once
 
+#include "tmcert/batch.h"
 #include "tmcert/certificate.h"
 #include "tmcert/errors.h"
 #include "tmcert/export.h"
