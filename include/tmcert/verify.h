@@ -17,8 +17,8 @@ namespace tmcert::api {
 struct Progress {
   // The share of the checks' work done: each check counts as one part of
   // the whole, and within a running check, the share of its parameter
-  // interval already decided.  Below 1 while any check is left; 1 only in
-  // the last call, after every check is done.  What verify() does before
+  // interval already decided.  Below 1 while any check is left; 1 once
+  // every check is done, and in the last call.  What verify() does before
   // the checks (bounding the sweeps) and within them (preparing a large
   // body) is named by `activity`, not hidden behind the fraction.
   double fraction = 0;

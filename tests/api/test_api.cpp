@@ -556,8 +556,8 @@ BOOST_AUTO_TEST_SUITE_END()
 BOOST_AUTO_TEST_SUITE(progress)
 
 // VerifyOptions::progress: reports while verify() runs, the fraction never
-// falls and stays below 1 until the last call, which has fraction 1 and
-// every check done.
+// falls and stays below 1 while a check is left; the last call has
+// fraction 1 and every check done.
 BOOST_AUTO_TEST_CASE(reports_are_honest) {
   const tmcert::Scene scene = tmcert::Scene::from_file(kExamples + "/gripper/gripper-safe.json");
   std::vector<tmcert::Progress> reports;
@@ -575,7 +575,9 @@ BOOST_AUTO_TEST_CASE(reports_are_honest) {
   BOOST_TEST(last.checks == r.checks().size());
   BOOST_TEST(last.checks_done == last.checks);
   for (std::size_t k = 0; k + 1 < reports.size(); ++k) {
-    BOOST_TEST(reports[k].fraction < 1.0, "report " << k << ": " << reports[k].fraction << " before the end");
+    // 1 only once every check is done (verify() may still be finishing).
+    BOOST_TEST((reports[k].fraction < 1.0 || reports[k].checks_done == reports[k].checks),
+               "report " << k << ": " << reports[k].fraction << " with a check left");
     BOOST_TEST(reports[k].fraction <= reports[k + 1].fraction, "report " << k << " goes back");
     BOOST_TEST(reports[k].checks_done <= reports[k].checks);
     BOOST_TEST(reports[k].seconds <= reports[k + 1].seconds);

@@ -134,7 +134,8 @@ def _build_extension(config_settings: Optional[Dict[str, str]]) -> Path:
     if cached_python and not _same_interpreter(cached_python):
         raise RuntimeError(f"tmcert_build: {build} is configured for another interpreter ({cached_python}); "
                            f"give another build-dir for {sys.executable}")
-    if cached_python is None:
+    generated = any((build / name).is_file() for name in ("Makefile", "build.ninja"))
+    if cached_python is None or not generated:  # not configured yet (or a configuration that failed)
         command = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release", "-DBUILD_TESTING=OFF",
                    "-DTMCERT_WITH_OMPL=OFF", "-DTMCERT_WITH_PYTHON=ON", "-DTMCERT_BUILD_BENCHMARKS=OFF",
                    f"-DPython3_EXECUTABLE={sys.executable}"]
@@ -198,7 +199,7 @@ def build_wheel(wheel_directory: str, config_settings: Optional[Dict[str, str]] 
     suffix = sysconfig.get_config_var("EXT_SUFFIX")
     files: Dict[str, bytes] = {}
     for source in sorted((ROOT / "src" / "python" / "tmcert").iterdir()):
-        if source.is_file() and not source.name.endswith(".pyc"):
+        if source.is_file() and (source.suffix in (".py", ".pyi") or source.name == "py.typed"):
             files[f"{NAME}/{source.name}"] = source.read_bytes()
     files[f"{NAME}/_tmcert{suffix}"] = (package / f"_tmcert{suffix}").read_bytes()
     wheel_name = f"{NAME}-{_version()}-{_tag()}.whl"

@@ -127,6 +127,10 @@ def _floats(values: Iterable[Any]) -> FloatArray:
     return tuple(tuple(v) if isinstance(v, tuple) else float(v) for v in values)
 
 
+def _point3(p: Sequence[Any]) -> Tuple[Fraction, Fraction, Fraction]:
+    return (p[0].fraction(), p[1].fraction(), p[2].fraction())
+
+
 def _point_float(p: Sequence[Any]) -> FloatArray:
     return _floats(c.approx for c in p)
 
@@ -172,7 +176,7 @@ class Witness:
     @staticmethod
     def _from(w: Any) -> "Witness":
         box = None if w.point_box is None else tuple((lo.fraction(), hi.fraction()) for lo, hi in w.point_box)
-        points = None if w.points is None else (_point(w.points[0]), _point(w.points[1]))
+        points = None if w.points is None else (_point3(w.points[0]), _point3(w.points[1]))
         return Witness(
             t=_time(w.t), t_float=float(w.t.value.approx), features=(w.features[0], w.features[1]),
             point=_point(w.point), point_box=box, point_float=_floats(w.point_approx),
@@ -432,7 +436,7 @@ def load(scene: "SceneLike") -> Scene:
     raise TypeError(f"expected a Scene, SceneBuilder, dict or file path, got {type(scene).__name__}")
 
 
-Scene.from_dict = staticmethod(scene_from_dict)  # type: ignore[attr-defined]
+Scene.from_dict = staticmethod(scene_from_dict)  # type: ignore[assignment]  # declared in _tmcert.pyi
 
 
 def _vertices(vertices: Any, what: str) -> Tuple[Any, Optional[list]]:
@@ -548,7 +552,7 @@ class Body:
         if xyz is not None:
             self._raw.points_xyz(xyz.ravel())
         else:
-            for p in exact:
+            for p in exact or []:
                 self._raw.point(p)
         return self
 
@@ -678,7 +682,8 @@ class Progress:
 
     ``fraction``: the share of the checks' work done (each check one part;
     within a running check, the share of its parameter interval decided),
-    below 1 while a check is left, 1 in the last call only.  ``activity``
+    below 1 while a check is left, 1 once every check is done (and in the
+    last call).  ``activity``
     says what the run does now ("checking a x b: preparing body ..."), for
     people; its wording is not an interface.
     """
@@ -708,7 +713,8 @@ def _progress_hook(progress: Optional[ProgressCallback], make: Callable[[Any], A
         return None
     if not callable(progress):
         raise TypeError(f"progress: expected a callable or None, got {progress!r}")
-    return lambda raw: progress(make(raw))
+    callback = progress
+    return lambda raw: callback(make(raw))
 
 
 def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str = "filtered",
