@@ -3,10 +3,15 @@
 # it with find_package(tmcert), once with the shared library and once with
 # the static one, and runs the examples: the scene built in code (drop_box)
 # and a bundled scene file (minimal).  Also checks that the installed
-# headers are the public ones only.
+# headers are the public ones only; with a third argument "ompl" (the tree
+# has its OMPL adapter), builds examples/ompl against the install with
+# find_package(tmcert COMPONENTS ompl); and configures tmcert as a
+# subproject without its tests' dependencies.
+#
+#   find_package.sh BUILD_DIR SOURCE_DIR [ompl]
 set -euo pipefail
 build=$1
-src=$2
+src=$(realpath "$2")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
@@ -62,8 +67,9 @@ fi
 # The OMPL adapter as a user gets it: find_package(tmcert COMPONENTS ompl)
 # and tmcert::ompl, for examples/ompl built on its own against the prefix;
 # the SE(3) example plans and certifies its path (exit 0).
-if [ -f "$work/prefix/lib/cmake/tmcert/tmcertOmplTargets.cmake" ] ||
-   [ -n "$(find "$work/prefix" -name tmcertOmplTargets.cmake)" ]; then
+if [ "${3:-}" = ompl ] && [ -z "$(find "$work/prefix" -name tmcertOmplTargets.cmake)" ]; then
+  fail "tmcert was built with its OMPL adapter, but the install has no tmcertOmplTargets.cmake"
+elif [ -n "$(find "$work/prefix" -name tmcertOmplTargets.cmake)" ]; then
   ompl_app="$work/app-ompl"
   if cmake -S "$src/examples/ompl" -B "$ompl_app" -DCMAKE_BUILD_TYPE=Release \
        -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/ompl.log" 2>&1 &&
