@@ -15,7 +15,7 @@ Configuration (``pip install . --config-settings KEY=VALUE`` or the
 environment):
 
 * ``build-dir`` / ``TMCERT_BUILD_DIR``: the CMake build folder (default:
-  ``build/python-<interpreter tag>`` under the source tree, kept between
+  ``build-python-<interpreter tag>`` in the source tree, kept between
   builds, so a second install only relinks what changed).  A build folder
   configured for another interpreter (another extension suffix) is refused.
 * ``jobs`` / ``CMAKE_BUILD_PARALLEL_LEVEL``: parallel compile jobs (default:
@@ -128,7 +128,10 @@ def _build_extension(config_settings: Optional[Dict[str, str]]) -> Path:
     if shutil.which("cmake") is None:
         raise RuntimeError("tmcert_build: cmake is not on the PATH (Debian: bash scripts/deps.sh installs it)")
     given = _setting(config_settings, "build-dir", "TMCERT_BUILD_DIR")
-    build = Path(given).resolve() if given else ROOT / "build" / f"python-{_tag()}"
+    # Default: beside the usual build folder, at the same depth, so that
+    # ccache (whose base_dir makes paths relative) finds the objects of a
+    # build of the tree made with the same compiler flags.
+    build = Path(given).resolve() if given else ROOT / f"build-python-{_tag()}"
     log: List[str] = []
     cached_python = _cached(build, "Python3_EXECUTABLE")
     if cached_python and not _same_interpreter(cached_python):
