@@ -64,7 +64,9 @@
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/config.h>
 #include <ompl/util/Console.h>
+#include <fcl/config.h>
 
 #include <algorithm>
 #include <atomic>
@@ -72,6 +74,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -90,6 +93,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// This thread's CPU time (the machine may be shared: wall time then counts
+// other processes' time slices).
+double cpu_now() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -306,27 +317,30 @@ int run_check(const std::string& cfg_path, const std::string& path_path, int rep
   const std::size_t n = states.size();
 
   // PathGeometric::check, timed
-  std::vector<double> times;
+  std::vector<double> times, cpu_times;
   bool valid = false;
   long calls = 0;
   int first_invalid = -1;
   for (int r = 0; r < std::max(reps, 1); ++r) {
     checker->calls = 0;
     const auto c0 = Clock::now();
+    const double u0 = cpu_now();
     bool ok = si->isValid(states[0]);
     int bad = ok ? -1 : -2;  // -2: the first state is invalid
     for (std::size_t j = 0; ok && j + 1 < n; ++j)
       if (!mv->checkMotion(states[j], states[j + 1])) ok = false, bad = static_cast<int>(j);
     times.push_back(since(c0));
+    cpu_times.push_back(cpu_now() - u0);
     valid = ok, calls = checker->calls, first_invalid = bad;
   }
   std::printf("{\"kind\":\"path\",\"states\":%zu,\"robot_triangles\":%zu,\"env_triangles\":%zu,"
               "\"robot_vertices\":%zu,\"out_of_bounds\":%d,\"extent\":%.17g,\"longest_valid_segment\":%.17g,"
-              "\"valid\":%s,\"first_invalid_edge\":%d,\"state_checks\":%ld,\"seconds\":%.9g,\"reps\":%d,"
-              "\"load_seconds\":%.9g,\"build_seconds\":%.9g}\n",
+              "\"valid\":%s,\"first_invalid_edge\":%d,\"state_checks\":%ld,\"seconds\":%.9g,\"cpu_seconds\":%.9g,"
+              "\"reps\":%d,\"load_seconds\":%.9g,\"build_seconds\":%.9g,\"fcl\":\"%s\",\"ompl\":\"%d.%d.%d\"}\n",
               n, robot.triangles.size() / 3, env.triangles.size() / 3, robot.vertices, out_of_bounds,
               space->getMaximumExtent(), space->getLongestValidSegmentLength(), valid ? "true" : "false",
-              first_invalid, calls, median(times), std::max(reps, 1), load_s, build_s);
+              first_invalid, calls, median(times), median(cpu_times), std::max(reps, 1), load_s, build_s, FCL_VERSION,
+              OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION);
 
   // every edge (none stops the others), and the states alone
   {
@@ -354,11 +368,12 @@ int run_check(const std::string& cfg_path, const std::string& path_path, int rep
       for (std::size_t k = 0; k + step < n; ++k) {
         checker->calls = 0;
         const auto c0 = Clock::now();
+        const double u0 = cpu_now();
         const bool ok = mv->checkMotion(states[k], states[k + step]);
-        const double s = since(c0);
+        const double u = cpu_now() - u0, s = since(c0);
         std::printf("{\"kind\":\"query\",\"from\":%zu,\"to\":%zu,\"valid\":%s,\"state_checks\":%ld,"
-                    "\"seconds\":%.9g}\n",
-                    k, k + step, ok ? "true" : "false", static_cast<long>(checker->calls), s);
+                    "\"seconds\":%.9g,\"cpu_seconds\":%.9g}\n",
+                    k, k + step, ok ? "true" : "false", static_cast<long>(checker->calls), s, u);
       }
   for (auto* s : states) si->freeState(s);
   return 0;
