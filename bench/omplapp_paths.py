@@ -24,15 +24,18 @@ one run:
     size, the time to write it (the verify run), `tmcert check` time, the
     peak memory of both (/usr/bin/time).
 
-Each tmcert run has a wall-clock timeout (--timeout, default 600 s; a run
-past it counts as `timeout`). Times are wall clock of whole processes
-(reading the scene and meshes, preparing the bodies, the search), and the
-search alone as the result's `stats.seconds`.
+Each tmcert run has a wall-clock timeout (--timeout, default 600 s; the
+run's process group is killed and it counts as `timeout`) and a memory
+limit (--memory-limit, default 4096 MiB, tmcert's own option: past it the
+run ends with exit 4, counted as `out of memory`). Times are the CPU time
+(user + system) and the wall time of whole processes (reading the scene and
+meshes, preparing the bodies, the search), from /usr/bin/time; OMPL's are
+the CPU time of the checks alone, in-process.
 
 Usage:
   bench/omplapp_paths.py OMPLAPP [--scenes DIR] [--tmcert build/tmcert]
                          [--tool build/tmcert_omplapp_fcl] [--only NAME ...] [--all]
-                         [--factors 10,100] [--timeout S] [--reps N]
+                         [--factors 10,100] [--timeout S] [--memory-limit MIB] [--reps N]
                          [--no-shortcuts] [--no-certificates] [--json OUT.json]
 OMPLAPP is the OMPL.app checkout (github.com/ompl/omplapp) or its resources/3D
 folder. Without it (or without the two programs) the benchmark prints
@@ -44,6 +47,7 @@ import argparse
 import json
 import os
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
@@ -65,13 +69,20 @@ def skip(message):
 
 
 def run_timed(cmd, timeout, cwd=None):
-    """Runs cmd under /usr/bin/time: (exit code or 'timeout', stdout, wall s, CPU s (user + system), peak MiB)."""
+    """Runs cmd under /usr/bin/time: (exit code or 'timeout', stdout, wall s, CPU s (user + system), peak MiB).
+
+    The run is a process group of its own, killed whole at the timeout (so
+    that no tmcert outlives /usr/bin/time)."""
     with tempfile.NamedTemporaryFile("r", suffix=".time") as tf:
         full = ["/usr/bin/time", "-f", "%e %U %S %M", "-o", tf.name] + cmd
         start = time.monotonic()
+        proc = subprocess.Popen(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=cwd,
+                                start_new_session=True)
         try:
-            proc = subprocess.run(full, capture_output=True, text=True, timeout=timeout, cwd=cwd)
+            out, _ = proc.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.communicate()
             return "timeout", "", time.monotonic() - start, None, None
         wall, cpu, rss = time.monotonic() - start, None, None
         try:
@@ -79,12 +90,15 @@ def run_timed(cmd, timeout, cwd=None):
             wall, cpu, rss = float(fields[-4]), float(fields[-3]) + float(fields[-2]), int(fields[-1]) / 1024.0
         except (ValueError, IndexError):
             pass
-        return proc.returncode, proc.stdout, wall, cpu, rss
+        return proc.returncode, out, wall, cpu, rss
+
+
+MEMORY_LIMIT = ["--memory-limit", "4096"]  # set from --memory-limit in main()
 
 
 def verify(tmcert, scene, timeout, epsilon=None, certificate=None):
     """tmcert verify --json: a dict with verdict, epsilon, nodes, search s, wall s, peak MiB, undecided."""
-    cmd = [tmcert, "verify", scene, "--json"]
+    cmd = [tmcert, "verify", scene, "--json"] + MEMORY_LIMIT
     if epsilon is not None:
         cmd += ["--epsilon", epsilon]
     if certificate is not None:
@@ -93,6 +107,9 @@ def verify(tmcert, scene, timeout, epsilon=None, certificate=None):
     r = {"wall": wall, "cpu": cpu, "rss": rss, "rc": rc}
     if rc == "timeout":
         r["verdict"] = "timeout"
+        return r
+    if rc == 4:
+        r["verdict"] = "out of memory"  # or an internal error: exit 4 either way
         return r
     try:
         doc = json.loads(out)
@@ -156,11 +173,14 @@ def main():
     ap.add_argument("--all", action="store_true", help="every problem with a stored path, not just the issues' seven")
     ap.add_argument("--factors", default="10,100", help="divide the default epsilon by these (comma-separated)")
     ap.add_argument("--timeout", type=float, default=600.0, help="per tmcert run, seconds")
+    ap.add_argument("--memory-limit", type=int, default=4096,
+                    help="MiB, passed to every tmcert run (--memory-limit; exit 4 past it)")
     ap.add_argument("--reps", type=int, default=3, help="runs of OMPL's whole-path check (median)")
     ap.add_argument("--no-shortcuts", action="store_true")
     ap.add_argument("--no-certificates", action="store_true")
     ap.add_argument("--json", help="write every measurement to this file")
     a = ap.parse_args()
+    MEMORY_LIMIT[1] = str(a.memory_limit)
     try:
         factors = [int(f) for f in a.factors.split(",") if f]
     except ValueError:
@@ -219,10 +239,11 @@ def main():
             if not a.no_certificates:
                 cert = os.path.join(work, f"{name}.cert")
                 c = verify(a.tmcert, scene, a.timeout, certificate=cert)
-                c["size"] = os.path.getsize(cert) if os.path.isfile(cert) else None
+                c["size"] = os.path.getsize(cert) if os.path.isfile(cert) and c["rc"] in (0, 1, 2) else None
                 if c["size"] is not None:
-                    rc, _, wall, cpu, rss = run_timed([a.tmcert, "check", cert, scene], a.timeout)
+                    rc, _, wall, cpu, rss = run_timed([a.tmcert, "check", cert, scene] + MEMORY_LIMIT, a.timeout)
                     c["check"] = {"rc": rc, "wall": wall, "cpu": cpu, "rss": rss}
+                if os.path.isfile(cert):
                     os.remove(cert)
                 res["certificate"] = c
                 print(f"   certificate: {c['verdict']}, {c['size']} bytes", file=sys.stderr, flush=True)
@@ -306,10 +327,10 @@ def report(results, factors, a):
     if any("queries" in r for r in results):
         print("Shortcut queries (waypoint k to k+2 and k+4), each a scene of its own, tmcert verify at default "
               "settings; the undecided ones again at the divided epsilons:\n")
-        print("| problem | queries | safe | collision | undecided | decided at eps/" + " / eps/".join(map(str, factors))
+        print("| problem | queries | safe | collision | undecided | timeout / other | decided at eps/" + " / eps/".join(map(str, factors))
               + " | tmcert CPU s (sum) | median | OMPL+FCL valid / invalid | OMPL CPU s (sum) "
               "| FCL valid, tmcert collision | FCL invalid, tmcert safe |")
-        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
         tot = {"n": 0, "safe": 0, "collision": 0, "undecided": 0, "cpu": 0.0, "fcl": 0.0, "fv": 0, "miss": 0,
                "false_inv": 0}
         tot_dec = [0] * len(factors)
@@ -330,7 +351,9 @@ def report(results, factors, a):
             fs = sum(q["fcl"]["cpu_seconds"] for q in qs)
             miss = sum(q["fcl"]["valid"] and q["verdict"] == "collision" for q in qs)
             false_inv = sum((not q["fcl"]["valid"]) and q["verdict"] == "safe" for q in qs)
-            print(f"| {r['name']} | {n} | {c['safe']} | {c['collision']} | {c['undecided']} | "
+            other = n - c["safe"] - c["collision"] - c["undecided"]
+            tot["other"] = tot.get("other", 0) + other
+            print(f"| {r['name']} | {n} | {c['safe']} | {c['collision']} | {c['undecided']} | {other} | "
                   + " / ".join(map(str, dec)) + f" | {cpu:.1f} | {med:.3f} | {fv} / {n - fv} | {fs:.3f} "
                   f"| {miss} | {false_inv} |")
             tot["n"] += n
@@ -342,7 +365,7 @@ def report(results, factors, a):
             tot["miss"] += miss
             tot["false_inv"] += false_inv
             tot_dec = [x + y for x, y in zip(tot_dec, dec)]
-        print(f"| all | {tot['n']} | {tot['safe']} | {tot['collision']} | {tot['undecided']} | "
+        print(f"| all | {tot['n']} | {tot['safe']} | {tot['collision']} | {tot['undecided']} | {tot.get('other', 0)} | "
               + " / ".join(map(str, tot_dec)) + f" | {tot['cpu']:.1f} | | {tot['fv']} / {tot['n'] - tot['fv']} "
               f"| {tot['fcl']:.3f} | {tot['miss']} | {tot['false_inv']} |\n")
         for r in results:
@@ -350,7 +373,7 @@ def report(results, factors, a):
                 if q["verdict"] == "undecided" and not any(
                         x["verdict"] in ("safe", "collision") for x in q.get("divided", {}).values()):
                     print(f"  {r['name']} {q['from']}-{q['to']}: undecided at every epsilon tried")
-                if q["verdict"] in ("timeout",) or q["verdict"].startswith("error"):
+                if q["verdict"] not in ("safe", "collision", "undecided"):
                     print(f"  {r['name']} {q['from']}-{q['to']}: {q['verdict']}")
         print()
 
