@@ -54,6 +54,10 @@
 //       checked, none stopping the others), and with --queries one line per
 //       shortcut query (waypoint k to k+2 and k to k+4: checkMotion, once
 //       each, wall time).
+//   tmcert_omplapp_fcl sample PROBLEM.cfg PATH.path FROM TO N
+//       FCL on N + 1 evenly spaced states of the straight edge from state
+//       FROM to state TO of the path (OMPL's interpolation): a line
+//       {"kind":"sample", "invalid": count, "first": s, "last": s}.
 // Exit status 0; 3 on bad usage or unreadable input (a message on stderr).
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -270,20 +274,34 @@ std::string dir_of(const std::string& path) {
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
 }
 
-int run_check(const std::string& cfg_path, const std::string& path_path, int reps, bool queries) {
+struct Problem {
+  Geometry robot, env;
+  double load_s = 0, build_s = 0;
+  std::shared_ptr<ob::SE3StateSpace> space;
+  ob::SpaceInformationPtr si;
+  std::shared_ptr<FclChecker> checker;
+  std::vector<ob::State*> states;
+  int out_of_bounds = 0;
+  ~Problem() {
+    for (auto* s : states) si->freeState(s);
+  }
+};
+
+// OMPL.app's SE3 setup of the problem, and the path's states.
+void setup(Problem& p, const std::string& cfg_path, const std::string& path_path) {
   const auto cfg = read_cfg(cfg_path);
   for (const char* key : {"robot", "world"})
     if (!cfg.count(key)) fail(cfg_path + ": [problem] has no " + key);
   const std::string dir = dir_of(cfg_path);
   auto t0 = Clock::now();
-  const Geometry robot = load_mesh(dir + "/" + cfg.at("robot"), true);
-  const Geometry env = load_mesh(dir + "/" + cfg.at("world"), false);
-  const double load_s = since(t0);
+  p.robot = load_mesh(dir + "/" + cfg.at("robot"), true);
+  p.env = load_mesh(dir + "/" + cfg.at("world"), false);
+  p.load_s = since(t0);
   t0 = Clock::now();
-  auto robot_model = build_model(robot), env_model = build_model(env);
-  const double build_s = since(t0);
+  auto robot_model = build_model(p.robot), env_model = build_model(p.env);
+  p.build_s = since(t0);
 
-  auto space = std::make_shared<ob::SE3StateSpace>();
+  p.space = std::make_shared<ob::SE3StateSpace>();
   ob::RealVectorBounds bounds(3);
   const char* axes[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k) {
@@ -296,23 +314,60 @@ int run_check(const std::string& cfg_path, const std::string& path_path, int rep
       if (bounds.low[k] > v) bounds.low[k] = v;
       if (bounds.high[k] < v) bounds.high[k] = v;
     }
-  space->setBounds(bounds);
-  auto si = std::make_shared<ob::SpaceInformation>(space);
-  auto checker = std::make_shared<FclChecker>(si, robot_model, env_model);
-  si->setStateValidityChecker(checker);
-  si->setup();  // DiscreteMotionValidator at the default resolution
+  p.space->setBounds(bounds);
+  p.si = std::make_shared<ob::SpaceInformation>(p.space);
+  p.checker = std::make_shared<FclChecker>(p.si, robot_model, env_model);
+  p.si->setStateValidityChecker(p.checker);
+  p.si->setup();  // DiscreteMotionValidator at the default resolution
 
-  const std::vector<State> path = read_path(path_path);
-  std::vector<ob::State*> states;
-  int out_of_bounds = 0;
-  for (const State& p : path) {
-    ob::State* s = si->allocState();
+  for (const State& st : read_path(path_path)) {
+    ob::State* s = p.si->allocState();
     auto* se3 = s->as<ob::SE3StateSpace::StateType>();
-    se3->setXYZ(p.x, p.y, p.z);
-    se3->rotation().x = p.qx, se3->rotation().y = p.qy, se3->rotation().z = p.qz, se3->rotation().w = p.qw;
-    if (!si->satisfiesBounds(s)) ++out_of_bounds;
-    states.push_back(s);
+    se3->setXYZ(st.x, st.y, st.z);
+    se3->rotation().x = st.qx, se3->rotation().y = st.qy, se3->rotation().z = st.qz, se3->rotation().w = st.qw;
+    if (!p.si->satisfiesBounds(s)) ++p.out_of_bounds;
+    p.states.push_back(s);
   }
+}
+
+// FCL on n + 1 evenly spaced states of the edge from state `from` to state
+// `to` (OMPL's interpolation): how many collide, and where.
+int run_sample(const std::string& cfg_path, const std::string& path_path, int from, int to, int n) {
+  Problem p;
+  setup(p, cfg_path, path_path);
+  const int m = static_cast<int>(p.states.size());
+  if (from < 0 || to < 0 || from >= m || to >= m || n < 1) fail("sample: FROM and TO must be states of the path, N >= 1");
+  ob::State* test = p.si->allocState();
+  int hits = 0;
+  double first = -1, last = -1;
+  for (int j = 0; j <= n; ++j) {
+    const double s = static_cast<double>(j) / n;
+    p.space->interpolate(p.states[from], p.states[to], s, test);
+    if (!p.checker->isValid(test)) {
+      ++hits;
+      if (first < 0) first = s;
+      last = s;
+    }
+  }
+  p.si->freeState(test);
+  std::printf("{\"kind\":\"sample\",\"from\":%d,\"to\":%d,\"states\":%d,\"invalid\":%d,\"first\":%.17g,"
+              "\"last\":%.17g}\n",
+              from, to, n + 1, hits, first, last);
+  return 0;
+}
+
+int run_check(const std::string& cfg_path, const std::string& path_path, int reps, bool queries) {
+  Problem p;
+  setup(p, cfg_path, path_path);
+  const Geometry& robot = p.robot;
+  const Geometry& env = p.env;
+  const double load_s = p.load_s, build_s = p.build_s;
+  const auto& space = p.space;
+  const auto& si = p.si;
+  const auto& checker = p.checker;
+  const std::vector<ob::State*>& states = p.states;
+  const int out_of_bounds = p.out_of_bounds;
+
   const auto mv = si->getMotionValidator();
   const std::size_t n = states.size();
 
@@ -375,7 +430,6 @@ int run_check(const std::string& cfg_path, const std::string& path_path, int rep
                     "\"seconds\":%.9g,\"cpu_seconds\":%.9g}\n",
                     k, k + step, ok ? "true" : "false", static_cast<long>(checker->calls), s, u);
       }
-  for (auto* s : states) si->freeState(s);
   return 0;
 }
 
@@ -395,7 +449,8 @@ int run_mesh(const std::string& path, bool robot) {
 void usage() {
   std::fprintf(stderr,
                "usage: tmcert_omplapp_fcl mesh FILE.dae [--robot]\n"
-               "       tmcert_omplapp_fcl check PROBLEM.cfg PATH.path [--reps N] [--queries]\n");
+               "       tmcert_omplapp_fcl check PROBLEM.cfg PATH.path [--reps N] [--queries]\n"
+               "       tmcert_omplapp_fcl sample PROBLEM.cfg PATH.path FROM TO N\n");
   std::exit(3);
 }
 
@@ -424,5 +479,6 @@ int main(int argc, char** argv) {
     }
     return run_check(argv[2], argv[3], reps, queries);
   }
+  if (mode == "sample" && argc == 7) return run_sample(argv[2], argv[3], std::atoi(argv[4]), std::atoi(argv[5]), std::atoi(argv[6]));
   usage();
 }

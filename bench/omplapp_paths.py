@@ -111,6 +111,9 @@ def verify(tmcert, scene, timeout, epsilon=None, certificate=None):
     if rc == 4:
         r["verdict"] = "out of memory"  # or an internal error: exit 4 either way
         return r
+    if rc not in (0, 1, 2, 3):
+        r["verdict"] = f"crash (exit {rc})"
+        return r
     try:
         doc = json.loads(out)
     except json.JSONDecodeError:
@@ -157,6 +160,18 @@ def undecided_edges(r):
     return sorted(edges)
 
 
+FINE = 100000  # states of FCL's cross-check of an edge OMPL passes and tmcert proves colliding
+
+
+def fine_check(tool, res):
+    """FCL on FINE + 1 states of each shortcut query that OMPL's check passed and tmcert proved colliding."""
+    for q in res.get("queries", []):
+        if q["fcl"]["valid"] and q["verdict"] == "collision" and "fine" not in q:
+            cmd = [tool, "sample", res["cfg"], res["path"], str(q["from"]), str(q["to"]), str(FINE)]
+            proc = subprocess.run(cmd, capture_output=True, text=True)
+            q["fine"] = json.loads(proc.stdout) if proc.returncode == 0 else {"error": proc.stderr.strip()}
+
+
 def fmt_s(x):
     if x is None:
         return "-"
@@ -179,8 +194,14 @@ def main():
     ap.add_argument("--no-shortcuts", action="store_true")
     ap.add_argument("--no-certificates", action="store_true")
     ap.add_argument("--json", help="write every measurement to this file")
+    ap.add_argument("--from-json", help="print the tables of a run saved with --json (runs nothing else)")
     a = ap.parse_args()
     MEMORY_LIMIT[1] = str(a.memory_limit)
+    if a.from_json:
+        with open(a.from_json) as f:
+            saved = json.load(f)
+        report(saved["results"], saved["factors"], argparse.Namespace(**saved["options"]))
+        return 0
     try:
         factors = [int(f) for f in a.factors.split(",") if f]
     except ValueError:
@@ -217,7 +238,8 @@ def main():
                     continue
             print(f"== {name}: {info['states']} states, robot {info['robot']['triangles']} / env "
                   f"{info['env']['triangles']} triangles", file=sys.stderr, flush=True)
-            res = {"name": name, "states": info["states"], "robot_triangles": info["robot"]["triangles"],
+            res = {"name": name, "cfg": cfg, "path": path, "states": info["states"],
+                   "robot_triangles": info["robot"]["triangles"],
                    "env_triangles": info["env"]["triangles"]}
             fcl = fcl_check(a.tool, cfg, path, a.reps, not a.no_shortcuts)
             res["fcl"] = {k: v for k, v in fcl.items() if k != "queries"}
@@ -263,6 +285,7 @@ def main():
                                 break
                     qs.append(r)
                 res["queries"] = qs
+                fine_check(a.tool, res)
                 print(f"   {len(qs)} shortcut queries: "
                       f"{sum(q['verdict'] == 'undecided' for q in qs)} undecided", file=sys.stderr, flush=True)
             results.append(res)
@@ -272,7 +295,9 @@ def main():
 
     if a.json:
         with open(a.json, "w") as f:
-            json.dump(results, f, indent=1, default=str)
+            json.dump({"results": results, "factors": factors,
+                       "options": {"timeout": a.timeout, "reps": a.reps, "memory_limit": a.memory_limit}},
+                      f, indent=1, default=str)
     report(results, factors, a)
     return 0
 
@@ -370,6 +395,13 @@ def report(results, factors, a):
               f"| {tot['fcl']:.3f} | {tot['miss']} | {tot['false_inv']} |\n")
         for r in results:
             for q in r.get("queries", []):
+                if q["fcl"]["valid"] and q["verdict"] == "collision":
+                    fine = q.get("fine", {})
+                    seen = (f"FCL on {fine['states']} evenly spaced states of the edge: {fine['invalid']} in collision"
+                            + (f", s in [{fine['first']:.5f}, {fine['last']:.5f}]" if fine["invalid"] else "")
+                            if "states" in fine else "no finer FCL check")
+                    print(f"  {r['name']} {q['from']}-{q['to']}: OMPL's {q['fcl']['state_checks']} states pass; "
+                          f"tmcert proves a contact at t = {q.get('witness_t')}; {seen}")
                 if q["verdict"] == "undecided" and not any(
                         x["verdict"] in ("safe", "collision") for x in q.get("divided", {}).values()):
                     print(f"  {r['name']} {q['from']}-{q['to']}: undecided at every epsilon tried")
