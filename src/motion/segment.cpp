@@ -5,6 +5,9 @@
 
 #include <CGAL/number_utils.h>
 
+#include <algorithm>
+#include <climits>
+
 namespace tmcert {
 
 namespace {
@@ -52,6 +55,21 @@ Interval isqrt(const Interval& x) { return CGAL::sqrt(x); }
 
 const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
+// L with |x| in (2^(L-1), 2^(L+1)), for x != 0: the bit lengths of the
+// numerator and denominator (n in [2^(a-1), 2^a), d in [2^(b-1), 2^b)).
+long log2_magnitude(const Exact& x) {
+  return static_cast<long>(mpz_sizeinbase(mpq_numref(x.mpq()), 2)) -
+         static_cast<long>(mpz_sizeinbase(mpq_denref(x.mpq()), 2));
+}
+
+// 2^e exactly.
+Exact power_of_two(long e) {
+  Exact out(1);
+  if (e >= 0) mpq_mul_2exp(out.mpq(), out.mpq(), static_cast<mp_bitcnt_t>(e));
+  else mpq_div_2exp(out.mpq(), out.mpq(), static_cast<mp_bitcnt_t>(-e));
+  return out;
+}
+
 bool all_zero(const std::array<Exact, 3>& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
 
 // Two rotations are equal, proven exactly (false also when unknown).
@@ -93,8 +111,19 @@ std::optional<std::array<Exact, 4>> exact_quaternion(const Rotation& r) {
   return std::nullopt;
 }
 
+Exact quaternion_scale(const std::array<Exact, 4>& q) {
+  long top = LONG_MIN;
+  for (const Exact& x : q)
+    if (x != 0) top = std::max(top, log2_magnitude(x));
+  return top == LONG_MIN ? Exact(1) : power_of_two(-top);
+}
+
 std::array<Interval, 4> unit_quaternion(const Rotation& r) {
-  if (const auto q = exact_quaternion(r)) {
+  if (auto q = exact_quaternion(r)) {
+    // Scaled exactly first (the same rotation), so that a quaternion of
+    // 1e-400 or 1e400 is not enclosed by [0, tiny] or [huge, inf].
+    const Exact f = quaternion_scale(*q);
+    for (Exact& x : *q) x *= f;
     const Interval n = validated::sqrt(qdot(*q, *q));
     return {to_interval((*q)[0]) / n, to_interval((*q)[1]) / n, to_interval((*q)[2]) / n, to_interval((*q)[3]) / n};
   }
@@ -204,6 +233,8 @@ std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, In
                                      (w[2] * T0[r] + 2 * w[1] * T1[r]) / 3, w[2] * T1[r]};
     for (int k = 0; k < 4; ++k) m.control_points[k][4 * r + 3] = wt[k] / weights[k];
   }
+  normalise_weights(m);  // |q|^2 of a quaternion of 1e300 is 1e600
+  m.nlerp = true;
   return m;
 }
 
@@ -224,6 +255,31 @@ void require_interpolable(const Pose& a, const Pose& b, Interpolation how) {
   if (!(d.inf() > 0) && !(d.sup() < 0))
     throw InputError("cannot prove which arc between the two rotations is shorter (they are 180 degrees apart or "
                      "within rounding of it)");
+}
+
+void normalise_weights(Motion& m) {
+  if (m.weights.empty()) return;
+  auto comfortable = [](const Exact& w) {
+    const long e = log2_magnitude(w);
+    return e > -32 && e < 32;  // w in (2^-32, 2^32)
+  };
+  if (std::all_of(m.weights.begin(), m.weights.end(), comfortable)) return;
+  // Coprime integers: times the lcm of the denominators, over the gcd of
+  // the numerators (both positive; the weights are positive).
+  CGAL::Gmpz g(0), l(1);
+  for (const Exact& w : m.weights) {
+    mpz_gcd(g.mpz(), g.mpz(), mpq_numref(w.mpq()));
+    mpz_lcm(l.mpz(), l.mpz(), mpq_denref(w.mpq()));
+  }
+  const Exact factor(l, g);
+  Exact top(0);
+  for (Exact& w : m.weights) {
+    w *= factor;
+    if (w > top) top = w;
+  }
+  if (comfortable(top) || log2_magnitude(top) < 0) return;
+  const Exact shift = power_of_two(-log2_magnitude(top));
+  for (Exact& w : m.weights) w *= shift;
 }
 
 Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
@@ -250,6 +306,7 @@ Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
   Motion out;
   out.t0 = t0;
   out.t1 = t1;
+  out.nlerp = m.nlerp;
   for (const auto& p : c) {
     const Exact& w = p[12];
     Mat34E cp;
@@ -257,6 +314,7 @@ Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
     out.control_points.push_back(cp);
     out.weights.push_back(w);
   }
+  normalise_weights(out);
   return out;
 }
 
@@ -306,10 +364,24 @@ class KeyframeModel final : public SegmentModel {
     RoundingGuard guard;
     // nlerp interpolates the quaternions as written (a matrix's: the
     // rational multiple exact_quaternion gives); slerp and screw the unit ones.
-    auto nlerp_quaternion = [](const Rotation& r) {
-      if (const auto q = exact_quaternion(r))
-        return Quat<Interval>{to_interval((*q)[0]), to_interval((*q)[1]), to_interval((*q)[2]), to_interval((*q)[3])};
-      return unit_quaternion(r);
+    // Both are multiplied by one positive power of two (the same rotations
+    // at the same speed) that brings a quaternion as written into the
+    // double range (1e300 or 1e-400 would overflow or vanish in |q|^2): the
+    // largest factor that keeps the larger end below 2 (an rpy end is a
+    // unit quaternion, factor 1).
+    Exact common(1);
+    if (how == Interpolation::Nlerp)
+      for (const Rotation* r : {&a.rotation, &b.rotation})
+        if (const auto q = exact_quaternion(*r)) common = std::min(common, quaternion_scale(*q));
+    auto nlerp_quaternion = [&common](const Rotation& r) {
+      if (const auto q = exact_quaternion(r)) {
+        Quat<Interval> out;
+        for (int i = 0; i < 4; ++i) out[i] = to_interval((*q)[i] * common);
+        return out;
+      }
+      const Quat<Interval> u = unit_quaternion(r);
+      const Interval f = to_interval(common);
+      return Quat<Interval>{u[0] * f, u[1] * f, u[2] * f, u[3] * f};
     };
     p0_ = how == Interpolation::Nlerp ? nlerp_quaternion(a.rotation) : unit_quaternion(a.rotation);
     p1_ = how == Interpolation::Nlerp ? nlerp_quaternion(b.rotation) : unit_quaternion(b.rotation);
