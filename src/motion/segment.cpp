@@ -408,18 +408,35 @@ class KeyframeModel final : public SegmentModel {
     sinc_theta_ = sinc(Jet(theta_)).v;
     if (how_ == Interpolation::Screw) {
       // Relative rotation d = conj(p0) p1 (w >= 0: the shorter arc), its
-      // angle phi and unit axis k; the relative translation in the frame
-      // of the first pose; the screw's pitch part along k and the point c
-      // on its axis: c = (t_perp + cot(phi/2) k x t_perp) / 2.
+      // angle phi; the relative translation td in the frame of the first pose.
       const Quat<Interval> conj0{p0_[0], -p0_[1], -p0_[2], -p0_[3]};
       const Quat<Interval> d = qmul(conj0, p1_);
       const Interval vnorm = isqrt(d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
       phi_ = Interval(2) * validated::atan2(vnorm, d[0]);
-      for (int i = 0; i < 3; ++i) k_[i] = d[i + 1] / vnorm;
       const std::array<Interval, 9> R0 = rotation_form(p0_);
       for (int i = 0; i < 9; ++i) r0_[i] = R0[i];
       std::array<Interval, 3> td;  // R0^T (t1 - t0)
       for (int i = 0; i < 3; ++i) td[i] = R0[i] * (t1_[0] - t0_[0]) + R0[3 + i] * (t1_[1] - t0_[1]) + R0[6 + i] * (t1_[2] - t0_[2]);
+      if (!(phi_.inf() > 0x1p-10)) {
+        // A small angle, possibly 0 within rounding (rotations equal up to
+        // rounding): the twist (omega, v) = log(T0^-1 T1) in forms regular
+        // at phi = 0 (proofs/enclosures.md section 3): omega = phi k =
+        // 2 (d1, d2, d3) / sinc(phi/2), v = V^-1 td = td - omega x td / 2 +
+        // C(phi) omega x (omega x td); the translation is then
+        // s v + s^2 f2(s phi) omega x v + s^3 f3(s phi) omega x (omega x v).
+        small_screw_ = true;
+        const Interval sinc_half = validated::factorial_series(phi_ / Interval(2), 1)[0];
+        for (int i = 0; i < 3; ++i) omega_[i] = Interval(2) * d[i + 1] / sinc_half;
+        const Interval c = validated::screw_inverse_coefficient(phi_);
+        const std::array<Interval, 3> wt = cross(omega_, td), wwt = cross(omega_, wt);
+        for (int i = 0; i < 3; ++i) v_[i] = td[i] - wt[i] / Interval(2) + c * wwt[i];
+        kc_ = cross(omega_, v_);   // omega x v
+        kkc_ = cross(omega_, kc_);  // omega x (omega x v)
+        return;
+      }
+      // The unit axis k, the screw's pitch part along k and the point c
+      // on its axis: c = (t_perp + cot(phi/2) k x t_perp) / 2.
+      for (int i = 0; i < 3; ++i) k_[i] = d[i + 1] / vnorm;
       along_ = k_[0] * td[0] + k_[1] * td[1] + k_[2] * td[2];
       std::array<Interval, 3> perp;
       for (int i = 0; i < 3; ++i) perp[i] = td[i] - along_ * k_[i];
@@ -435,7 +452,7 @@ class KeyframeModel final : public SegmentModel {
   PoseJet pose(const Jet& s) const override {
     PoseJet out;
     const Jet one(Interval(1));
-    if (how_ == Interpolation::Screw && !constant_) {
+    if (how_ == Interpolation::Screw && !constant_ && !small_screw_) {
       // A(s) = R(p0 (cos(s phi/2), sin(s phi/2) k)); a(s) = t0 + R0 (-sin(s phi) k x c
       //        - (1 - cos(s phi)) k x (k x c) + s along k).
       const Jet half = (phi_ / Interval(2)) * s, full = phi_ * s;
@@ -488,6 +505,16 @@ class KeyframeModel final : public SegmentModel {
       for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
       out[4 * r + 3] = Jet(t0_[r]) + (t1_[r] - t0_[r]) * s;
     }
+    if (small_screw_) {
+      // The rotation is slerp's (above, in its sinc form); the translation
+      // t0 + R0 (s v + s^2 f2(s phi) omega x v + s^3 f3(s phi) omega x (omega x v)).
+      const Jet x = phi_ * s, s2 = s * s, s3 = s2 * s;
+      const Jet a = s2 * factorial_series(x, 2), b = s3 * factorial_series(x, 3);
+      std::array<Jet, 3> local;
+      for (int i = 0; i < 3; ++i) local[i] = v_[i] * s + a * Jet(kc_[i]) + b * Jet(kkc_[i]);
+      for (int r = 0; r < 3; ++r)
+        out[4 * r + 3] = Jet(t0_[r]) + r0_[3 * r] * local[0] + r0_[3 * r + 1] * local[1] + r0_[3 * r + 2] * local[2];
+    }
     return out;
   }
 
@@ -508,9 +535,12 @@ class KeyframeModel final : public SegmentModel {
   Quat<Interval> p0_, p1_;
   std::array<Interval, 3> t0_, t1_;
   Interval theta_, sinc_theta_;
-  // Screw only.
+  // Screw only.  Away from phi = 0: the axis k, the pitch part `along`, k x c
+  // and k x (k x c); near it (small_screw_): omega, v, omega x v and
+  // omega x (omega x v) in kc_ and kkc_.
   Interval phi_, along_;
-  std::array<Interval, 3> k_, kc_, kkc_;
+  bool small_screw_ = false;
+  std::array<Interval, 3> k_, kc_, kkc_, omega_, v_;
   std::array<Interval, 9> r0_;
 };
 
