@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -475,12 +476,24 @@ std::string readable_box(const std::array<std::array<Exact, 2>, 3>& box) {
   return centre + ") ± " + half + ")";
 }
 
-// What to try when a check stops undecided for `reason`.
-std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason) {
+// The epsilon a hint suggests: a tenth of the check's, unless that is
+// still larger than the check's whole box (1000 times its default
+// epsilon, the diagonal of its two bodies' box), where no smaller epsilon
+// of that size can help: then the default (a given epsilon of 1e16 for
+// bodies of size 1 gets the suggestion 0.00173205, not 1e15).
+Exact smaller_epsilon(const Scene& scene, const CheckResult& c) {
+  const Exact tenth = c.epsilon / 10;
+  const Exact fallback = default_epsilon(scene.bodies[c.bodies[0]], scene.bodies[c.bodies[1]]);
+  return tenth > 1000 * fallback ? fallback : tenth;
+}
+
+// What to try when a check stops undecided for `reason`.  `smaller` is
+// the epsilon a hint suggests (smaller_epsilon).
+std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason, const Exact& smaller) {
   switch (reason) {
     case StopReason::Epsilon:
       return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
-             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(c.epsilon / 10).text;
+             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(smaller).text;
     case StopReason::Depth:
       if (r.max_depth < 62)
         return "the subdivision reached its depth limit (" + std::to_string(r.max_depth) + "); try --max-depth " +
@@ -491,7 +504,7 @@ std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReaso
         return "the stop budget (" + std::to_string(r.max_stops) +
                " undecided pieces) was used up, so the rest was not searched: the bodies stay within about "
                "epsilon over a long stretch; try a smaller --epsilon, e.g. --epsilon " +
-               to_decimal(c.epsilon / 10).text;
+               to_decimal(smaller).text;
       if (r.max_nodes > 0 && c.stats.nodes >= r.max_nodes)
         return "the node budget (" + std::to_string(r.max_nodes) +
                " nodes per check) was used up; try a larger --epsilon, or check shorter pieces of the motion";
@@ -582,10 +595,12 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
       out << "\n";
     }
     const std::vector<UndecidedInterval> undecided = merged_undecided(c.undecided);
+    std::optional<Exact> smaller;  // computed for the first hint that needs it
     for (std::size_t k = 0; k < undecided.size() && k < kUndecidedShown; ++k) {
       const UndecidedInterval& u = undecided[k];
+      if (!smaller && u.reason != StopReason::Depth) smaller = smaller_epsilon(scene, c);
       out << "    undecided t in [" << to_decimal(u.t0).text << ", " << to_decimal(u.t1).text << "] ("
-          << to_string(u.reason) << "): " << undecided_hint(r, c, u.reason) << "\n";
+          << to_string(u.reason) << "): " << undecided_hint(r, c, u.reason, smaller ? *smaller : c.epsilon) << "\n";
     }
     if (undecided.size() > kUndecidedShown)
       out << "    ... and " << undecided.size() - kUndecidedShown << " more undecided intervals (--json lists them all)\n";
