@@ -1,6 +1,7 @@
 #include "src/cli/report.h"
 
 #include "kernels/decimal.h"
+#include "kernels/real_roots.h"
 #include "src/motion/segment.h"
 
 #include <Eigen/Dense>
@@ -66,15 +67,19 @@ class JsonWriter {
 
   // A JSON number for people beside an exact one (tmcert-result/1's
   // "<field>_approx" members): the nearest double, or beyond the double
-  // range the 17-digit decimal itself.
+  // range a string holding the 17-significant-digit decimal with exponent
+  // (a JSON number there would read back as infinity or 0).
   void approx(const Exact& q) {
-    const double x = approximate(q);
-    if (std::isfinite(x)) {
-      value(x);
-      return;
-    }
-    next_item();
-    out_ += to_decimal(q, 17).text;
+    if (const std::optional<double> x = nearest_double(q)) value(*x);
+    else value(scientific(q, 17));
+  }
+  // The same for an algebraic number, from its printed approximation
+  // (real_roots.h's approximate(): the shortest decimal of its nearest
+  // double, which reads back as that double, or the 17-digit decimal).
+  void approx_text(const std::string& text) {
+    const double x = std::strtod(text.c_str(), nullptr);
+    if (std::isfinite(x) && x != 0) value(x);
+    else value(text);
   }
 
   template <typename T>
@@ -166,7 +171,7 @@ void write_root(JsonWriter& w, const AlgebraicTime& a) {
 // The approximation of a parameter: the algebraic number's own decimal, or
 // the rational's.
 void write_time_approx(JsonWriter& w, const Exact& t, const AlgebraicTime* root) {
-  if (root) w.value(std::strtod(root->approx.c_str(), nullptr));
+  if (root) w.approx_text(root->approx);
   else w.approx(t);
 }
 
@@ -389,7 +394,7 @@ std::string rigidity_note(const Body& b) {
   std::ostringstream out;
   out.precision(4);
   out << "the motion of " << b.name << " is not rigid (an affine motion, checked as written): at t = "
-      << CGAL::to_double(worst_t) << " lengths are scaled by " << worst_lo << " to " << worst_hi;
+      << to_decimal(worst_t).text << " lengths are scaled by " << worst_lo << " to " << worst_hi;
   if (std::abs(worst_hi - 1) < 1e-12 && std::abs(worst_lo - 1) < 1e-12) out << " (within rounding of rigid)";
   return out.str();
 }
@@ -446,8 +451,13 @@ namespace {
 // number its decimal and where it is exactly (the polynomial is in --json).
 std::string readable_time(const Exact& t, const AlgebraicTime* root) {
   if (!root) return readable(t);
-  Exact approx;
-  const std::string decimal = parse_exact(root->approx, approx) ? to_decimal(approx).text : root->approx;
+  // Six digits rounded from the root itself (not from its double).
+  std::string decimal;
+  try {
+    decimal = approximate_decimal(RealRoot{root->root_of, root->lo, root->hi});
+  } catch (const ExactLimit&) {
+    decimal = "~" + root->approx;
+  }
   return decimal + " (a root of a degree-" + std::to_string(root->root_of.size() - 1) + " polynomial in (" +
          to_string(root->lo) + ", " + to_string(root->hi) + "))";
 }

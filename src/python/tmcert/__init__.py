@@ -28,7 +28,9 @@ check ``safe`` or ``collision`` (with an exact witness), or reports it
 
 Results carry exact values (``fractions.Fraction``, or an
 :class:`AlgebraicNumber` for a contact at an irrational instant) next to a
-``*_float`` view of each for people and plots.  Bad input raises
+``*_float`` view of each for people and plots: the float nearest to the
+exact value, or NaN for a value beyond the float range (|x| >= 2**1024 -
+2**970, or nonzero and at most 2**-1075), never an infinity.  Bad input raises
 :class:`InputError` (a ``ValueError``) with the message the command line
 prints after ``tmcert: ``; a resource limit that leaves no honest answer
 raises :class:`ResourceLimit`.
