@@ -30,13 +30,15 @@ enum class Kernel {
 
 // Why an interval was left undecided.
 enum class StopReason {
-  Epsilon,  // the bodies come within about epsilon there
-  Depth,    // the subdivision depth limit was reached
-  Limit     // a node, stop or time limit
+  Epsilon,        // the bodies come within about epsilon there
+  Depth,          // the subdivision depth limit was reached
+  Limit,          // a node, stop or time limit
+  AfterUndecided  // cleared only of contact beginning there, after a part not cleared,
+                  // and the bodies were not proven apart at its start
 };
 
 // "safe", "collision", "undecided"; "filtered", "exact", "fast";
-// "epsilon", "depth", "limit" (as in tmcert-result/1).
+// "epsilon", "depth", "limit", "after_undecided" (as in tmcert-result/1).
 TMCERT_API const char* to_string(Verdict v);
 TMCERT_API const char* to_string(Kernel k);
 TMCERT_API const char* to_string(StopReason r);
@@ -94,7 +96,15 @@ struct CheckResult {
   std::optional<std::array<Time, 2>> first_contact;
   bool first_contact_exact = false;   // the witness's time is the first contact
   std::optional<Witness> witness;     // present iff verdict is Collision
+  // The check's interval is partitioned into the parts certified safe (no
+  // contact; everything below not listed), `undecided`, and with a witness
+  // its time and after it `not_searched`, nothing else (SCENE_FORMAT.md,
+  // "Every interval claim holds").
   std::vector<UndecidedInterval> undecided;
+  std::array<Rational, 2> interval;   // the check's parameter interval
+  // With a witness: [its time, the interval's end], where nothing was
+  // searched (the witness ends the claims).
+  std::optional<std::array<Time, 2>> not_searched;
   CheckStats stats;
 };
 

@@ -34,7 +34,8 @@ static_assert(static_cast<int>(Kernel::Filtered) == static_cast<int>(tmcert::Ker
               static_cast<int>(Kernel::Fast) == static_cast<int>(tmcert::KernelKind::Fast));
 static_assert(static_cast<int>(StopReason::Epsilon) == static_cast<int>(tmcert::StopReason::Epsilon) &&
               static_cast<int>(StopReason::Depth) == static_cast<int>(tmcert::StopReason::Depth) &&
-              static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit));
+              static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit) &&
+              static_cast<int>(StopReason::AfterUndecided) == static_cast<int>(tmcert::StopReason::AfterUndecided));
 
 template <typename To, typename From>
 To same_enum(From value) {
@@ -116,6 +117,8 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   out.first_contact_exact = c.first_contact_exact;
   for (const tmcert::UndecidedInterval& u : c.undecided)
     out.undecided.push_back({to_rational(u.t0), to_rational(u.t1), same_enum<StopReason>(u.reason)});
+  out.interval = {to_rational(c.interval.first), to_rational(c.interval.second)};
+  if (out.witness) out.not_searched = std::array{out.witness->t, Time{to_rational(c.interval.second)}};
   const tmcert::CheckStats& s = c.stats;
   out.stats.nodes = s.nodes;
   out.stats.max_depth = s.max_depth;

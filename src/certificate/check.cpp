@@ -28,7 +28,9 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -763,6 +765,7 @@ struct StartPoint {
 
 struct StartEntry {
   int solid = 0;  // 0: a, 1: b
+  Exact t;        // the instant of the claim ("t", default t0)
   std::vector<StartPoint> points;
 };
 
@@ -1205,7 +1208,7 @@ class Checker {
     const json* start = in_.find(c, "start");
     if (!start || start->is_null()) return;
     in_.array(*start, sp);
-    bool seen[2] = {false, false};
+    std::set<std::pair<int, Exact>> seen;
     for (std::size_t k = 0; k < start->size(); ++k) {
       const json& e = (*start)[k];
       const std::string ep = idx(sp, k);
@@ -1213,11 +1216,19 @@ class Checker {
       const std::string& which = in_.string(in_.member(e, "solid", ep), mem(ep, "solid"));
       if (which != "a" && which != "b") in_.bad(mem(ep, "solid"), "expected \"a\" or \"b\", got " + quote_text(which));
       const int s = which == "a" ? 0 : 1;
-      if (seen[s]) in_.bad(mem(ep, "solid"), "a second entry for " + quote_text(which));
-      seen[s] = true;
+      // The instant of the claim: the check's start unless "t" says (the
+      // start of a run of pieces after an undecided interval).
+      Exact at = ctx.t0;
+      if (const json* t = in_.find(e, "t"); t && !t->is_null()) {
+        at = in_.rational(*t, mem(ep, "t"));
+        if (at < ctx.t0 || at > ctx.t1)
+          in_.bad(mem(ep, "t"), str(at) + " is outside the check's interval [" + str(ctx.t0) + ", " + str(ctx.t1) + "]");
+      }
+      if (!seen.insert({s, at}).second)
+        in_.bad(mem(ep, "solid"), "a second entry for " + quote_text(which) + (at == ctx.t0 ? "" : " at t = " + str(at)));
       const BodyData& other = *ctx.data[1 - s];
       const json& pts = in_.array(in_.member(e, "points", ep), mem(ep, "points"));
-      StartEntry entry{s, {}};
+      StartEntry entry{s, at, {}};
       for (std::size_t i = 0; i < pts.size(); ++i) {
         const std::string pp = idx(mem(ep, "points"), i);
         in_.object(pts[i], pp);
@@ -1328,7 +1339,22 @@ class Checker {
       }
     }
 
-    const std::size_t start_points = check_start(ctx, !pt.empty() || ctx.before_witness);
+    // Where runs of pieces start: t0 when the pieces (or before_witness)
+    // start there, and every piece that follows an undecided interval.
+    // Separations prove the surfaces apart on each piece; a solid's
+    // inside needs its start claims at each run's start (a component that
+    // entered during an undecided interval stays inside without touching
+    // the surface: proofs/partition.md §5).
+    std::vector<Exact> runs;
+    if (ctx.verdict == "undecided") {
+      std::set<Exact> undecided_ends;
+      for (const auto& u : ctx.undecided) undecided_ends.insert(u.second);
+      for (std::size_t k = 0; k < pt.size(); ++k)
+        if (pt[k].first == ctx.t0 || undecided_ends.count(pt[k].first)) runs.push_back(pt[k].first);
+    } else if (!pt.empty() || ctx.before_witness) {
+      runs.push_back(ctx.t0);
+    }
+    const std::size_t start_points = check_start(ctx, runs);
 
     // The separation proofs, piece by piece.
     mpz_mul(ctx.dadb.v, ctx.data[0]->coords.D.v, ctx.data[1]->coords.D.v);
@@ -1516,33 +1542,52 @@ class Checker {
 
   // ------------------------------------------------------------ start claims
 
-  // Checks the start claims; returns the number of points checked.
-  std::size_t check_start(CheckContext& ctx, bool pieces_present) {
+  // The pose of check body s at scene parameter t for start claims: exact
+  // (a general check's body may be only enclosed there: nullopt).
+  std::optional<Mat34E> claim_pose(const CheckContext& ctx, int s, const Exact& t) const {
+    if (!ctx.general) return pose_at(*ctx.body[s], t);
+    return exact_pose_at(*ctx.body[s], t);
+  }
+
+  static std::string at_text(const CheckContext& ctx, const Exact& t) {
+    return t == ctx.t0 ? "t0 = " + str(t) : "t = " + str(t);
+  }
+
+  // Checks the start claims, and that one is given at every run start in
+  // `runs` for each solid body with a nonsingular pose there; returns the
+  // number of points checked.
+  std::size_t check_start(CheckContext& ctx, const std::vector<Exact>& runs) {
     std::size_t checked = 0;
-    Mat34E pose[2];
-    for (int s = 0; s < 2; ++s) {
-      if (!ctx.general) {
-        pose[s] = pose_at(*ctx.body[s], ctx.t0);
-        continue;
+    const bool solid = ctx.body[0]->solid || ctx.body[1]->solid;
+    // The poses at each instant a claim is made or needed, exact.
+    std::map<Exact, std::array<Mat34E, 2>> poses;
+    auto poses_at = [&](const Exact& t) -> const std::array<Mat34E, 2>& {
+      auto it = poses.find(t);
+      if (it != poses.end()) return it->second;
+      std::array<Mat34E, 2> p;
+      for (int s = 0; s < 2; ++s) {
+        const std::optional<Mat34E> m = claim_pose(ctx, s, t);
+        if (!m)
+          reject(ctx.label + ": start: the pose of " + quote_text(ctx.body[s]->name) + " at " + at_text(ctx, t) +
+                 " is not exact (a transcendental rotation): start claims need exact poses");
+        p[s] = *m;
       }
-      const std::optional<Mat34E> p = exact_pose_at(*ctx.body[s], ctx.t0);
-      const bool needed = !ctx.start.empty() || (pieces_present && (ctx.body[0]->solid || ctx.body[1]->solid));
-      if (!p && needed)
-        reject(ctx.label + ": start: the pose of " + quote_text(ctx.body[s]->name) + " at t0 = " + str(ctx.t0) +
-               " is not exact (a transcendental rotation): start claims need exact poses");
-      pose[s] = p ? *p : identity_pose();
-    }
-    bool seen[2] = {false, false};
+      return poses.emplace(t, p).first->second;
+    };
+    if (solid)
+      for (const Exact& t : runs) poses_at(t);
+    std::set<std::pair<int, Exact>> seen;
     for (std::size_t k = 0; k < ctx.start.size(); ++k) {
       const StartEntry& entry = ctx.start[k];
       const int s = entry.solid;
-      seen[s] = true;
-      const Body& solid = *ctx.body[s];
+      seen.insert({s, entry.t});
+      const Body& solid_body = *ctx.body[s];
       BodyData& other = *ctx.data[1 - s];
-      const std::string L = ctx.label + ": start[" + std::to_string(k) + "] (solid " + quote_text(solid.name) + ")";
-      if (!solid.solid) reject(L + ": " + quote_text(solid.name) + " is not solid");
+      const std::string L = ctx.label + ": start[" + std::to_string(k) + "] (solid " + quote_text(solid_body.name) + ")";
+      if (!solid_body.solid) reject(L + ": " + quote_text(solid_body.name) + " is not solid");
+      const std::array<Mat34E, 2>& pose = poses_at(entry.t);
       const std::vector<std::vector<Vec3E>> polygons = placed(*ctx.data[s], pose[s]);
-      const std::vector<int> shells = piece_shells(solid);
+      const std::vector<int> shells = piece_shells(solid_body);
       for (std::size_t i = 0; i < entry.points.size(); ++i) {
         const StartPoint& p = entry.points[i];
         const Vec3E x = place_point(pose[1 - s], other.elems[p.element][p.vertex]);
@@ -1555,9 +1600,10 @@ class Checker {
         // Outside the union of the shells only if outside every one.
         for (std::size_t k2 = 0; k2 < n->size(); ++k2)
           if ((*n)[k2] % 2 != 0)
-            reject(LP + ": the ray crosses shell " + std::to_string(k2) + " of " + quote_text(solid.name) + " " +
+            reject(LP + ": the ray crosses shell " + std::to_string(k2) + " of " + quote_text(solid_body.name) + " " +
                    std::to_string((*n)[k2]) + (((*n)[k2] == 1) ? " time" : " times") +
-                   ", an odd number: the vertex is inside " + quote_text(solid.name) + " at t0");
+                   ", an odd number: the vertex is inside " + quote_text(solid_body.name) + " at " +
+                   (entry.t == ctx.t0 ? std::string("t0") : "t = " + str(entry.t)));
         ++checked;
       }
       // One listed point per component of the other body.
@@ -1570,12 +1616,16 @@ class Checker {
                  " is listed");
     }
     // Required: one entry per solid body of the check with a nonsingular
-    // pose at t0, when there are pieces.
-    if (pieces_present)
-      for (int s = 0; s < 2; ++s)
-        if (ctx.body[s]->solid && !seen[s] && sgn(determinant(pose[s])) != 0)
-          reject(ctx.label + ": start: no claim for the solid " + quote_text(ctx.body[s]->name) + " (\"" +
-                 (s == 0 ? "a" : "b") + "\"): the other body could start inside it");
+    // pose at each run's start.
+    if (solid)
+      for (const Exact& t : runs)
+        for (int s = 0; s < 2; ++s)
+          if (ctx.body[s]->solid && !seen.count({s, t}) && sgn(determinant(poses_at(t)[s])) != 0)
+            reject(ctx.label + ": start: no claim for the solid " + quote_text(ctx.body[s]->name) + " (\"" +
+                   (s == 0 ? "a" : "b") + "\")" + (t == ctx.t0 ? "" : " at t = " + str(t)) +
+                   ": the other body could " +
+                   (t == ctx.t0 ? std::string("start inside it")
+                                : "be inside it there (it may have entered while undecided)"));
     return checked;
   }
 

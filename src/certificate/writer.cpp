@@ -19,6 +19,7 @@
 #include <functional>
 #include <iterator>
 #include <random>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -947,18 +948,18 @@ struct CheckWriter {
   }
 
   // Start claims: one outside point per component of the other body for
-  // each solid body with a regular pose at t0.
-  json start() const {
-    json out = json::array();
+  // each solid body with a regular pose at `at` (t0, or the start of a run
+  // of pieces after an undecided interval: then with "t").
+  void start(const Exact& at, json& out) const {
     const Body* bodies[2] = {&a, &b};
     for (int k = 0; k < 2; ++k) {
       const Body& solid = *bodies[k];
       const Body& other = *bodies[1 - k];
       if (!solid.solid) continue;
-      const Mat34E ms = pose(solid, interval.first);
+      const Mat34E ms = pose(solid, at);
       if (singular(ms)) continue;
       const auto polygons = placed_pieces(solid, ms);
-      const Mat34E mo = pose(other, interval.first);
+      const Mat34E mo = pose(other, at);
       const auto el = elements(other);
       std::vector<std::size_t> parent(el.size());
       std::iota(parent.begin(), parent.end(), 0);
@@ -981,8 +982,53 @@ struct CheckWriter {
           fail("no outside ray for element " + std::to_string(e) + " of " + other.name + " against solid " + solid.name);
         points.push_back({{"element", e}, {"vertex", 0}, {"ray", vec(ray->first)}});
       }
-      out.push_back({{"solid", k == 0 ? "a" : "b"}, {"points", std::move(points)}});
+      json entry{{"solid", k == 0 ? "a" : "b"}};
+      if (at != interval.first) entry["t"] = rational(at);
+      entry["points"] = std::move(points);
+      out.push_back(std::move(entry));
     }
+  }
+
+  // Runs of pieces (in order) of an undecided check with a solid body that
+  // start after an undecided interval where a body's pose is not exact:
+  // start claims cannot be written there, so those pieces are not claimed
+  // (they join the undecided intervals; proofs/partition.md §5).  `starts`
+  // gets every run start (t0 included) whose pieces stay.
+  template <class Piece, class Times>
+  std::vector<Piece> claimable(const std::vector<Piece>& pieces, Times times, std::vector<Exact>& starts,
+                               std::vector<std::pair<Exact, Exact>>& undecided) const {
+    for (const UndecidedInterval& u : r.undecided) undecided.push_back({u.t0, u.t1});
+    if (r.verdict != Verdict::Undecided) {
+      if (!pieces.empty()) starts.push_back(interval.first);
+      return pieces;
+    }
+    std::set<Exact> ends;
+    for (const UndecidedInterval& u : r.undecided) ends.insert(u.t1);
+    std::vector<Piece> out;
+    bool dropping = false;
+    std::optional<Exact> prev_end;
+    for (const Piece& p : pieces) {
+      const auto [ta, tb] = times(p);
+      const bool run_start = !prev_end || *prev_end != ta || ends.count(ta);
+      prev_end = tb;
+      if (run_start) {
+        dropping = (a.solid || b.solid) && ta != interval.first && (!exact_pose_at(a, ta) || !exact_pose_at(b, ta));
+        if (!dropping) starts.push_back(ta);
+      }
+      if (!dropping) {
+        out.push_back(p);
+        continue;
+      }
+      undecided.push_back({ta, tb});
+    }
+    // In order, abutting ones joined.
+    std::sort(undecided.begin(), undecided.end());
+    std::vector<std::pair<Exact, Exact>> joined;
+    for (const auto& u : undecided) {
+      if (!joined.empty() && joined.back().second == u.first) joined.back().second = u.second;
+      else joined.push_back(u);
+    }
+    undecided = std::move(joined);
     return out;
   }
 
@@ -994,7 +1040,16 @@ struct CheckWriter {
     out["groups"] = json::array({ga.to_json(), gb.to_json()});
     json pieces = json::array();
     const bool gen = general();
-    const std::vector<CoverPiece> cover_pieces = gen ? std::vector<CoverPiece>{} : cover();
+    // The runs' starts (for start claims) and the undecided intervals, with
+    // the runs no start claim can be written for.
+    std::vector<Exact> starts;
+    std::vector<std::pair<Exact, Exact>> undecided_times;
+    const std::vector<CoverPiece> cover_pieces =
+        gen ? std::vector<CoverPiece>{}
+            : claimable(cover(), [&](const CoverPiece& c) { return piece_times(c); }, starts, undecided_times);
+    const std::vector<std::pair<Exact, Exact>> general_pieces =
+        gen ? claimable(general_cover(), [](const std::pair<Exact, Exact>& p) { return p; }, starts, undecided_times)
+            : std::vector<std::pair<Exact, Exact>>{};
     if (!gen) joint = joint_curve(motion_or_identity(a), motion_or_identity(b));
     const Prover prover(ga, gb, stats);
     if (gen) {
@@ -1010,7 +1065,7 @@ struct CheckWriter {
           margin += bodies[k]->tolerance * displacement_bound(*bodies[k], elements(*bodies[k]));
       }
       const bool partial = r.verdict == Verdict::Collision;
-      for (const auto& [ta, tb] : general_cover())
+      for (const auto& [ta, tb] : general_pieces)
         if (!prove_general(prover, ta, tb, 0, margin, bounds, partial, pieces)) break;
     } else if (!cover_pieces.empty()) {
       const CurveI root = enclose(joint);
@@ -1047,9 +1102,16 @@ struct CheckWriter {
       out["first_contact"] = json::array({rational(clear_until), rational(r.first_contact->second)});
       if (r.first_contact_exact && !gen) before_witness(prover, clear_until, out);
     }
-    out["start"] = out["pieces"].empty() && !out.contains("before_witness") ? json::array() : start();
+    json start_claims = json::array();
+    if (!out["pieces"].empty() || out.contains("before_witness")) {
+      if (starts.empty() || starts.front() != interval.first) {
+        if (r.verdict != Verdict::Undecided) start(interval.first, start_claims);  // before_witness alone
+      }
+      for (const Exact& at : starts) start(at, start_claims);
+    }
+    out["start"] = std::move(start_claims);
     json undecided = json::array();
-    for (const UndecidedInterval& u : r.undecided) undecided.push_back(json::array({rational(u.t0), rational(u.t1)}));
+    for (const auto& [lo, hi] : undecided_times) undecided.push_back(json::array({rational(lo), rational(hi)}));
     out["undecided"] = r.verdict == Verdict::Undecided ? std::move(undecided) : json::array();
     return out;
   }

@@ -307,6 +307,23 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
     w.end_object();
   }
   w.end_array();
+  if (c.witness) {
+    // The witness ends the claims: from its time to the end of the check's
+    // interval nothing was searched (SCENE_FORMAT.md, "Every interval
+    // claim holds").
+    const AlgebraicTime* root = c.witness->root ? &*c.witness->root : nullptr;
+    w.key("not_searched");
+    w.begin_array();
+    if (root) write_root(w, *root);
+    else w.value(to_string(c.witness->t));
+    w.value(to_string(c.interval.second));
+    w.end_array();
+    w.key("not_searched_approx");
+    w.begin_array();
+    write_time_approx(w, c.witness->t, root);
+    w.approx(c.interval.second);
+    w.end_array();
+  }
   const CheckStats& s = c.stats;
   w.key("stats");
   w.begin_object();
@@ -533,6 +550,11 @@ std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReaso
         return "--time-limit " + t.str() + " was reached; try a larger --time-limit";
       }
       return "a budget of the check was used up";
+    case StopReason::AfterUndecided:
+      return "not claimed: the contact tests see only contact that begins here, and after the part not cleared "
+             "before it the bodies were not proven apart (a pose only enclosed, or a solid's inside left open); try a "
+             "smaller --epsilon, e.g. --epsilon " +
+             to_decimal(c.epsilon / 10).text;
   }
   return {};
 }
@@ -619,12 +641,21 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
     std::optional<Exact> smaller;  // computed for the first hint that needs it
     for (std::size_t k = 0; k < undecided.size() && k < kUndecidedShown; ++k) {
       const UndecidedInterval& u = undecided[k];
-      if (!smaller && u.reason != StopReason::Depth) smaller = smaller_epsilon(scene, c);
+      // The stopped piece a witness was found in, up to the witness.
+      const bool before_witness =
+          wit && !root && u.t1 == wit->t && (u.reason == StopReason::Epsilon || u.reason == StopReason::Depth);
+      if (!before_witness && !smaller && u.reason != StopReason::Depth) smaller = smaller_epsilon(scene, c);
       out << "    undecided t in [" << to_decimal(u.t0).text << ", " << to_decimal(u.t1).text << "] ("
-          << to_string(u.reason) << "): " << undecided_hint(r, c, u.reason, smaller ? *smaller : c.epsilon) << "\n";
+          << to_string(u.reason) << "): "
+          << (before_witness ? "the bodies come within about epsilon there; the first contact lies in here or at the witness"
+                             : undecided_hint(r, c, u.reason, smaller ? *smaller : c.epsilon))
+          << "\n";
     }
     if (undecided.size() > kUndecidedShown)
       out << "    ... and " << undecided.size() - kUndecidedShown << " more undecided intervals (--json lists them all)\n";
+    if (wit && wit->t < c.interval.second)
+      out << "    not searched after the witness: t in [" << (root ? root->approx : to_decimal(wit->t).text) << ", "
+          << to_decimal(c.interval.second).text << "]\n";
     for (int side = 0; side < 2; ++side)
       if (const std::string note = rigidity_note(scene.bodies[c.bodies[side]]); !note.empty())
         out << "    note: " << note << "\n";

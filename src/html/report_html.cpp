@@ -209,71 +209,58 @@ std::pair<Exact, Exact> check_interval(const Scene& scene, const CheckResult& c)
 // ---------------------------------------------------------------- timeline
 
 struct Span {
-  const char* kind;  // "safe", "undecided", "first-contact", "colliding"
+  const char* kind;  // "safe", "undecided", "witness", "not-searched"
   Exact t0, t1;
   const char* reason = nullptr;  // undecided only
 };
 
-// The bracket of the check's first contact with rational ends, narrow
-// enough to draw: the result's, except that the isolating interval of an
-// algebraic witness time (which may be as wide as the whole motion) is
-// refined exactly (Sturm bisection, kernels/real_roots.h) to 2^-24 of the
-// check's interval; an exact first contact is then [lo', hi'] around its
-// root.  Empty without a first contact.
-std::optional<std::pair<Exact, Exact>> contact_bracket(const CheckResult& c, const std::pair<Exact, Exact>& interval) {
-  if (!c.first_contact) {
-    if (c.verdict != Verdict::Collision) return std::nullopt;
-    // A collision always has a first contact (SCENE_FORMAT.md); without
-    // one, nothing before the witness is drawn safe.
-    const Exact end = !c.witness ? interval.first : c.witness->root ? c.witness->root->hi : c.witness->t;
-    return std::pair{interval.first, end};
-  }
-  std::pair<Exact, Exact> bracket = *c.first_contact;
-  if (!c.witness || !c.witness->root) return bracket;
-  const AlgebraicTime& at = *c.witness->root;
+// The witness's time with rational ends narrow enough to draw: [t, t] for
+// a rational time; for an algebraic one its isolating interval (which may
+// be as wide as the whole motion) refined exactly (Sturm bisection,
+// kernels/real_roots.h) to 2^-24 of the check's interval.
+std::pair<Exact, Exact> witness_bracket(const Witness& w, const std::pair<Exact, Exact>& interval) {
+  if (!w.root) return {w.t, w.t};
+  const AlgebraicTime& at = *w.root;
   RealRoot r{PolyZ(at.root_of.begin(), at.root_of.end()), at.lo, at.hi};
   try {
     refine_to(r, (interval.second - interval.first) / Exact(1 << 24));
   } catch (const ExactLimit&) {
-    return bracket;  // the result's own interval, wide but right
+    return {at.lo, at.hi};  // the result's own interval, wide but right
   }
-  if (c.first_contact_exact) bracket.first = r.lo;
-  bracket.second = r.hi;
-  return bracket;
+  return {r.lo, r.hi};
 }
 
-// The check's interval cut into spans, in parameter order, exactly from
-// the result: each undecided interval as the result lists it; between
-// them, what the result certifies.  Without a collision that is safe (the
-// undecided intervals are all that was not cleared).  With a collision,
-// only the part before the first contact's lower end is certified safe;
-// [lo, hi] holds the earliest contact ("first-contact"), and from the
-// witness at hi on the motion is colliding (the search stops there).
+// The check's interval cut into spans, in parameter order, exactly as the
+// result partitions it (SCENE_FORMAT.md, "Every interval claim holds"):
+// each undecided interval as the result lists it; between them, certified
+// safe; with a collision, the witness's time ends the claims and from it
+// on the interval is "not-searched" (an algebraic witness time: the narrow
+// bracket around it is a "witness" span, the parts before it safe or
+// undecided as the result says, clipped there).
 std::vector<Span> timeline(const CheckResult& c, const Exact& t0, const Exact& t1) {
   std::vector<Span> spans;
-  const auto bracket = contact_bracket(c, {t0, t1});
-  const bool collision = c.verdict == Verdict::Collision && bracket;
-  auto clip = [&](const char* kind, const Exact& a, const Exact& b) {
-    if (a < b) spans.push_back(Span{kind, a, b});
-  };
-  auto gap = [&](const Exact& a, const Exact& b) {
-    if (!collision) return clip("safe", a, b);
-    const Exact& lo = bracket->first;
-    const Exact& hi = bracket->second;
-    clip("safe", a, std::min(b, lo));
-    clip("first-contact", std::max(a, lo), std::min(b, hi));
-    clip("colliding", std::max(a, hi), b);
+  std::optional<std::pair<Exact, Exact>> witness;
+  if (c.verdict == Verdict::Collision && c.witness) witness = witness_bracket(*c.witness, {t0, t1});
+  const Exact claims_end = witness ? std::min(std::max(witness->first, t0), t1) : t1;
+  auto clip = [&](const char* kind, const Exact& a, const Exact& b, const char* reason = nullptr) {
+    const Exact& hi = std::min(b, claims_end);
+    if (a < hi) spans.push_back(Span{kind, a, hi, reason});
   };
   std::vector<UndecidedInterval> undecided = c.undecided;
   std::stable_sort(undecided.begin(), undecided.end(),
                    [](const UndecidedInterval& x, const UndecidedInterval& y) { return x.t0 < y.t0; });
   Exact cursor = t0;
   for (const UndecidedInterval& u : undecided) {
-    gap(cursor, u.t0);
-    spans.push_back(Span{"undecided", u.t0, u.t1, to_string(u.reason)});
+    clip("safe", cursor, u.t0);
+    clip("undecided", std::max(cursor, u.t0), u.t1, to_string(u.reason));
     cursor = std::max(cursor, u.t1);
   }
-  gap(cursor, t1);
+  clip("safe", cursor, t1);
+  if (witness) {
+    const Exact hi = std::min(std::max(witness->second, claims_end), t1);
+    if (claims_end < hi) spans.push_back(Span{"witness", claims_end, hi});
+    if (hi < t1) spans.push_back(Span{"not-searched", hi, t1});
+  }
   return spans;
 }
 
@@ -285,9 +272,9 @@ std::string span_title(const Span& s, bool certified, bool clearance) {
     const char* what = clearance ? "farther apart than the clearance" : "no contact";
     return std::string(certified ? "certified safe: " : "safe by the fast kernel (NOT CERTIFIED): ") + what;
   }
-  if (kind == "first-contact")
-    return clearance ? "the clearance is first violated somewhere here" : "the earliest contact lies here";
-  if (kind == "colliding") return clearance ? "clearance violated, from the witness on" : "colliding, from the witness on";
+  if (kind == "witness")
+    return clearance ? "the witness's time (clearance violated) lies here" : "the witness's time (contact) lies here";
+  if (kind == "not-searched") return "not searched: the witness ends the search";
   return "undecided";
 }
 
@@ -601,9 +588,8 @@ std::string report_html(const Scene& scene, const SceneResult& result) {
   page += std::string("</div>\n<div class=\"legend\"><span class=\"key safe\"></span>") +
           (result.certified ? "certified safe " : "safe (NOT CERTIFIED: fast kernel) ") +
           "<span class=\"key undecided\"></span>undecided (hover: reason) "
-          "<span class=\"key first-contact\"></span>earliest contact somewhere here "
-          "<span class=\"key colliding\"></span>colliding from the witness on "
-          "<span class=\"key witness\"></span>witness (exact contact)</div>\n";
+          "<span class=\"key witness\"></span>witness (exact contact) "
+          "<span class=\"key not-searched\"></span>not searched (after the witness)</div>\n";
   // The result document itself, as `--json` prints it.
   page += "<details id=\"result\"><summary>The result document (<code>tmcert-result/1</code>, as "
           "<code>--json</code> prints it)</summary><pre id=\"tmcert-result\">" +

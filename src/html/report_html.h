@@ -1,7 +1,8 @@
 // The visual report (`tmcert verify SCENE --report out.html`): one
 // self-contained HTML page showing the bodies, their motion on a time
-// slider, each check's certified-safe, undecided and colliding intervals on
-// a timeline, and the witness point and features.  three.js and the page's
+// slider, each check's partition of its interval on a timeline (certified
+// safe, undecided, and after a witness not searched), and the witness point
+// and features.  three.js and the page's
 // own script are embedded (src/html/assets.h); the page fetches nothing.
 //
 // Everything drawn is for people: coordinates and poses are rounded to

@@ -584,6 +584,8 @@ PYBIND11_MODULE(_tmcert, m) {
       .def_readonly("first_contact_exact", &api::CheckResult::first_contact_exact)
       .def_readonly("witness", &api::CheckResult::witness)
       .def_readonly("undecided", &api::CheckResult::undecided)
+      .def_readonly("interval", &api::CheckResult::interval)
+      .def_readonly("not_searched", &api::CheckResult::not_searched)
       .def_readonly("stats", &api::CheckResult::stats);
   py::class_<api::Result>(m, "_Result")
       .def_property_readonly("verdict", [](const api::Result& r) { return api::to_string(r.verdict()); })

@@ -274,12 +274,6 @@ void require_usable(const Body& b, const char* role) {
 
 namespace {
 
-// A body's pose at the start of a motion: exact when known, always enclosed.
-struct StartPose {
-  std::optional<Mat34E> exact;
-  std::array<Interval, 12> map;
-};
-
 StartPose start_pose_of(const Trajectory& t) {
   const std::unique_ptr<SegmentModel> model = make_segment_model(t.segments.front());
   StartPose out;
@@ -298,86 +292,6 @@ StartPose fixed_start(const Body& b) {
   StartPose out;
   out.exact = fixed_pose(b);
   out.map = enclose_map(*out.exact);
-  return out;
-}
-
-// The box of points placed by an interval map (NaN: false).
-bool placed_box(const std::vector<Vec3E>& points, const std::array<Interval, 12>& m, std::array<double, 3>& lo,
-                std::array<double, 3>& hi) {
-  RoundingGuard guard;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
-  for (const Vec3E& v : points) {
-    const Interval x[3] = {to_interval(v[0]), to_interval(v[1]), to_interval(v[2])};
-    for (int i = 0; i < 3; ++i) {
-      const Interval y = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-      if (std::isnan(y.inf()) || std::isnan(y.sup())) return false;
-      lo[i] = std::min(lo[i], y.inf());
-      hi[i] = std::max(hi[i], y.sup());
-    }
-  }
-  return true;
-}
-
-std::vector<Vec3E> all_vertices(const Body& b) {
-  std::vector<Vec3E> v;
-  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
-  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
-  v.insert(v.end(), b.points.begin(), b.points.end());
-  return v;
-}
-
-// Whether some connected component of `other` lies inside the solid `solid`
-// at the start (proofs/containment.md: with no such component and no
-// surface contact later, no point of one is ever inside the other).  With
-// both poses exact: exact ray parity of one vertex per component.  Else
-// only the boxes decide: every component vertex's enclosure outside the
-// solid's box means free; anything else is Unknown (never "free").
-struct Containment {
-  enum class Kind { Free, Hit, Unknown } kind = Kind::Free;
-  std::optional<Witness> witness;
-};
-
-Vec3E apply(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-// `solid_vertices`: every vertex of the solid, `other_reps`: one vertex per
-// connected component of the other body, both in their bodies' own frames
-// (computed once per body).
-Containment start_containment(const Body& solid, const std::vector<Vec3E>& solid_vertices, const StartPose& ps,
-                              const Body& other, const std::vector<std::pair<std::string, Vec3E>>& other_reps,
-                              const StartPose& po, bool solid_first) {
-  Containment out;
-  if (ps.exact && po.exact) {
-    const std::unique_ptr<ClosedSurface> surface = placed_surface(solid, *ps.exact);
-    if (!surface) return out;  // a singular pose: the solid is its surface there
-    for (const auto& [part, rep] : other_reps) {
-      const Vec3E point = apply(*po.exact, rep);
-      if (surface->contains(point)) {
-        const std::string inside = solid.name + " interior", at = other.name + " " + part;
-        out.kind = Containment::Kind::Hit;
-        out.witness = Witness{Exact(0), solid_first ? std::array{inside, at} : std::array{at, inside}, point,
-                              std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
-        return out;
-      }
-    }
-    return out;
-  }
-  std::array<double, 3> lo, hi;
-  if (!placed_box(solid_vertices, ps.map, lo, hi)) {
-    out.kind = Containment::Kind::Unknown;
-    return out;
-  }
-  for (const auto& rep : other_reps) {
-    std::array<double, 3> rlo, rhi;
-    if (!placed_box({rep.second}, po.map, rlo, rhi) || EnvironmentIndex::overlap(lo, hi, rlo, rhi)) {
-      out.kind = Containment::Kind::Unknown;
-      return out;
-    }
-  }
   return out;
 }
 
@@ -415,7 +329,7 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
   // its fixed pose applies to).
   const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   for (const Body& b : bodies_) {
-    vertices_.push_back(all_vertices(b));
+    vertices_.push_back(every_vertex(b));
     representatives_.push_back(component_representatives(b, identity));
   }
 }
@@ -544,7 +458,10 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
         detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free));
     record(out.checks.size() - 1);
   }
-  for (CheckResult& r : out.checks) r.epsilon = *options_.epsilon;
+  for (CheckResult& r : out.checks) {
+    r.epsilon = *options_.epsilon;
+    r.interval = {t0, t1};
+  }
   if (decided < out.checks.size()) {
     out.witness = out.checks[decided].witness;
     out.first_contact = out.checks[decided].first_contact;

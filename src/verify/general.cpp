@@ -142,6 +142,7 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   CheckResult result;
   result.bodies = ids;
   result.clearance = clearance;
+  result.interval = parameter_interval(*pa.body, *pb.body);
   const bool swapped = !pa.moving && pb.moving;
   const PreparedBody& m = swapped ? pb : pa;
   const PreparedBody& o = swapped ? pa : pb;
@@ -245,6 +246,8 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
     // A part cleared entirely proves the join after it free: the next part
     // needs no start check there.
     e1.start_proven_free = e2.start_proven_free = part.undecided.empty() && !part.witness;
+    // Only the first part's start containment is the caller's.
+    e1.start_solids_proven = e2.start_solids_proven = false;
     if (!detail::merge_result(result, part)) break;
   }
   return finish();

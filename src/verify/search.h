@@ -33,6 +33,12 @@ struct StaticHit {
   std::optional<std::array<Interval, 3>> box;  // an enclosed configuration's crossing: `point` unused
 };
 
+// What a test of the configuration at one instant proves
+// (proofs/partition.md): the bodies are apart there (surfaces disjoint,
+// neither inside the other), they touch (the check's witness is set), or
+// neither could be proven (an enclosed pose within rounding of contact).
+enum class Apartness { Free, Contact, Unknown };
+
 // Adds `part`, the result of the parameter range right after everything in
 // `total`, to `total`: statistics, cleared pieces, undecided intervals
 // (joined where they abut with the same reason), the first-contact bracket
@@ -57,10 +63,11 @@ inline bool merge_result(CheckResult& total, const CheckResult& part) {
   s.exact_unknown += p.exact_unknown;
   total.cleared.insert(total.cleared.end(), part.cleared.begin(), part.cleared.end());
   for (const UndecidedInterval& u : part.undecided) {
-    if (!total.undecided.empty() && total.undecided.back().t1 == u.t0 && total.undecided.back().reason == u.reason)
+    if (!total.undecided.empty() && total.undecided.back().t1 == u.t0 && total.undecided.back().reason == u.reason) {
       total.undecided.back().t1 = u.t1;
-    else
+    } else {
       total.undecided.push_back(u);
+    }
   }
   if (part.witness) {
     total.witness = part.witness;
@@ -161,6 +168,11 @@ struct CheckExtras {
   // (a closed parameter range ending here) was cleared entirely, which
   // proves no contact (and, with a tube, no admissible contact) at its end.
   bool start_proven_free = false;
+  // The caller has settled the containment of solids at the start (the
+  // check's first part: Verifier::check_with, FixedEnvironment::check); a
+  // start check of a later part (a join after a part not cleared entirely)
+  // tests it too.
+  bool start_solids_proven = true;
 };
 
 // The first exact common point of a simplex of `a`'s parts and one of
@@ -352,6 +364,11 @@ struct Check {
   // The curve in the power basis for exact resolution (exact_resolution.h),
   // computed once when first needed, shared with the forks.
   std::shared_ptr<PowerBasisCache> exact_power = std::make_shared<PowerBasisCache>();
+  // The start of this range is neither proven free nor a contact (a join
+  // after a part not cleared entirely, whose solids' containment the
+  // enclosed poses leave open): the pieces cleared from it on are not
+  // claimed until a later start is proven (secure_partition).
+  bool start_unproven = false;
 
   // The same check writing into `part`.
   Check fork(CheckResult& part) const {
@@ -434,7 +451,7 @@ struct Check {
       set_witness(u, *hit);
       return true;
     }
-    return interior_witness(u) || distance_witness(u, all ? nullptr : &parts);
+    return interior_witness(u) == Apartness::Contact || distance_witness(u, all ? nullptr : &parts);
   }
 
   // A solid's inside counts as contact: a vertex of one body inside a
@@ -442,13 +459,15 @@ struct Check {
   // lasting a moment is proven even when the surfaces meet only at
   // irrational times.  One vertex per connected component suffices when
   // the surfaces do not meet at u (proofs/containment.md §5); any vertex
-  // found inside is a witness whatever the surfaces do.
-  bool interior_witness(const Exact& u) {
-    if (!moving.body->solid && !other.body->solid) return false;
+  // found inside is a witness whatever the surfaces do.  Free: no solid, or
+  // no component inside; Unknown: a solid and no exact pose at u.
+  bool has_solid() const { return moving.body->solid || other.body->solid; }
+  Apartness interior_witness(const Exact& u) {
+    if (!has_solid()) return Apartness::Free;
     Mat34E pose[2];
     if (extras.enclosed) {  // exact poses only (a keyframe with an exact rotation)
       const auto poses = extras.enclosed->exact_poses(u);
-      if (!poses) return false;
+      if (!poses) return Apartness::Unknown;
       pose[0] = (*poses)[0];
       pose[1] = B == 2 ? (*poses)[B - 1] : fixed_pose(*other.body);
     } else {
@@ -468,10 +487,10 @@ struct Check {
         names[1 - s] = body[1 - s]->name + " " + part;
         result.witness = Witness{scene_t(u), swapped ? std::array{names[1], names[0]} : names, point};
         result.verdict = Verdict::Collision;
-        return true;
+        return Apartness::Contact;
       }
     }
-    return false;
+    return Apartness::Free;
   }
 
 
@@ -535,7 +554,11 @@ struct Check {
 
   void record(const Node& n, StopReason reason) {
     piece_done(n);
-    const Exact t0 = scene_t(n.u0()), t1 = scene_t(n.u1());
+    record_range(n.u0(), n.u1(), reason);
+  }
+
+  void record_range(const Exact& u0, const Exact& u1, StopReason reason) {
+    const Exact t0 = scene_t(u0), t1 = scene_t(u1);
     if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
       result.undecided.back().t1 = t1;
     else
@@ -945,6 +968,9 @@ struct Check {
       for (const Exact* u : {&simple, &mid, &end}) {
         if (u != &simple && *u == simple) continue;  // tried already
         if (try_witness(*u, node.alive)) {
+          // The piece before the witness was not cleared: undecided, for
+          // the stop's reason (the witness ends the claims).
+          if (node.u0() < *u) record_range(node.u0(), *u, *stop);
           const Exact lo = result.first_contact ? result.first_contact->first : scene_t(node.u0());
           result.first_contact = std::pair{lo, scene_t(*u)};
           return Outcome::Witness;
@@ -1155,20 +1181,162 @@ struct Check {
       ++result.stats.stops;
       return;
     }
+    if (!extras.start_proven_free && !extras.start_solids_proven) {
+      // A join after a part that was not cleared entirely: a solid's
+      // inside is contact there too (proofs/partition.md §3).
+      const Apartness inside = containment_at(Exact(0));
+      if (inside == Apartness::Contact) {
+        result.first_contact = std::pair{motion.t0, motion.t0};
+        result.first_contact_exact = true;
+        return;
+      }
+      start_unproven = inside == Apartness::Unknown;
+    }
     if (!extras.start_proven_free && distance_witness(Exact(0), nullptr)) {
       result.first_contact = std::pair{motion.t0, motion.t0};
       return;
     }
     if (extras.enclosed) {
       search(EnclosedPolicy<B>{FilteredPolicy<B>{moving, other, curve, 0}, *extras.enclosed});
-      return;
+    } else {
+      switch (options.kernel) {
+        case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve, extras.tube}); break;
+        case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve, extras.tube}); break;
+        case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve, extras.tube}); break;
+      }
     }
-    switch (options.kernel) {
-      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve, extras.tube}); break;
-      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve, extras.tube}); break;
-      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve, extras.tube}); break;
+    secure_partition();
+  }
+
+  // ------------------------------------------------------------------ the partition
+
+  // Whether one body of the pair (a solid) holds a component of the other
+  // at curve parameter u, by the start machinery of solids
+  // (start_containment: exact ray parity at exact poses, else the boxes
+  // of the enclosed poses).  Contact sets the witness.
+  Apartness containment_at(const Exact& u) {
+    if (!has_solid()) return Apartness::Free;
+    auto enclosed = [](const Mat34E& m) {
+      std::array<Interval, 12> out;
+      for (int e = 0; e < 12; ++e) out[e] = to_interval(m[e]);
+      return out;
+    };
+    StartPose pose[2];
+    if (extras.enclosed) {
+      const auto boxes = extras.enclosed->poses(u);
+      const auto exact = extras.enclosed->exact_poses(u);
+      for (int b = 0; b < B; ++b) {
+        pose[b].map = boxes[b];
+        if (exact) pose[b].exact = (*exact)[b];
+      }
+    } else {
+      for (int b = 0; b < B; ++b) {
+        pose[b].exact = evaluate<B>(curve, u, b);
+        pose[b].map = enclosed(*pose[b].exact);
+      }
+    }
+    if constexpr (B == 1) {
+      pose[1].exact = fixed_pose(*other.body);
+      pose[1].map = enclosed(*pose[1].exact);
+    }
+    const Body* body[2] = {moving.body, other.body};
+    bool unknown = false;
+    for (int s = 0; s < 2; ++s) {
+      if (!body[s]->solid) continue;
+      const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+      ++result.stats.static_tests;
+      const Containment c = start_containment(*body[s], every_vertex(*body[s]), pose[s], *body[1 - s],
+                                              component_representatives(*body[1 - s], identity), pose[1 - s],
+                                              (s == 0) != swapped);
+      if (c.kind == Containment::Kind::Hit) {
+        result.witness = *c.witness;
+        result.witness->t = scene_t(u);
+        result.verdict = Verdict::Collision;
+        return Apartness::Contact;
+      }
+      unknown = unknown || c.kind == Containment::Kind::Unknown;
+    }
+    return unknown ? Apartness::Unknown : Apartness::Free;
+  }
+
+  // The whole configuration at curve parameter u: every simplex pair's
+  // static test, then the solids' insides, then (tolerance, clearance) the
+  // distance witness.  Contact sets the witness.
+  Apartness free_at(const Exact& u) {
+    bool uncertain = false;
+    if (auto hit = static_test(u, nullptr, &uncertain)) {
+      set_witness(u, *hit);
+      return Apartness::Contact;
+    }
+    const Apartness inside = uncertain ? Apartness::Unknown : containment_at(u);
+    if (inside == Apartness::Contact) return inside;
+    if (distance_witness(u, nullptr)) return Apartness::Contact;
+    return inside;
+  }
+
+  // Drops the cleared pieces (certificates' cover) inside [s, e] (scene
+  // parameters; without e: from s on).
+  void drop_cover(const Exact& s, const std::optional<Exact>& e) {
+    if (result.cleared.empty()) return;
+    const Exact us = curve_u(s);
+    const std::optional<Exact> ue = e ? std::optional<Exact>(curve_u(*e)) : std::nullopt;
+    std::erase_if(result.cleared, [&](const CoverPiece& c) {
+      const Node n{c.index, c.depth, {}};
+      return n.u0() >= us && (!ue || n.u1() <= *ue);
+    });
+  }
+
+  // The partition's claims after the search (SCENE_FORMAT.md, "Every
+  // interval claim holds"; proofs/partition.md).  The contact tests clear a
+  // piece of contact that begins in it; a run of cleared pieces is free of
+  // contact when the bodies are apart at its start.  In parameter order:
+  // the bodies are apart at the range's start (its start check), and stay
+  // so over a cleared run that starts apart; after an undecided interval
+  // nothing is known (a stop's witness candidates test only the parts that
+  // own its live pairs, which need not hold a contact that began in the
+  // stop: an edge is listed with one of the faces that share it).  So a run
+  // that follows an undecided interval gets the test of the whole
+  // configuration at its start: free, the run stands; contact, that
+  // instant is the witness and nothing after it is claimed; neither, the
+  // run is undecided "after_undecided", and the next run is tested in turn.
+  void secure_partition() {
+    std::vector<UndecidedInterval>& list = result.undecided;
+    // The end of the claims: the witness's time, else the range's end.
+    const Exact end = !result.witness ? motion.t1 : result.witness->root ? result.witness->root->hi : result.witness->t;
+    bool apart = !start_unproven;
+    Exact cursor = motion.t0;
+    for (std::size_t k = 0; k <= list.size(); ++k) {
+      const Exact run_end = k < list.size() ? list[k].t0 : end;
+      if (cursor < run_end && !apart) {
+        // At the range's start the test was just made (start_unproven).
+        const Apartness at = cursor == motion.t0 ? Apartness::Unknown : free_at(curve_u(cursor));
+        if (at == Apartness::Contact) {
+          // The witness at `cursor`: nothing after it is claimed.
+          list.resize(k);
+          drop_cover(cursor, std::nullopt);
+          const Exact lo = result.first_contact ? result.first_contact->first : cursor;
+          result.first_contact = std::pair{std::min(lo, cursor), cursor};
+          result.first_contact_exact = false;
+          return;
+        }
+        if (at == Apartness::Free) {
+          apart = true;
+        } else {
+          list.insert(list.begin() + static_cast<std::ptrdiff_t>(k),
+                      UndecidedInterval{cursor, run_end, StopReason::AfterUndecided});
+          drop_cover(cursor, run_end);
+          if (!result.first_contact) result.first_contact = std::pair{cursor, run_end};
+          else if (cursor < result.first_contact->first) result.first_contact->first = cursor;
+          result.first_contact_exact = false;
+          ++k;
+        }
+      }
+      if (k >= list.size()) break;
+      apart = false;  // after an undecided interval
+      cursor = list[k].t1;
     }
   }
+
 };
 
 

@@ -2,6 +2,8 @@
 
 #include "src/scene/solid.h"
 
+#include <cmath>
+#include <limits>
 #include <map>
 
 namespace tmcert {
@@ -68,6 +70,77 @@ std::vector<std::pair<std::string, Vec3E>> component_representatives(const Body&
   std::vector<std::pair<std::string, Vec3E>> out;
   for (std::size_t i = 0; i < parts.size(); ++i)
     if (find(i) == i) out.emplace_back(names[i], apply_map(m, parts[i][0]));
+  return out;
+}
+
+std::vector<Vec3E> every_vertex(const Body& b) {
+  std::vector<Vec3E> v;
+  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
+  for (const auto& seg : b.segments) v.insert(v.end(), seg.begin(), seg.end());
+  v.insert(v.end(), b.points.begin(), b.points.end());
+  return v;
+}
+
+namespace {
+
+// The box of points placed by an interval map (NaN: false).
+bool placed_box(const std::vector<Vec3E>& points, const std::array<Interval, 12>& m, std::array<double, 3>& lo,
+                std::array<double, 3>& hi) {
+  RoundingGuard guard;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (const Vec3E& v : points) {
+    const Interval x[3] = {to_interval(v[0]), to_interval(v[1]), to_interval(v[2])};
+    for (int i = 0; i < 3; ++i) {
+      const Interval y = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
+      if (std::isnan(y.inf()) || std::isnan(y.sup())) return false;
+      lo[i] = std::min(lo[i], y.inf());
+      hi[i] = std::max(hi[i], y.sup());
+    }
+  }
+  return true;
+}
+
+bool boxes_overlap(const std::array<double, 3>& alo, const std::array<double, 3>& ahi,
+                   const std::array<double, 3>& blo, const std::array<double, 3>& bhi) {
+  for (int c = 0; c < 3; ++c)
+    if (ahi[c] < blo[c] || bhi[c] < alo[c]) return false;
+  return true;
+}
+
+}  // namespace
+
+Containment start_containment(const Body& solid, const std::vector<Vec3E>& solid_vertices, const StartPose& ps,
+                              const Body& other, const std::vector<std::pair<std::string, Vec3E>>& other_reps,
+                              const StartPose& po, bool solid_first) {
+  Containment out;
+  if (ps.exact && po.exact) {
+    const std::unique_ptr<ClosedSurface> surface = placed_surface(solid, *ps.exact);
+    if (!surface) return out;  // a singular pose: the solid is its surface there
+    for (const auto& [part, rep] : other_reps) {
+      const Vec3E point = apply_map(*po.exact, rep);
+      if (surface->contains(point)) {
+        const std::string inside = solid.name + " interior", at = other.name + " " + part;
+        out.kind = Containment::Kind::Hit;
+        out.witness = Witness{Exact(0), solid_first ? std::array{inside, at} : std::array{at, inside}, point,
+                              std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+        return out;
+      }
+    }
+    return out;
+  }
+  std::array<double, 3> lo, hi;
+  if (!placed_box(solid_vertices, ps.map, lo, hi)) {
+    out.kind = Containment::Kind::Unknown;
+    return out;
+  }
+  for (const auto& rep : other_reps) {
+    std::array<double, 3> rlo, rhi;
+    if (!placed_box({rep.second}, po.map, rlo, rhi) || boxes_overlap(lo, hi, rlo, rhi)) {
+      out.kind = Containment::Kind::Unknown;
+      return out;
+    }
+  }
   return out;
 }
 

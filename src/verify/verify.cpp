@@ -44,8 +44,17 @@ const char* to_string(StopReason r) {
     case StopReason::Epsilon: return "epsilon";
     case StopReason::Depth: return "depth";
     case StopReason::Limit: return "limit";
+    case StopReason::AfterUndecided: return "after_undecided";
   }
   return "limit";
+}
+
+std::pair<Exact, Exact> parameter_interval(const Body& a, const Body& b) {
+  if (a.moves()) return *a.interval();
+  if (b.moves()) return *b.interval();
+  if (a.interval()) return *a.interval();
+  if (b.interval()) return *b.interval();
+  return {Exact(0), Exact(1)};
 }
 
 namespace {
@@ -421,6 +430,7 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   if (!options.epsilon) options.epsilon = thousandth_of_diagonal(merged(reach_[a], reach_[b]));
   CheckResult result = check_with(a, b, clearance, options);
   result.epsilon = *options.epsilon;
+  result.interval = parameter_interval(scene_.bodies[a], scene_.bodies[b]);
   return result;
 }
 

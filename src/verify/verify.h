@@ -21,7 +21,13 @@ namespace tmcert {
 
 enum class Verdict { Safe, Collision, Undecided };
 enum class KernelKind { Filtered, Exact, Fast };
-enum class StopReason { Epsilon, Depth, Limit };
+// Why a part of a check's interval was not cleared (SCENE_FORMAT.md, "Every
+// interval claim holds"): the search stopped there (epsilon, depth), a
+// budget ended the search (limit), or the part was cleared by contact tests
+// that detect only the onset of contact, after a part that was not cleared,
+// and the bodies could not be proven apart at its start (after_undecided;
+// proofs/partition.md).
+enum class StopReason { Epsilon, Depth, Limit, AfterUndecided };
 
 const char* to_string(Verdict v);
 const char* to_string(KernelKind k);
@@ -160,6 +166,10 @@ struct CoverPiece {
 
 struct CheckResult {
   std::array<int, 2> bodies;  // indices into Scene::bodies, in the order of the check
+  // The check's parameter interval (parameter_interval).  With a witness, the
+  // part after the witness's time up to its end was not searched
+  // ("not_searched" in tmcert-result/1).
+  std::pair<Exact, Exact> interval{Exact(0), Exact(1)};
   // The check's clearance (0: plain contact).  With clearance > 0 a
   // "collision" means the bodies come within it (clearance violated).
   Exact clearance = 0;
@@ -181,6 +191,11 @@ struct CheckResult {
   std::vector<CoverPiece> cleared;
   CheckStats stats;
 };
+
+// The parameter interval of a check of bodies a and b: the motion interval
+// of a if a moves, else of b if b moves, else of a if a has a motion, else
+// of b if b has one, else [0, 1] (docs/certificate-format.md).
+std::pair<Exact, Exact> parameter_interval(const Body& a, const Body& b);
 
 struct SceneResult {
   Verdict verdict = Verdict::Safe;

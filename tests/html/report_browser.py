@@ -12,12 +12,14 @@ over --remote-debugging-pipe (Python's standard library only), and checks
   2. the canvas is not blank: a screenshot of it (PNG, decoded here with
      zlib) has many colours and many pixels that are not background;
   3. the timeline in the DOM (spans with exact data-t0/data-t1, the
-     witness mark) matches the JSON result exactly: the undecided
-     intervals are the result's, the spans tile the check's interval,
-     nothing before the first contact's lower end is drawn other than
-     safe or undecided, colliding starts at the witness (an algebraic
-     witness time: checked with exact signs of its polynomial), and the
-     witness's two features resolve to geometry that is highlighted;
+     witness mark) matches the JSON result exactly: the spans tile the
+     check's interval and are its partition (SCENE_FORMAT.md, "Every
+     interval claim holds"): the undecided intervals are the result's,
+     safe spans exactly the rest before the witness, and from the witness
+     on not-searched (an algebraic witness time: a narrow witness span
+     holding its root, checked with exact signs of its polynomial);
+     `not_searched` is [witness, end]; and the witness's two features
+     resolve to geometry that is highlighted;
      at the witness time the page shows the witness; and the result
      document on the page is --json's.
 
@@ -261,8 +263,15 @@ def check_timeline(result, page, name):
             if not frac(s["t0"]) < frac(s["t1"]):
                 fail(f"{where}: empty or reversed span {s}")
         # Undecided: exactly the result's intervals and reasons.
+        # (Clipped where the claims end: at the witness, or at the narrow
+        # span drawn around an algebraic witness time.)
+        end = frac(p["t1"])
+        if c["verdict"] == "collision":
+            w_spans = [s for s in spans if s["kind"] == "witness"]
+            end = frac(w_spans[0]["t0"]) if w_spans else frac(c["witness"]["t"]) if isinstance(c["witness"]["t"], str) else end
         shown = [(frac(s["t0"]), frac(s["t1"]), s["reason"]) for s in spans if s["kind"] == "undecided"]
-        listed = sorted((frac(u["t"][0]), frac(u["t"][1]), u["reason"]) for u in c["undecided"])
+        listed = sorted((frac(u["t"][0]), min(frac(u["t"][1]), end), u["reason"]) for u in c["undecided"]
+                        if frac(u["t"][0]) < end)
         if shown != listed:
             fail(f"{where}: undecided on the page {shown}, in the result {listed}")
         kinds = {s["kind"] for s in spans}
@@ -274,43 +283,56 @@ def check_timeline(result, page, name):
             if p["witness"] is not None:
                 fail(f"{where}: a witness mark without a witness")
             continue
-        # Collision: safe only before the first contact's lower end.
-        fc_lo, witness = c["first_contact"]["t"][0], c["witness"]["t"]
+        # Collision: the partition ends at the witness.  Before it, safe
+        # spans are exactly the gaps between the undecided intervals; from it
+        # on, "not-searched" (an algebraic witness: a narrow "witness" span
+        # holding its root in between); nothing else (no "colliding" span:
+        # the bodies may separate again after the witness).
+        if kinds - {"safe", "undecided", "witness", "not-searched"}:
+            fail(f"{where}: collision check shows {kinds}")
+        witness = c["witness"]["t"]
         mark = p["witness"]
         if mark is None:
             fail(f"{where}: no witness mark")
+        if c["not_searched"][0] != witness or frac(c["not_searched"][1]) != frac(p["t1"]):
+            fail(f"{where}: not_searched {c['not_searched']}, witness {witness}, interval ends at {p['t1']}")
         if isinstance(witness, str):
             if mark.get("t") is None or frac(mark["t"]) != frac(witness):
                 fail(f"{where}: witness mark at {mark}, result {witness}")
-            after_witness = lambda x: x >= frac(witness)
+            claims_end = frac(witness)
+            if "witness" in kinds:
+                fail(f"{where}: a witness span for a rational witness time")
         else:
             lo, hi = frac(witness["interval"][0]), frac(witness["interval"][1])
             if mark.get("lo") is None or frac(mark["lo"]) != lo or frac(mark["hi"]) != hi:
                 fail(f"{where}: witness mark {mark}, result interval {witness['interval']}")
             poly = witness["root_of"]
-            s_hi = poly_sign(poly, hi)
             if not lo < float(mark["display"]) < hi:
                 fail(f"{where}: witness drawn at {mark['display']}, outside its interval")
-            # x >= the root, for x in (lo, hi]: the sign of the polynomial there is that at hi (or zero).
-            after_witness = lambda x: x > hi or (lo < x <= hi and poly_sign(poly, x) in (0, s_hi))
-        if isinstance(fc_lo, str):
-            before_contact = lambda x: x <= frac(fc_lo)
-        else:
-            lo, poly = frac(fc_lo["interval"][0]), fc_lo["root_of"]
-            s_lo = poly_sign(poly, lo)
-            before_contact = lambda x: x <= lo or (x < frac(fc_lo["interval"][1]) and poly_sign(poly, x) in (0, s_lo))
+            ws = [s for s in spans if s["kind"] == "witness"]
+            if len(ws) != 1:
+                fail(f"{where}: {len(ws)} witness spans for an algebraic witness time")
+            a, b = frac(ws[0]["t0"]), frac(ws[0]["t1"])
+            # The root lies in [a, b]: the polynomial changes sign (or vanishes) there.
+            if not (lo <= a and b <= hi) or poly_sign(poly, a) * poly_sign(poly, b) > 0:
+                fail(f"{where}: witness span [{a}, {b}] does not hold the root in ({lo}, {hi})")
+            claims_end = a
+        shown_safe = [(frac(s["t0"]), frac(s["t1"])) for s in spans if s["kind"] == "safe"]
+        want_safe, cursor = [], frac(p["t0"])
+        for lo_u, hi_u, _ in listed:
+            if cursor < min(lo_u, claims_end):
+                want_safe.append((cursor, min(lo_u, claims_end)))
+            cursor = max(cursor, hi_u)
+        if cursor < claims_end:
+            want_safe.append((cursor, claims_end))
+        if shown_safe != want_safe:
+            fail(f"{where}: safe spans {shown_safe}, but the result certifies {want_safe}")
         for s in spans:
-            if s["kind"] == "safe" and not before_contact(frac(s["t1"])):
-                fail(f"{where}: safe span {s} reaches past the first contact {fc_lo}")
-            if s["kind"] == "colliding" and not after_witness(frac(s["t0"])):
-                fail(f"{where}: colliding span {s} starts before the witness {witness}")
-        # The earliest contact lies in the first non-safe span, and the last span is colliding
-        # unless the witness is the end of the interval.
-        first = next(s for s in spans if s["kind"] != "safe")
-        if not before_contact(frac(first["t0"])):
-            fail(f"{where}: the first span that is not safe, {first}, starts after the first contact {fc_lo}")
-        if spans[-1]["kind"] != "colliding" and not after_witness(frac(p["t1"])):
-            fail(f"{where}: nothing drawn colliding")
+            if s["kind"] in ("safe", "undecided") and frac(s["t1"]) > claims_end:
+                fail(f"{where}: span {s} reaches past the witness {witness}")
+        tail = [s for s in spans if s["kind"] == "not-searched"]
+        if frac(p["t1"]) > claims_end and (not tail or spans[-1] is not tail[-1] or len(tail) != 1):
+            fail(f"{where}: after the witness the interval is not drawn not-searched: {spans[-3:]}")
         # The witness's features resolve to drawn geometry.
         w = p["data_witness"]
         if w["features"] != c["witness"]["features"]:
@@ -465,13 +487,16 @@ def main():
             browser = Browser(chromium, profile, log)
             # Small scenes: undecided spans (the depth limit) between safe
             # ones; a clearance violated after an undecided span (safe,
-            # undecided, first-contact and colliding spans, a witness of two
-            # points); a safe one; then the gripper collision (5,700
-            # triangles, a witness at an algebraic time).
+            # undecided and not-searched spans, a witness of two points); a
+            # point entering a solid after an undecided stop (after_undecided);
+            # a safe one; then the gripper collision (5,700 triangles, a
+            # witness at an algebraic time).
             check_page(browser, tmcert, "tests/data/scenes/planner-clearance-safe.json",
                        ["--max-depth", "2"], work, "clearance-undecided")
             check_page(browser, tmcert, "tests/data/scenes/planner-clearance-violated.json",
                        ["--max-depth", "2"], work, "clearance-violated")
+            check_page(browser, tmcert, "tests/data/scenes/solid-entered-after-undecided-rpy.json", [], work,
+                       "solid-after-undecided")
             check_page(browser, tmcert, "examples/octagons-clear.json", [], work, "octagons-clear")
             check_page(browser, tmcert, "examples/gripper/gripper-collision.json", [], work,
                        "gripper-collision", screenshot, view)

@@ -316,6 +316,12 @@ def assert_views_agree(result: tmcert.Result) -> None:
         for u, d in zip(check.undecided, c["undecided"]):
             assert u.t == (fraction(d["t"][0]), fraction(d["t"][1])) and u.reason == d["reason"]
             assert all(same_float(f, nearest_float(x)) for f, x in zip(u.t_float, u.t))
+        if "not_searched" in c:
+            assert check.witness is not None and check.not_searched[1] == check.interval[1]
+            for k in range(2):
+                assert_time(c["not_searched"][k], check.not_searched[k], check.not_searched_float[k])
+        else:
+            assert check.not_searched is None and check.not_searched_float is None and check.witness is None
         for key in ("nodes", "max_depth", "predicate_calls", "exact_fallbacks", "stops", "exact_pieces",
                     "exact_undecided", "prefiltered"):
             assert getattr(check.stats, key) == c["stats"][key], key

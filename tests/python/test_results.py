@@ -49,6 +49,26 @@ def test_clearance_and_undecided_intervals() -> None:
     assert_views_agree(result)
 
 
+def test_partition_after_an_undecided_stop() -> None:
+    # Issue 21: the point is inside the solid cube for every t in (2/3, 1]; the
+    # crossing at an enclosed (rpy) pose stops undecided, and nothing after the
+    # stop may be claimed cleared (reason "after_undecided").
+    result = tmcert.verify(SCENES / "solid-entered-after-undecided-rpy.json")
+    (check,) = result.checks
+    assert check.verdict is tmcert.Verdict.UNDECIDED and check.not_searched is None
+    assert check.interval == (0, 1)
+    assert check.undecided[-1].reason == "after_undecided" and check.undecided[-1].t[1] == 1
+    covered = lambda t: any(u.t[0] <= t <= u.t[1] for u in check.undecided)
+    assert all(covered(Fraction(2, 3) + Fraction(k, 300)) for k in range(1, 101))
+    assert_views_agree(result)
+    # A collision: nothing after the witness is claimed.
+    result = tmcert.verify(SCENES / "solid-entered-rational.json")
+    (check,) = result.checks
+    assert check.witness.t == Fraction(2, 3) and check.not_searched == (Fraction(2, 3), Fraction(1))
+    assert check.not_searched_float == (2 / 3, 1.0)
+    assert_views_agree(result)
+
+
 def test_tolerance_displacement() -> None:
     result = tmcert.verify(SCENES / "planner-tolerance-collision.json")
     (check,) = result.checks

@@ -80,7 +80,7 @@ const std::vector<std::pair<std::string, std::string>> kValid = {
     {"drop", "drop-undecided"},         {"two-moving", "two-moving"},
     {"solid-outside", "solid-outside"}, {"solid-inside", "solid-inside-collision"},
     {"solid-singular", "solid-singular"}, {"drop", "drop-exact"},
-    {"slide-beside", "slide-exact"}};
+    {"slide-beside", "slide-exact"},    {"solid-crossing", "solid-crossing-undecided"}};
 
 }  // namespace
 
@@ -395,6 +395,37 @@ BOOST_AUTO_TEST_CASE(tampered_start_claims_are_rejected) {
     check0(c)["start"][0]["solid"] = "a";
     expect_rejected(c, "\"tri\" is not solid");
   }
+}
+
+// A run of pieces after an undecided interval needs start claims at its
+// own start (proofs/partition.md §5): the point crosses the solid cube
+// (inside for t in (1/4, 3/4)); separations from each face prove the
+// surfaces apart on [3/8, 5/8], but the point entered during the
+// undecided [1/8, 3/8].  Before the fix this certificate was accepted.
+BOOST_AUTO_TEST_CASE(pieces_after_an_undecided_interval_need_start_claims_there) {
+  Case c = load("solid-crossing", "solid-crossing-inside");
+  expect_rejected(c, "start: no claim for the solid \"box\" (\"b\") at t = 3/8");
+  // With a claim there, its ray shows the point inside.
+  json at = check0(c)["start"][0];
+  at["t"] = "3/8";
+  at["points"][0]["ray"] = json::array({"1", "1/3", "1/5"});
+  check0(c)["start"].push_back(at);
+  expect_rejected(c, "start[1] (solid \"box\").points[0] (\"pt\" element 0 vertex 0): the ray crosses shell 0 of \"box\" 1 time, an odd number: the vertex is inside \"box\" at t = 3/8");
+  // The valid certificate of the crossing: pieces before and after the
+  // undecided [1/8, 7/8], start claims at 0 and at 7/8.
+  Case d = load("solid-crossing", "solid-crossing-undecided");
+  BOOST_TEST(check(d).proven[0] ==
+             "pt x box: undecided: no contact before t = 1/8 proven (2 pieces, 2 separations, 2 start points; 1 "
+             "interval not cleared)");
+  check0(d)["start"].erase(1);
+  expect_rejected(d, "start: no claim for the solid \"box\" (\"b\") at t = 7/8");
+  // A claim's instant must lie in the check's interval; one per side and instant.
+  Case e = load("solid-crossing", "solid-crossing-undecided");
+  check0(e)["start"][1]["t"] = "9/8";
+  expect_malformed(e, "start[1].t: 9/8 is outside the check's interval [0, 1]");
+  Case f = load("solid-crossing", "solid-crossing-undecided");
+  check0(f)["start"][1]["t"] = "0";
+  expect_malformed(f, "start[1].solid: a second entry for \"b\"");
 }
 
 // Exact "no contact" claims (src/certificate/exact_claims.h,

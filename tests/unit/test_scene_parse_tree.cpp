@@ -168,6 +168,12 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
                      {"t_approx", {approx(u.t0), approx(u.t1)}},
                      {"reason", to_string(u.reason)}});
     k["undecided"] = und;
+    // The witness ends the claims: [its time, the interval's end] not searched.
+    if (c.witness && at)
+      k["not_searched"] = {root(*at), to_string(c.interval.second)}, k["not_searched_approx"] = {at_approx, approx(c.interval.second)};
+    else if (c.witness)
+      k["not_searched"] = {to_string(c.witness->t), to_string(c.interval.second)},
+      k["not_searched_approx"] = {approx(c.witness->t), approx(c.interval.second)};
     const tmcert::CheckStats& s = c.stats;
     k["stats"] = {{"nodes", s.nodes},
                   {"max_depth", s.max_depth},
@@ -226,6 +232,8 @@ BOOST_AUTO_TEST_CASE(result_json_is_written_as_nlohmann_dumps_it) {
                                 {Exact(1, 2), Exact(-1, 3), Exact(0)}};
   hit.undecided.push_back({Exact(1, 2), Exact(33, 64), tmcert::StopReason::Epsilon});
   hit.undecided.push_back({Exact(5, 8), Exact(1), tmcert::StopReason::Depth});
+  hit.undecided.push_back({Exact(1), Exact(2), tmcert::StopReason::AfterUndecided});
+  hit.interval = {Exact(0), Exact(7, 3)};
   hit.stats.nodes = 173;
   hit.stats.max_depth = 8;
   hit.stats.contact.calls = 18446744073709551615ull;

@@ -190,7 +190,9 @@ class Witness:
 
 @dataclass(frozen=True)
 class UndecidedInterval:
-    """A parameter interval not cleared, and why: "epsilon", "depth" or "limit"."""
+    """A parameter interval not cleared, and why: "epsilon", "depth", "limit" or
+    "after_undecided" (cleared only of contact beginning there, after a part
+    not cleared, with the bodies not proven apart at its start)."""
 
     t: Tuple[Fraction, Fraction]
     t_float: Tuple[float, float]
@@ -223,6 +225,11 @@ class Check:
     ``witness`` is set iff the verdict is collision.  ``epsilon`` is the
     termination tolerance this check ran with: the one given, or else its
     own default, 1/1000 of the box of its two bodies' motion.
+
+    The check's ``interval`` is partitioned into the parts certified free of
+    contact (everything not listed), ``undecided``, and with a witness its
+    time and after it ``not_searched`` (the witness time and the interval's
+    end: nothing after the witness was searched); nothing else.
     """
 
     bodies: Tuple[str, str]
@@ -238,10 +245,14 @@ class Check:
     witness: Optional[Witness]
     undecided: Tuple[UndecidedInterval, ...]
     stats: Stats
+    interval: Tuple[Fraction, Fraction]
+    not_searched: Optional[Tuple[Time, Time]]
+    not_searched_float: Optional[Tuple[float, float]]
 
     @staticmethod
     def _from(c: Any) -> "Check":
         fc = c.first_contact
+        ns = c.not_searched
         s = c.stats
         return Check(
             bodies=(c.bodies[0], c.bodies[1]), verdict=Verdict(c.verdict),
@@ -254,7 +265,10 @@ class Check:
             undecided=tuple(UndecidedInterval((u.t0.fraction(), u.t1.fraction()), (u.t0.approx, u.t1.approx),
                                               u.reason) for u in c.undecided),
             stats=Stats(s.nodes, s.max_depth, s.predicate_calls, s.exact_fallbacks, s.stops, s.exact_pieces,
-                        s.exact_undecided, s.prefiltered, s.seconds))
+                        s.exact_undecided, s.prefiltered, s.seconds),
+            interval=(c.interval[0].fraction(), c.interval[1].fraction()),
+            not_searched=None if ns is None else (_time(ns[0]), _time(ns[1])),
+            not_searched_float=None if ns is None else (ns[0].value.approx, ns[1].value.approx))
 
 
 class Result:
