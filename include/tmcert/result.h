@@ -84,8 +84,12 @@ struct CheckResult {
   std::array<std::string, 2> bodies;  // names, in the check's order
   Verdict verdict = Verdict::Undecided;
   // The termination tolerance this check ran with: the given one, or the
-  // check's default (1/1000 of the box of its two bodies' motion).
+  // check's default (1/1000 of the box of its two bodies' motion); when
+  // refined, the smallest one used.
   Rational epsilon;
+  // Its undecided parts were searched again at smaller epsilons
+  // (refinement: no epsilon given, or "auto"; VerifyOptions::epsilon).
+  bool refined = false;
   Rational clearance;                 // 0: plain contact
   bool clearance_violated = false;    // clearance > 0 and verdict Collision
   bool enlarged_model = false;        // a body is a circumscribed model of its URDF shapes
