@@ -109,7 +109,8 @@ class TMCERT_API Result {
   Kernel kernel() const;
   bool certified() const;  // false only for the fast kernel
   // The epsilon given (options or scene), or else the largest of the
-  // checks' own defaults (CheckResult::epsilon), as the JSON's "epsilon".
+  // checks' own (CheckResult::epsilon: their defaults, or with refinement
+  // the smallest each used), as the JSON's "epsilon".
   const Rational& epsilon() const;
   const std::vector<CheckResult>& checks() const;
   // The scene's notes and warnings (Scene::notes(), Scene::warnings()), as

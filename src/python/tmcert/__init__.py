@@ -289,7 +289,8 @@ class Result:
     @property
     def epsilon(self) -> Fraction:
         """The termination tolerance given (scene or ``epsilon=``), or else the
-        largest of the checks' own defaults (``Check.epsilon``), exact."""
+        largest of the checks' own (``Check.epsilon``: their defaults, or
+        with refinement the smallest each used), exact."""
         return self._raw.epsilon.fraction()
 
     @property
