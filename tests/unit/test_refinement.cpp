@@ -84,28 +84,6 @@ BOOST_AUTO_TEST_CASE(a_crossing_after_a_grazing_pass_is_found_refined) {
   BOOST_TEST(certificate_accepted(scene, r));
 }
 
-// A check on one rational curve names its cleared pieces by index and
-// depth in a certificate: the re-searched parts must be dyadic pieces of the
-// whole curve.  (The ball search alone: exact resolution decides this scene
-// at once.)
-BOOST_AUTO_TEST_CASE(a_rational_check_refined_keeps_a_checkable_certificate) {
-  const Scene scene = scene_named("decisive-translation-pass-above.json");
-  BOOST_REQUIRE(scene.bodies[1].motion);
-  VerifyOptions fixed;
-  fixed.exact_resolution = false;
-  fixed.epsilon = default_epsilon(scene.bodies[0], scene.bodies[1]);
-  BOOST_TEST(verify_scene(scene, fixed).verdict == Verdict::Undecided);
-  VerifyOptions refine = fixed;
-  refine.epsilon.reset();
-  refine.refine = true;
-  refine.record_cover = true;
-  const SceneResult r = verify_scene(scene, refine);
-  BOOST_TEST(r.verdict == Verdict::Safe);
-  BOOST_TEST(r.checks[0].refined);
-  for (const CoverPiece& c : r.checks[0].cleared) BOOST_TEST(!c.timed);
-  BOOST_TEST(certificate_accepted(scene, r));
-}
-
 BOOST_AUTO_TEST_CASE(a_given_epsilon_is_not_refined) {
   Scene scene = scene_named("decisive-slerp-pass-above.json");
   VerifyOptions options;
