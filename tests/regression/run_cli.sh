@@ -223,7 +223,7 @@ expect_verdict_with() {
 expect_verdict_with '"verdict": "undecided"' 2 '"refined": false' verify "$decisive" --epsilon 0.1 --json
 expect_verdict_with '"verdict": "safe"' 0 '"refined": true' verify "$decisive" --epsilon auto --json
 {
-  printf '%s\n' '{"format": "tmcert-scene/1", "bodies": [{"name": "plate", "polygons": [[[40, -1, "1/200"], [60, -1, "1/200"], [50, 1, "1/200"]]]}, {"name": "probe", "points": [[0, 0, 0]]}]}'
+  printf '%s\n' '{"format": "tmcert-scene/1", "bodies": [{"name": "plate", "polygons": [[[40, "101/100", -1], [60, "101/100", -1], [50, "-99/100", 1]], [[40, "-101/100", 1], [60, "-101/100", 1], [50, "99/100", -1]]]}, {"name": "probe", "points": [[0, 0, 0]]}]}'
   printf '%s\n' '{"id": "pass", "body": "probe", "checks": ["plate"], "motion": {"type": "keyframes", "interpolation": "slerp", "poses": [{"translation": [0, 0, 0]}, {"translation": [100, 0, 0], "rotation": {"quaternion": [1, 0, 0, 1]}}]}}'
 } >"$work/decisive-batch.jsonl"
 expect_verdict_with '"verdict":"safe"' 0 '"refined":true' batch "$work/decisive-batch.jsonl"
