@@ -30,7 +30,7 @@ struct BatchOptions {
   std::string output;    // the results file; empty: standard output
   std::string shard;     // "i/n": only the requests whose index is i modulo n; empty: all
   Kernel kernel = Kernel::Filtered;
-  std::optional<Number> epsilon;  // none: the environment's, else its default
+  std::optional<Number> epsilon;  // none: the environment's, else its default refined; "auto": refined
   std::optional<int> max_depth;   // 1 to 200; none: the environment's
   std::optional<double> time_limit;  // seconds per check
   int threads = 1;                // requests run in parallel (the output is the same)

@@ -86,8 +86,12 @@ struct CheckResult {
   std::array<std::string, 2> bodies;  // names, in the check's order
   Verdict verdict = Verdict::Undecided;
   // The termination tolerance this check ran with: the given one, or the
-  // check's default (1/1000 of the box of its two bodies' motion).
+  // check's default (1/1000 of the box of its two bodies' motion); when
+  // refined, the smallest one used.
   Rational epsilon;
+  // Its undecided parts were searched again at smaller epsilons
+  // (refinement: no epsilon given, or "auto"; VerifyOptions::epsilon).
+  bool refined = false;
   Rational clearance;                 // 0: plain contact
   bool clearance_violated = false;    // clearance > 0 and verdict Collision
   bool enlarged_model = false;        // a body is a circumscribed model of its URDF shapes
@@ -115,7 +119,8 @@ class TMCERT_API Result {
   Kernel kernel() const;
   bool certified() const;  // false only for the fast kernel
   // The epsilon given (options or scene), or else the largest of the
-  // checks' own defaults (CheckResult::epsilon), as the JSON's "epsilon".
+  // checks' own (CheckResult::epsilon: their defaults, or with refinement
+  // the smallest each used), as the JSON's "epsilon".
   const Rational& epsilon() const;
   const std::vector<CheckResult>& checks() const;
   // The scene's notes and warnings (Scene::notes(), Scene::warnings()), as

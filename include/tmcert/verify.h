@@ -34,8 +34,11 @@ struct Progress {
 // Options of verify(), as the command line's (tmcert verify --help).
 struct VerifyOptions {
   Kernel kernel = Kernel::Filtered;
-  // Termination tolerance, a positive length (none: the scene's, else the
-  // default epsilon).
+  // Termination tolerance, a positive length, fixed (none: the scene's,
+  // else each check's default epsilon, refined: its undecided parts
+  // searched again at epsilon/10, ... down to epsilon/10^6, within the time
+  // limit, else 30 s per check; "auto": refined from the default even when
+  // the scene gives one).
   std::optional<Number> epsilon;
   // Subdivision depth limit, 1 to 200 (none: the scene's).
   std::optional<int> max_depth;

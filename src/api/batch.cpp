@@ -21,7 +21,9 @@ BatchSummary batch(const BatchOptions& options) {
     o.output = options.output;
     if (!options.shard.empty()) o.shard = tmcert::Shard::parse(options.shard);
     o.verify.kernel = static_cast<tmcert::KernelKind>(static_cast<int>(options.kernel));
-    if (options.epsilon) {
+    if (options.epsilon && options.epsilon->text() == "auto") {
+      o.epsilon_auto = true;
+    } else if (options.epsilon) {
       tmcert::Exact e;
       if (!tmcert::parse_exact(options.epsilon->text(), e) || !(e > 0))
         throw InputError("epsilon: must be a positive number (decimal or p/q), got " +

@@ -102,6 +102,7 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
   out.bodies = {a.name, b.name};
   out.verdict = same_enum<Verdict>(c.verdict);
   out.epsilon = to_rational(c.epsilon);
+  out.refined = c.refined;
   out.clearance = to_rational(c.clearance);
   out.clearance_violated = c.clearance > 0 && c.verdict == tmcert::Verdict::Collision;
   out.enlarged_model = !a.enlarged.empty() || !b.enlarged.empty();
@@ -137,13 +138,16 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
 tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o) {
   tmcert::VerifyOptions options;
   options.kernel = same_enum<tmcert::KernelKind>(o.kernel);
-  if (o.epsilon) {
+  if (o.epsilon && o.epsilon->text() == "auto") {
+    options.refine = true;  // each check's own default, refined (SCENE_FORMAT.md "Decisive by default")
+  } else if (o.epsilon) {
     tmcert::Exact e;
     if (!tmcert::parse_exact(o.epsilon->text(), e) || !(e > 0))
       throw InputError("epsilon: must be a positive number (decimal or p/q), got " + tmcert::quote_text(o.epsilon->text()));
     options.epsilon = e;
   } else {
-    options.epsilon = scene.epsilon;  // absent: each check's own default
+    options.epsilon = scene.epsilon;  // absent: each check's own default, refined
+    options.refine = !scene.epsilon;
   }
   if (o.max_depth && (*o.max_depth < 1 || *o.max_depth > 200))
     throw InputError("max_depth: must be between 1 and 200, got " + std::to_string(*o.max_depth));

@@ -203,7 +203,13 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
   }
   if (run) run->set_activity("preparing the environment");
   VerifyOptions verify = options.verify;
-  verify.epsilon = options.epsilon ? *options.epsilon : scene.epsilon ? *scene.epsilon : default_epsilon(scene);
+  // No epsilon given (or `--epsilon auto`): the scene's default, refined
+  // (SCENE_FORMAT.md "Decisive by default").
+  verify.refine = options.epsilon_auto || (!options.epsilon && !scene.epsilon);
+  verify.epsilon = options.epsilon_auto ? default_epsilon(scene)
+                   : options.epsilon    ? *options.epsilon
+                   : scene.epsilon      ? *scene.epsilon
+                                        : default_epsilon(scene);
   verify.max_depth = options.max_depth ? *options.max_depth : scene.max_depth;
   verify.threads = 1;  // requests run in parallel instead
   const BatchEnvironment environment(std::move(scene), std::move(robots), verify, base, options.stats);

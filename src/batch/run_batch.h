@@ -20,6 +20,9 @@ struct BatchOptions {
   // default to the environment scene's.
   VerifyOptions verify;
   std::optional<Exact> epsilon;
+  // `--epsilon auto`: the environment's default epsilon, refined, whatever
+  // the environment gives (refinement is also on when neither gives one).
+  bool epsilon_auto = false;
   std::optional<int> max_depth;
   int threads = 1;       // requests run in parallel (output order kept)
   bool stats = false;    // each check's "stats", wall-clock seconds included

@@ -180,10 +180,13 @@ int run_verify(const VerifyArgs& args) {
   options.kernel = args.kernel == "exact" ? KernelKind::Exact
                    : args.kernel == "fast" ? KernelKind::Fast
                                            : KernelKind::Filtered;
-  if (!args.epsilon.empty()) {
-    options.epsilon = epsilon_option(args.epsilon);
+  if (args.epsilon == "auto") {
+    options.refine = true;  // each check's own default, refined
+  } else if (!args.epsilon.empty()) {
+    options.epsilon = epsilon_option(args.epsilon);  // fixed: no refinement
   } else {
-    options.epsilon = scene.epsilon;  // absent: each check's own default
+    options.epsilon = scene.epsilon;  // absent: each check's own default, refined
+    options.refine = !scene.epsilon;
   }
   options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
   options.hierarchy = !args.all_pairs;
@@ -264,7 +267,8 @@ int run_batch_command(BatchArgs& args) {
   o.verify.kernel = args.kernel == "exact" ? KernelKind::Exact
                     : args.kernel == "fast" ? KernelKind::Fast
                                             : KernelKind::Filtered;
-  if (!args.epsilon.empty()) o.epsilon = epsilon_option(args.epsilon);
+  if (args.epsilon == "auto") o.epsilon_auto = true;
+  else if (!args.epsilon.empty()) o.epsilon = epsilon_option(args.epsilon);
   if (args.max_depth >= 0) o.max_depth = args.max_depth;
   if (!args.time_limit.empty()) o.verify.time_limit = time_limit_option(args.time_limit);
   return run_batch(o);
@@ -312,8 +316,9 @@ int main(int argc, char** argv) {
   VerifyArgs args;
   CLI::App* verify = app.add_subcommand("verify", "check every requested body pair over the whole motion");
   verify->add_option("scene", args.scene, "scene file (tmcert-scene/1)")->required();
-  verify->add_option("--epsilon", args.epsilon, "termination tolerance, a length, for every check (overrides the scene; default: per check, "
-                     "1/1000 of the diagonal of its two bodies' box)");
+  verify->add_option("--epsilon", args.epsilon, "termination tolerance, a length, for every check, fixed (overrides the scene); "
+                     "'auto' or absent (and none in the scene): per check, 1/1000 of the diagonal of its two bodies' "
+                     "box, its undecided parts searched again at epsilon/10, ... down to 1e-9 of that diagonal");
   verify->add_option("--max-depth", args.max_depth, "subdivision depth limit (overrides the scene)")
       ->check(CLI::Range(1, 200));  // as the scene's max_depth
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
@@ -324,7 +329,7 @@ int main(int argc, char** argv) {
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
-                     "(reason limit), never safe");
+                     "(reason limit), never safe; refinement (no --epsilon) stops at it, else at 30 s");
   verify->add_flag("--all-pairs", args.all_pairs,
                    "carry every feature pair from the start instead of the bounding-volume hierarchies "
                    "(the reference the hierarchy is tested against; slow for large bodies)");
@@ -342,7 +347,9 @@ int main(int argc, char** argv) {
   batch->add_option("--scene", batch_args.options.scene, "the environment scene (tmcert-scene/1, fixed bodies)");
   batch->add_option("-o,--output", batch_args.options.output, "results file (default: standard output)");
   batch->add_option("--shard", batch_args.shard, "i/n: run only the requests whose index is i modulo n");
-  batch->add_option("--epsilon", batch_args.epsilon, "termination tolerance, a length (overrides the environment)");
+  batch->add_option("--epsilon", batch_args.epsilon, "termination tolerance, a length, fixed (overrides the environment); 'auto' or absent (and none in the "
+                    "environment): the environment's default, undecided parts searched again at epsilon/10, ... down to "
+                    "epsilon/10^6");
   batch->add_option("--max-depth", batch_args.max_depth, "subdivision depth limit (overrides the environment)")
       ->check(CLI::Range(1, 200));
   batch->add_option("--kernel", batch_args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")

@@ -192,6 +192,7 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.member("epsilon", to_string(c.epsilon));
   w.key("epsilon_approx");
   w.approx(c.epsilon);
+  w.member("refined", c.refined);
   if (!scene.bodies[c.bodies[0]].enlarged.empty() || !scene.bodies[c.bodies[1]].enlarged.empty())
     w.member("enlarged_model", true);
   if (c.clearance > 0) {
@@ -525,17 +526,45 @@ Exact smaller_epsilon(const Scene& scene, const CheckResult& c) {
 
 // What to try when a check stops undecided for `reason`.  `smaller` is
 // the epsilon a hint suggests (smaller_epsilon).
+// A hint never suggests a smaller epsilon where that cannot help: a check
+// undecided without a single subdivision node (its start configuration, an
+// enclosed pose within rounding of contact or a solid's containment at an
+// enclosed start, is what is undecided), or one whose refinement reached
+// its floor.
 std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason, const Exact& smaller) {
+  const std::string time_limit_text = [&] {
+    std::ostringstream t;
+    t << (r.time_limit > 0 ? r.time_limit : 30);
+    return t.str();
+  }();
+  const std::string out_of_time = "refinement stopped at epsilon " + to_decimal(c.epsilon).text +
+                                  " when the check's time limit (" + time_limit_text +
+                                  " s) ran out; try a larger --time-limit";
   switch (reason) {
     case StopReason::Epsilon:
+      if (c.stats.nodes == 0)
+        return "the start configuration could not be proven free (an enclosed pose within rounding of contact, "
+               "or a solid's containment at an enclosed start); no epsilon changes that";
+      if (c.refine_out_of_time) return out_of_time;
+      if (c.refine_exhausted)
+        return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
+               ") there even at the refinement's floor (epsilon/10^6 of the check's default); a smaller epsilon "
+               "would not decide it";
       return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
-             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(smaller).text;
+             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(smaller).text +
+             (r.refine ? "" : ", or --epsilon auto");
     case StopReason::Depth:
       if (r.max_depth < 62)
         return "the subdivision reached its depth limit (" + std::to_string(r.max_depth) + "); try --max-depth " +
                std::to_string(std::min(62, 2 * r.max_depth));
       return "the subdivision reached its finest depth (62): the bodies are within rounding of contact there";
     case StopReason::Limit:
+      if (c.refine_out_of_time) return out_of_time;
+      if (c.refine_exhausted && r.max_stops > 0 && c.stats.stops >= r.max_stops)
+        return "the stop budget (" + std::to_string(r.max_stops) +
+               " undecided pieces per search) was used up even at the refinement's floor (epsilon " +
+               to_decimal(c.epsilon).text + "): the bodies stay within about epsilon over a long stretch (resting on "
+               "each other); a smaller epsilon would not decide it";
       if (r.max_stops > 0 && c.stats.stops >= r.max_stops)
         return "the stop budget (" + std::to_string(r.max_stops) +
                " undecided pieces) was used up, so the rest was not searched: the bodies stay within about "
@@ -590,7 +619,7 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
   out << "tmcert: " << to_string(r.verdict);
   if (!r.certified) out << " (kernel fast: NOT CERTIFIED)";
   out << "  [kernel " << to_string(r.kernel) << ", epsilon ";
-  if (r.epsilon_per_check) out << "per check: 1/1000 of its bodies' box";
+  if (r.epsilon_per_check) out << "per check: 1/1000 of its bodies' box" << (r.refine ? ", refined" : "");
   else out << readable(r.epsilon);
   out << "]\n";
   for (const std::string& note : scene.notes) out << "  note: " << note << "\n";
@@ -618,7 +647,8 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
       out << "  (prefilter: the boxes of what the bodies sweep are apart)\n";
     } else {
       out << "  (";
-      if (r.epsilon_per_check) out << "epsilon " << to_decimal(c.epsilon).text << ", ";
+      if (r.epsilon_per_check || c.refined)
+        out << "epsilon " << to_decimal(c.epsilon).text << (c.refined ? " (refined)" : "") << ", ";
       out << c.stats.nodes << " nodes, depth " << c.stats.max_depth << ", " << c.stats.contact.calls << " tests, "
           << c.stats.contact.exact_fallbacks << " exact, " << seconds_text(c.stats.seconds) << " s)\n";
     }

@@ -577,6 +577,7 @@ PYBIND11_MODULE(_tmcert, m) {
       .def_readonly("bodies", &api::CheckResult::bodies)
       .def_property_readonly("verdict", [](const api::CheckResult& c) { return api::to_string(c.verdict); })
       .def_readonly("epsilon", &api::CheckResult::epsilon)
+      .def_readonly("refined", &api::CheckResult::refined)
       .def_readonly("clearance", &api::CheckResult::clearance)
       .def_readonly("clearance_violated", &api::CheckResult::clearance_violated)
       .def_readonly("enlarged_model", &api::CheckResult::enlarged_model)

@@ -4,6 +4,7 @@
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
+#include "src/verify/refine.h"
 #include "src/verify/search.h"
 #include "src/verify/solid_contact.h"
 
@@ -454,12 +455,21 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
       options.deadline = std::chrono::steady_clock::now() +
                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                              std::chrono::duration<double>(options.time_limit));
-    out.checks.push_back(
-        detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free));
+    const auto started = std::chrono::steady_clock::now();
+    CheckResult result = detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free);
+    // Refinement (src/verify/refine.h), as in Verifier::check: the
+    // undecided parts searched again as parts of [t0, t1].
+    if (options.refine && result.verdict == Verdict::Undecided)
+      detail::refine_check(result, t0, t1, false, options, started,
+                           [&](const Exact& w0, const Exact& w1, bool free, const VerifyOptions& o) {
+                             return detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), o,
+                                                                free || (w0 == t0 && start_free), std::pair{w0, w1});
+                           });
+    out.checks.push_back(std::move(result));
     record(out.checks.size() - 1);
   }
   for (CheckResult& r : out.checks) {
-    r.epsilon = *options_.epsilon;
+    if (!r.refined) r.epsilon = *options_.epsilon;
     r.interval = {t0, t1};
   }
   if (decided < out.checks.size()) {

@@ -137,7 +137,8 @@ CheckResult Verifier::check_general(int a, int b, const Exact& clearance, const 
 
 CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
                                         const Exact& clearance, const VerifyOptions& options,
-                                        bool start_proven_free) {
+                                        bool start_proven_free,
+                                        const std::optional<std::pair<Exact, Exact>>& window) {
   const auto started = std::chrono::steady_clock::now();
   CheckResult result;
   result.bodies = ids;
@@ -186,8 +187,11 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   }
 
   // The check's interval and its joins.
-  const auto interval = mb.moves() ? *mb.interval() : ob.moves() ? *ob.interval() : mb.motion ? *mb.interval()
-                                                                                             : std::pair{Exact(0), Exact(1)};
+  const auto interval = window                     ? *window
+                        : mb.moves()               ? *mb.interval()
+                        : ob.moves()               ? *ob.interval()
+                        : mb.motion                ? *mb.interval()
+                                                   : std::pair{Exact(0), Exact(1)};
   std::vector<Exact> cuts = {interval.first, interval.second};
   for (const Body* body : {&mb, &ob})
     if (body->trajectory)

@@ -6,6 +6,8 @@
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
+#include "src/verify/prepared_pair.h"
+#include "src/verify/refine.h"
 #include "src/verify/search.h"
 #include "src/verify/solid_contact.h"
 
@@ -62,101 +64,108 @@ namespace {
 using detail::Check;
 using detail::first_hit;
 
-Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-std::vector<Vec3E> body_vertices(const Body& b) {
-  std::vector<Vec3E> v;
-  for (const auto& poly : b.polygons) v.insert(v.end(), poly.begin(), poly.end());
-  for (const auto& s : b.segments) v.insert(v.end(), s.begin(), s.end());
-  v.insert(v.end(), b.points.begin(), b.points.end());
-  return v;
-}
-
 }  // namespace
 
 namespace {
 
-// An axis-aligned box of exact points: its lower and upper corners.
-using ReachBox = std::array<Vec3E, 2>;
+// An axis-aligned box, outward-rounded: its lower and upper corners.
+using ReachBox = std::array<std::array<double, 3>, 2>;
 
-// The maps of a rational curve for its box: its control points (with
+PoseInterval interval_map(const Mat34E& m) {
+  PoseInterval out;
+  for (int e = 0; e < 12; ++e) out[e] = to_interval(m[e]);
+  return out;
+}
+
+// The poses of a rational curve for its box: its control points (with
 // positive weights the curve lies in their convex hull), except for an
 // nlerp keyframe segment, whose control points carry the scale of the
 // quaternions as written (a unit bar under a quaternion of 1e9 would get a
-// box of 1e9): there its exact poses at s = k/8, poses along the motion (a
-// tolerance, not a bound: the box of these poses lies inside the swept one).
-void add_curve_maps(const Motion& m, std::vector<Mat34E>& maps) {
+// box of 1e9): there its exact poses at its two ends, the keyframes (a
+// tolerance, not a bound).
+void add_curve_maps(const Motion& m, std::vector<PoseInterval>& maps) {
   if (!m.nlerp) {
-    maps.insert(maps.end(), m.control_points.begin(), m.control_points.end());
+    for (const Mat34E& c : m.control_points) maps.push_back(interval_map(c));
     return;
   }
-  for (int k = 0; k <= 8; ++k) maps.push_back(motion_pose(m, m.t0 + (m.t1 - m.t0) * Exact(k, 8)));
+  for (const Exact& t : {m.t0, m.t1}) maps.push_back(interval_map(motion_pose(m, t)));
 }
 
-// The box of a body's vertices under every control point of its motion
-// (nlerp keyframes: poses along them; keyframe and link poses at their
-// ends, approximately for enclosed ones: a tolerance, not a bound);
-// nullopt for a body without vertices.
+// The box of a body's local bounding box (of its vertices, outward-rounded)
+// placed by every pose of its motion, in interval arithmetic: the control
+// points of a rational motion, the keyframe poses of keyframe segments
+// (never their rational control points), a link's poses at its waypoints
+// (enclosed).  It holds every vertex under every one of these poses; the
+// poses bound what the body sweeps only for a rational curve (a tolerance,
+// not a bound).  nullopt for a body without vertices or an enclosure that
+// is not finite.  Cost: one pass over the vertices, then a constant per
+// pose (docs/scene-format.md, "Default epsilon").
 std::optional<ReachBox> reach_box(const Body& b) {
-  std::vector<Mat34E> maps;
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  bool any = false;
+  auto add = [&](const Vec3E& v) {
+    any = true;
+    for (int i = 0; i < 3; ++i) {
+      const Interval x = to_interval(v[i]);
+      lo[i] = std::min(lo[i], x.inf());
+      hi[i] = std::max(hi[i], x.sup());
+    }
+  };
+  for (const auto& poly : b.polygons) for (const Vec3E& v : poly) add(v);
+  for (const auto& s : b.segments) for (const Vec3E& v : s) add(v);
+  for (const Vec3E& v : b.points) add(v);
+  if (!any) return std::nullopt;
+
+  std::vector<PoseInterval> maps;
   if (b.motion) add_curve_maps(*b.motion, maps);
-  else if (!b.trajectory) maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
+  else if (!b.trajectory) maps.push_back(interval_map({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}));
   if (b.trajectory)
     for (const MotionSegment& seg : b.trajectory->segments) {
       if (seg.rational) {
         add_curve_maps(*seg.rational, maps);
         continue;
       }
-      // The keyframe poses (a tolerance, not a bound: the approximate
-      // rotation of an rpy pose will do); a link's poses at its waypoints.
       if (seg.link) {
         const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
-        for (const Exact s : {Exact(0), Exact(1)}) {
-          const PoseInterval m = enclose_pose(*model, s);
-          Mat34E approx;
-          for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
-          maps.push_back(approx);
-        }
+        for (const Exact s : {Exact(0), Exact(1)}) maps.push_back(enclose_pose(*model, s));
         continue;
       }
-      for (const Pose* pose : {&seg.from, &seg.to}) {
-        if (const auto m = exact_pose(*pose)) {
-          maps.push_back(*m);
-          continue;
-        }
-        RoundingGuard guard;
-        const PoseInterval m = interval_pose(*pose);
-        Mat34E approx;
-        for (int e = 0; e < 12; ++e) approx[e] = Exact(CGAL::to_double(m[e]));
-        maps.push_back(approx);
-      }
+      RoundingGuard guard;
+      maps.push_back(interval_pose(seg.from));
+      maps.push_back(interval_pose(seg.to));
     }
+  RoundingGuard guard;
+  const Interval local[3] = {Interval(lo[0], hi[0]), Interval(lo[1], hi[1]), Interval(lo[2], hi[2])};
   std::optional<ReachBox> box;
-  for (const Vec3E& v : body_vertices(b))
-    for (const Mat34E& m : maps) {
-      const Vec3E w = apply_map(m, v);
+  for (const PoseInterval& m : maps)
+    for (int i = 0; i < 3; ++i) {
+      const Interval c = m[4 * i] * local[0] + m[4 * i + 1] * local[1] + m[4 * i + 2] * local[2] + m[4 * i + 3];
+      if (!std::isfinite(c.inf()) || !std::isfinite(c.sup())) return std::nullopt;
       if (!box) {
-        box = ReachBox{w, w};
-        continue;
+        box.emplace();
+        (*box)[0].fill(std::numeric_limits<double>::infinity());
+        (*box)[1].fill(-std::numeric_limits<double>::infinity());
       }
-      for (int i = 0; i < 3; ++i) {
-        if (w[i] < (*box)[0][i]) (*box)[0][i] = w[i];
-        if (w[i] > (*box)[1][i]) (*box)[1][i] = w[i];
-      }
+      (*box)[0][i] = std::min((*box)[0][i], c.inf());
+      (*box)[1][i] = std::max((*box)[1][i], c.sup());
     }
   return box;
 }
 
-// 1/1000 of the box's diagonal, as a decimal with six significant digits.
+// 1/1000 of the box's diagonal (its upper bound), as a decimal with six
+// significant digits.
 Exact thousandth_of_diagonal(const std::optional<ReachBox>& box) {
   if (!box) return Exact(1, 1000);
-  Exact d2 = 0;
-  for (int i = 0; i < 3; ++i) d2 += ((*box)[1][i] - (*box)[0][i]) * ((*box)[1][i] - (*box)[0][i]);
-  const double eps = std::sqrt(CGAL::to_double(d2)) / 1000;
+  double d;
+  {
+    RoundingGuard guard;
+    Interval d2(0);
+    for (int i = 0; i < 3; ++i) d2 += CGAL::square(Interval((*box)[1][i]) - Interval((*box)[0][i]));
+    d = CGAL::sqrt(d2).sup();
+  }
+  const double eps = d / 1000;
   if (!(eps > 0) || !std::isfinite(eps)) return Exact(1, 1000);
   char text[64];
   std::snprintf(text, sizeof text, "%.6g", eps);
@@ -429,7 +438,7 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   // bodies (default_epsilon(a, b)), not of the whole scene.
   if (!options.epsilon) options.epsilon = thousandth_of_diagonal(merged(reach_[a], reach_[b]));
   CheckResult result = check_with(a, b, clearance, options);
-  result.epsilon = *options.epsilon;
+  if (!result.refined) result.epsilon = *options.epsilon;
   result.interval = parameter_interval(scene_.bodies[a], scene_.bodies[b]);
   return result;
 }
@@ -494,8 +503,22 @@ CheckResult Verifier::check_with(int a, int b, const Exact& clearance, const Ver
       }
     }
   }
-  if (general) return check_general(a, b, clearance, options);
-  return run_check(a, b, prepared(a), prepared(b), options);
+  const auto started = std::chrono::steady_clock::now();
+  CheckResult result = general ? check_general(a, b, clearance, options)
+                               : run_check(a, b, prepared(a), prepared(b), options);
+  // Refinement (src/verify/refine.h): the undecided parts searched again,
+  // each as a part of the check's interval (after the start containment
+  // above, which the whole check shares).
+  if (options.refine && result.verdict == Verdict::Undecided && (mx || my)) {
+    const Body& mover = mx ? x : y;
+    const auto interval = *mover.interval();
+    detail::refine_check(result, interval.first, interval.second, !general, options, started,
+                         [&](const Exact& t0, const Exact& t1, bool start_free, const VerifyOptions& o) {
+                           return detail::check_prepared_pair(prepared(a), prepared(b), {a, b}, clearance, o,
+                                                              start_free, std::pair{t0, t1});
+                         });
+  }
+  return result;
 }
 
 
@@ -560,8 +583,10 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   // A cancelled run has checks cut short or not run: no result at all.
   if (options.run && options.run->cancelled()) throw Cancelled();
 
-  // The scene's epsilon: the given one, or the largest of the checks' own.
-  if (options.epsilon) out.epsilon = *options.epsilon;
+  // The scene's epsilon: the given one, or (per check, or refined) the
+  // largest of the checks' own.
+  out.refine = options.refine;
+  if (options.epsilon && !options.refine) out.epsilon = *options.epsilon;
   else
     for (const CheckResult& c : out.checks)
       if (c.epsilon > out.epsilon) out.epsilon = c.epsilon;

@@ -41,6 +41,12 @@ struct VerifyOptions {
   // check uses default_epsilon of its own two bodies (a scene's "epsilon"
   // or `--epsilon` sets it for every check).
   std::optional<Exact> epsilon;
+  // Refinement (SCENE_FORMAT.md "Decisive by default", src/verify/refine.h):
+  // a check that ends undecided has its undecided intervals searched again
+  // at epsilon / 10, ..., down to epsilon / 10^6, within its time limit
+  // (time_limit, else 30 s).  The command line, batch, the library and the
+  // OMPL adapter set it when no epsilon is given (or `--epsilon auto`).
+  bool refine = false;
   int max_depth = 40;
   std::uint64_t max_nodes = 2'000'000;  // per check; beyond it: undecided "limit"
   // Per check: after this many undecided stops (pieces that came within
@@ -175,8 +181,17 @@ struct CheckResult {
   Exact clearance = 0;
   Verdict verdict = Verdict::Undecided;
   // The termination tolerance this check ran with (VerifyOptions::epsilon,
-  // or the check's default).
+  // or the check's default); after refinement the smallest one used.
   Exact epsilon = 0;
+  // Its undecided parts were searched again with a smaller epsilon
+  // (VerifyOptions::refine).
+  bool refined = false;
+  // Refinement ended undecided: at its floor (or with only parts no epsilon
+  // changes: a start that no subdivision can decide) ...
+  bool refine_exhausted = false;
+  // ... or when the check's time limit (VerifyOptions::time_limit, else 30 s)
+  // ran out.
+  bool refine_out_of_time = false;
   std::optional<std::pair<Exact, Exact>> first_contact;
   // The first contact's time is known exactly: it is the witness's time
   // (first_contact then holds it, or with an algebraic witness the
@@ -205,6 +220,9 @@ struct SceneResult {
   // largest of the checks' default tolerances, each in CheckResult::epsilon.
   Exact epsilon;
   bool epsilon_per_check = false;
+  // VerifyOptions::refine: the checks refined their undecided parts (each
+  // check's epsilon is then the smallest it used).
+  bool refine = false;
   // The limits the checks ran under (VerifyOptions), for reports that say
   // what to change when a check stops undecided.
   int max_depth = 40;
@@ -214,10 +232,11 @@ struct SceneResult {
   std::vector<CheckResult> checks;
 };
 
-// 1/1000 of the scene's bounding-box diagonal, as a decimal with six
+// 1/1000 of the scene's box diagonal (rounded up), as a decimal with six
 // significant digits (a tolerance, not a bound: no guarantee depends on it).
-// The box holds every body's vertices under every control point of its
-// motion, which bounds everything the bodies sweep.
+// The box holds each body's local bounding box placed by every pose of its
+// motion (control points of rational motions, keyframe poses, a link's
+// poses at its waypoints), computed in interval arithmetic.
 Exact default_epsilon(const Scene& scene);
 // The same for one check: 1/1000 of the diagonal of the box of its two
 // bodies over their whole motion (what a check uses when neither the scene
@@ -271,9 +290,9 @@ class Verifier {
   // must share it).  Kept here so that a check the boxes clear touches no
   // exact number.
   std::vector<int> interval_;
-  // Per body, without a given epsilon: the box of its vertices under every
-  // control point of its motion (for the check's default epsilon).
-  std::vector<std::optional<std::array<Vec3E, 2>>> reach_;
+  // Per body, without a given epsilon: the box of its local bounding box
+  // under every pose of its motion (for the check's default epsilon).
+  std::vector<std::optional<std::array<std::array<double, 3>, 2>>> reach_;
   std::unique_ptr<std::once_flag[]> once_;
   mutable std::vector<std::unique_ptr<PreparedBody>> prepared_;
   std::unique_ptr<std::once_flag[]> surface_once_;

@@ -392,6 +392,30 @@ BOOST_AUTO_TEST_CASE(result_doubles_agree_with_exact_values) {
   BOOST_CHECK_THROW(ds.default_epsilon("a", "nobody"), std::out_of_range);
 }
 
+// Decisive by default (issue 23): without an epsilon (or with "auto") the
+// undecided parts are searched again at smaller epsilons; a given epsilon
+// is fixed.
+BOOST_AUTO_TEST_CASE(refines_without_an_epsilon) {
+  const tmcert::Scene s = tmcert::Scene::from_file(std::string(TMCERT_TEST_DATA) + "/scenes/decisive-slerp-pass-above.json");
+  const tmcert::Rational start = s.default_epsilon("probe", "plate");
+  const tmcert::Result r = tmcert::verify(s);
+  BOOST_TEST(tmcert::to_string(r.verdict()) == std::string("safe"));
+  BOOST_REQUIRE(r.checks().size() == 1u);
+  BOOST_TEST(r.checks()[0].refined);
+  BOOST_TEST(r.checks()[0].epsilon.approx < start.approx);
+  tmcert::VerifyOptions fixed;
+  fixed.epsilon = start;
+  const tmcert::Result f = tmcert::verify(s, fixed);
+  BOOST_TEST(tmcert::to_string(f.verdict()) == std::string("undecided"));
+  BOOST_TEST(!f.checks()[0].refined);
+  BOOST_TEST(f.checks()[0].epsilon.text == start.text);
+  tmcert::VerifyOptions automatic;
+  automatic.epsilon = tmcert::Number("auto");
+  const tmcert::Result a = tmcert::verify(s, automatic);
+  BOOST_TEST(tmcert::to_string(a.verdict()) == std::string("safe"));
+  BOOST_TEST(a.checks()[0].refined);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(errors)

@@ -279,6 +279,7 @@ def assert_views_agree(result: tmcert.Result) -> None:
     assert len(result.checks) == len(doc["checks"])
     for check, c in zip(result.checks, doc["checks"]):
         assert list(check.bodies) == c["bodies"] and check.verdict == c["verdict"]
+        assert check.epsilon == fraction(c["epsilon"]) and check.refined == c["refined"]
         assert check.clearance == fraction(c.get("clearance", "0"))
         assert check.clearance_violated == c.get("clearance_violated", False)
         if "first_contact" in c:

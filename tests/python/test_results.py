@@ -134,3 +134,19 @@ def test_scenes_from_json_text_name_their_source() -> None:
 
 def test_version_is_the_cli_version() -> None:
     assert run_cli("--version").stdout.strip() == f"tmcert {tmcert.__version__}"
+
+
+def test_decisive_by_default() -> None:
+    # Issue 23: without an epsilon the undecided parts are searched again at
+    # smaller epsilons (refined); a given epsilon keeps its fixed meaning;
+    # "auto" refines.
+    scene = SCENES / "decisive-slerp-pass-above.json"
+    default = tmcert.load(scene).default_epsilon("probe", "plate")
+    result = tmcert.verify(scene)
+    (check,) = result.checks
+    assert result.verdict == "safe" and check.refined and check.epsilon < default
+    assert_views_agree(result)
+    fixed = tmcert.verify(scene, epsilon=default)
+    assert fixed.verdict == "undecided" and not fixed.checks[0].refined and fixed.checks[0].epsilon == default
+    auto = tmcert.verify(scene, epsilon="auto")
+    assert auto.verdict == "safe" and auto.checks[0].refined

@@ -204,6 +204,30 @@ expect_json_text "$data/scenes/numbers-root-1e400.json" '"approx": "6.8232780382
   '"t_approx": "6.8232780382801933e+400"'
 expect_json_text "$data/scenes/numbers-root-1e-20.json" '"approx": "6.823278038280193e-21"' \
   '"t_approx": 6.823278038280193e-21'
+# Decisive by default (issue 23, docs/scene-format.md): without an epsilon
+# a check refines its undecided parts and says so; `--epsilon auto` does the
+# same; a given epsilon (here about the default, 0.1) keeps its fixed
+# meaning; `tmcert batch` follows the same rule.
+decisive="$data/scenes/decisive-slerp-pass-above.json"
+expect_json_text "$decisive" '"verdict": "safe"' '"refined": true'
+expect_verdict_with() {
+  local want=$1 code=$2 text=$3
+  shift 3
+  run 120 "$tmcert" "$@"
+  if [ "$?" -ne "$code" ]; then fail "tmcert $*: exit code, expected $code"
+  elif ! grep -qF -- "$text" "$work/out"; then fail "tmcert $*: output does not contain '$text'"
+  elif ! grep -qF -- "$want" "$work/out"; then fail "tmcert $*: output does not contain '$want'"
+  else pass
+  fi
+}
+expect_verdict_with '"verdict": "undecided"' 2 '"refined": false' verify "$decisive" --epsilon 0.1 --json
+expect_verdict_with '"verdict": "safe"' 0 '"refined": true' verify "$decisive" --epsilon auto --json
+{
+  printf '%s\n' '{"format": "tmcert-scene/1", "bodies": [{"name": "plate", "polygons": [[[40, "101/100", -1], [60, "101/100", -1], [50, "-99/100", 1]], [[40, "-101/100", 1], [60, "-101/100", 1], [50, "99/100", -1]]]}, {"name": "probe", "points": [[0, 0, 0]]}]}'
+  printf '%s\n' '{"id": "pass", "body": "probe", "checks": ["plate"], "motion": {"type": "keyframes", "interpolation": "slerp", "poses": [{"translation": [0, 0, 0]}, {"translation": [100, 0, 0], "rotation": {"quaternion": [1, 0, 0, 1]}}]}}'
+} >"$work/decisive-batch.jsonl"
+expect_verdict_with '"verdict":"safe"' 0 '"refined":true' batch "$work/decisive-batch.jsonl"
+expect_verdict_with '"verdict":"undecided"' 2 '"refined":false' batch "$work/decisive-batch.jsonl" --epsilon 0.1
 
 # 3. `tmcert check CERTIFICATE SCENE` (docs/certificate-format.md): exit 0
 #    with the proven claims on stdout, 1 for a false claim or another scene,

@@ -63,6 +63,7 @@ BOOST_AUTO_TEST_CASE(undecided_intervals_with_their_hints) {
   c.bodies = {0, 1};
   c.verdict = Verdict::Undecided;
   c.epsilon = Exact(3, 1000);
+  c.stats.nodes = 5;  // it searched (none: its start was what stayed undecided)
   c.first_contact = std::make_pair(Exact(1, 4), Exact(5, 16));
   // Two adjacent epsilon stops (merged into one line), a depth stop, and
   // the rest cut by the time limit.
@@ -75,7 +76,7 @@ BOOST_AUTO_TEST_CASE(undecided_intervals_with_their_hints) {
   BOOST_TEST(has(s, "epsilon per check: 1/1000 of its bodies' box]"), s);
   BOOST_TEST(has(s, "  a x b: undecided; no contact before t = 0.25  (epsilon 0.003, "), s);
   BOOST_TEST(has(s, "    undecided t in [0.25, 0.3125] (epsilon): the bodies come within about epsilon (0.003) there; "
-                    "try a smaller --epsilon, e.g. --epsilon 0.0003\n"), s);
+                    "try a smaller --epsilon, e.g. --epsilon 0.0003, or --epsilon auto\n"), s);
   BOOST_TEST(has(s, "    undecided t in [0.5, 0.53125] (depth): the subdivision reached its depth limit (40); try --max-depth 62\n"), s);
   BOOST_TEST(has(s, "    undecided t in [0.75, 1] (limit): --time-limit 2.5 was reached; try a larger --time-limit\n"), s);
 
@@ -99,6 +100,57 @@ BOOST_AUTO_TEST_CASE(undecided_intervals_with_their_hints) {
   BOOST_TEST(has(s, "undecided t in [0.5, 0.5625] (epsilon)"), s);
   BOOST_TEST(!has(s, "undecided t in [0.625, 0.6875]"), s);
   BOOST_TEST(has(s, "    ... and 3 more undecided intervals (--json lists them all)\n"), s);
+}
+
+// Hints that lead somewhere (issue 23 item 7): no smaller epsilon where it
+// cannot help.
+BOOST_AUTO_TEST_CASE(no_smaller_epsilon_where_it_cannot_help) {
+  const tmcert::Scene scene = two_bodies();
+  SceneResult r;
+  r.verdict = Verdict::Undecided;
+  r.epsilon_per_check = true;
+  r.refine = true;
+  r.max_depth = 40;
+  r.max_nodes = 1000;
+  r.max_stops = 4;
+  CheckResult c;
+  c.bodies = {0, 1};
+  c.verdict = Verdict::Undecided;
+  c.epsilon = Exact(3, 1000000000);
+  c.refined = true;
+  c.refine_exhausted = true;
+  c.stats.nodes = 50;
+  c.first_contact = std::make_pair(Exact(1, 4), Exact(5, 16));
+  c.undecided = {{Exact(1, 4), Exact(5, 16), StopReason::Epsilon}};
+  r.checks.push_back(c);
+  // Refinement reached its floor.
+  std::string s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "epsilon per check: 1/1000 of its bodies' box, refined]"), s);
+  BOOST_TEST(has(s, " (refined), 50 nodes"), s);
+  BOOST_TEST(has(s, "even at the refinement's floor"), s);
+  BOOST_TEST(!has(s, "try a smaller --epsilon"), s);
+  // The stop budget at the floor.
+  r.checks[0].undecided = {{Exact(1, 4), Exact(1), StopReason::Limit}};
+  r.checks[0].stats.stops = 4;
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "was used up even at the refinement's floor"), s);
+  BOOST_TEST(!has(s, "try a smaller --epsilon"), s);
+  // Out of time: a larger time limit.
+  r.checks[0].refine_exhausted = false;
+  r.checks[0].refine_out_of_time = true;
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "ran out; try a larger --time-limit"), s);
+  BOOST_TEST(!has(s, "try a smaller --epsilon"), s);
+  // Undecided without a single node (its start), a given epsilon: no
+  // smaller epsilon either.
+  r.refine = false;
+  r.checks[0].refined = r.checks[0].refine_out_of_time = false;
+  r.checks[0].stats.nodes = 0;
+  r.checks[0].stats.stops = 0;
+  r.checks[0].undecided = {{Exact(0), Exact(1), StopReason::Epsilon}};
+  s = tmcert::result_summary(scene, r);
+  BOOST_TEST(has(s, "the start configuration could not be proven free"), s);
+  BOOST_TEST(!has(s, "try a smaller --epsilon"), s);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -128,6 +128,7 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
     k["verdict"] = to_string(c.verdict);
     k["epsilon"] = to_string(c.epsilon);
     k["epsilon_approx"] = nearest_double(c.epsilon);
+    k["refined"] = c.refined;
     // An irrational time as the contract writes it.
     auto root = [](const tmcert::AlgebraicTime& a) {
       ordered_json coefficients = ordered_json::array();

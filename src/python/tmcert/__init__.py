@@ -224,7 +224,9 @@ class Check:
     ``first_contact_exact`` the witness's time is the first contact.
     ``witness`` is set iff the verdict is collision.  ``epsilon`` is the
     termination tolerance this check ran with: the one given, or else its
-    own default, 1/1000 of the box of its two bodies' motion.
+    own default, 1/1000 of the box of its two bodies' motion; with
+    ``refined`` (no epsilon given, or ``"auto"``) the smallest one its
+    re-searches of undecided parts used.
 
     The check's ``interval`` is partitioned into the parts certified free of
     contact (everything not listed), ``undecided``, and with a witness its
@@ -236,6 +238,7 @@ class Check:
     verdict: Verdict
     epsilon: Fraction
     epsilon_float: float
+    refined: bool
     clearance: Fraction
     clearance_violated: bool
     enlarged_model: bool
@@ -256,7 +259,7 @@ class Check:
         s = c.stats
         return Check(
             bodies=(c.bodies[0], c.bodies[1]), verdict=Verdict(c.verdict),
-            epsilon=c.epsilon.fraction(), epsilon_float=c.epsilon.approx, clearance=c.clearance.fraction(),
+            epsilon=c.epsilon.fraction(), epsilon_float=c.epsilon.approx, refined=c.refined, clearance=c.clearance.fraction(),
             clearance_violated=c.clearance_violated, enlarged_model=c.enlarged_model,
             first_contact=None if fc is None else (_time(fc[0]), _time(fc[1])),
             first_contact_float=None if fc is None else (fc[0].value.approx, fc[1].value.approx),
@@ -300,7 +303,8 @@ class Result:
     @property
     def epsilon(self) -> Fraction:
         """The termination tolerance given (scene or ``epsilon=``), or else the
-        largest of the checks' own defaults (``Check.epsilon``), exact."""
+        largest of the checks' own (``Check.epsilon``: their defaults, or
+        with refinement the smallest each used), exact."""
         return self._raw.epsilon.fraction()
 
     @property
@@ -740,7 +744,10 @@ def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str =
     """Verifies every check of ``scene`` (as ``tmcert verify``).
 
     scene: a Scene, SceneBuilder, dict (tmcert-scene/1) or file path.
-    epsilon: termination tolerance, a positive length (default: the scene's).
+    epsilon: termination tolerance, a positive length, fixed (default: the
+        scene's, else each check's default refined: undecided parts searched
+        again at epsilon/10, ... down to epsilon/10^6, within time_limit or
+        30 s per check); "auto": refined even when the scene gives one.
     kernel: "filtered" (certified, default), "exact" (certified, slow) or
         "fast" (plain doubles: NOT certified, and the result says so).
     max_depth: subdivision depth limit, 1 to 200 (default: the scene's).
