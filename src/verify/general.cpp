@@ -253,12 +253,16 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
 
   // Several parts and threads: the parts run at once, each as if the part
   // before it were cleared entirely (the common case: its start then needs
-  // no test), the threads left over spread over each part's pieces.  The
-  // merge below replays the sequential search: a part whose assumption
-  // turns out false (the part before it left something undecided, or was
-  // itself not run) is searched again, alone, as the sequential search
-  // would have; parts after a witness are not needed.  So the result is the
-  // sequential one for every thread count (proofs/search-and-pruning.md).
+  // no test), the threads left over spread over each part's pieces.  Then,
+  // at once again, the parts after a part whose run was not cleared
+  // entirely, with their start tests (a run with the start test is never
+  // more cleared than one without: the search after the test is the same,
+  // so the sequential search tests these starts whatever the part before
+  // assumed).  The merge below replays the sequential search: a part whose
+  // assumption turns out false, or that was not run (after a witness, past
+  // the time limit), is searched again there, alone, as the sequential
+  // search would have.  So the result is the sequential one for every
+  // thread count (proofs/enclosures.md section 7).
   struct Speculative {
     CheckResult part;
     bool done = false;
@@ -268,32 +272,47 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   std::vector<Speculative> ahead;
   if (options.threads > 1 && parts > 1) {
     ahead.resize(parts);
-    const int workers = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), parts));
-    const int per_part = std::max(1, options.threads / static_cast<int>(parts));
-    std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> first_witness{parts};
-    auto worker = [&] {
-      for (std::size_t k = next++; k < parts; k = next++) {
-        // After a witness, or past the time limit: left to the merge.
-        if (k > first_witness.load() || past_deadline(options)) continue;
-        Speculative& s = ahead[k];
-        s.start_free = k == 0 ? start_proven_free : true;
-        try {
-          run_one(k, s.start_free, per_part, s.part);
-          s.done = true;
-          if (s.part.witness) {
-            std::size_t w = first_witness.load();
-            while (k < w && !first_witness.compare_exchange_weak(w, k)) {}
+    // Runs the parts `jobs` (in parameter order) with the given start
+    // assumptions on up to options.threads threads.
+    auto round = [&](const std::vector<std::pair<std::size_t, bool>>& jobs) {
+      const int workers = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), jobs.size()));
+      const int per_part = std::max(1, options.threads / std::max(1, static_cast<int>(jobs.size())));
+      std::atomic<std::size_t> next{0};
+      auto worker = [&] {
+        for (std::size_t j = next++; j < jobs.size(); j = next++) {
+          const auto [k, start_free] = jobs[j];
+          // After a witness (one that a later run may take back: the parts
+          // after it are then left to the merge), or past the time limit.
+          if (k > first_witness.load() || past_deadline(options)) continue;
+          Speculative& s = ahead[k];
+          s = Speculative{};
+          s.start_free = start_free;
+          try {
+            run_one(k, start_free, per_part, s.part);
+            s.done = true;
+            if (s.part.witness) {
+              std::size_t w = first_witness.load();
+              while (k < w && !first_witness.compare_exchange_weak(w, k)) {}
+            }
+          } catch (...) {
+            s.error = std::current_exception();
           }
-        } catch (...) {
-          s.error = std::current_exception();
         }
-      }
+      };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < workers; ++t) pool.emplace_back(worker);
+      worker();
+      for (std::thread& t : pool) t.join();
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < workers; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+    std::vector<std::pair<std::size_t, bool>> jobs;
+    for (std::size_t k = 0; k < parts; ++k) jobs.push_back({k, k == 0 ? start_proven_free : true});
+    round(jobs);
+    jobs.clear();
+    for (std::size_t k = 1; k < parts; ++k)
+      if (ahead[k - 1].done && (!ahead[k - 1].part.undecided.empty() || ahead[k - 1].part.witness) && ahead[k].start_free)
+        jobs.push_back({k, false});
+    if (!jobs.empty()) round(jobs);
   }
 
   // The merge, in parameter order: each part's start is proven free by the
