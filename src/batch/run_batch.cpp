@@ -55,6 +55,8 @@ class Writer {
     out_.flush();
     last_flush_ = Clock::now();
   }
+  // When the next flush is due.
+  Clock::time_point next_flush() const { return last_flush_ + std::chrono::seconds(1); }
 
  private:
   std::ostream& out_;
@@ -74,11 +76,9 @@ struct Counts {
   std::size_t total() const { return safe + collision + undecided + error; }
 };
 
-// Runs a chunk of requests on the workers (one thread each) and writes
-// their results in order, each as soon as it and all before it are done.
-// Cancelled runs write nothing more: an outcome is written only when the
-// run was not cancelled once it was complete (checked after it is done, so
-// no line computed under a cancellation is written).
+// Progress and cancellation: an outcome is written only when the run was
+// not cancelled once it was complete (checked after it is done, so no line
+// computed under a cancellation is written).
 void written(RunProgress* run) {
   if (run) run->item_done();
 }
@@ -89,62 +89,174 @@ void stop_if_cancelled(RunProgress* run, Writer& writer) {
   }
 }
 
-void run_chunk(const std::vector<Pending>& chunk, std::vector<std::unique_ptr<BatchEnvironment::Worker>>& workers,
-               Writer& writer, Counts& counts, RunProgress* run) {
-  if (workers.size() == 1) {
-    for (const Pending& p : chunk) {
-      stop_if_cancelled(run, writer);
-      const RequestOutcome o = workers[0]->run(p.text, p.index, p.line_number);
-      stop_if_cancelled(run, writer);
-      counts.add(o.kind);
-      writer.line(o.line);
-      written(run);
+// The shard's requests, read one at a time (blank lines and other shards'
+// requests skipped).
+class RequestReader {
+ public:
+  RequestReader(std::istream& in, std::string name, const Shard& shard, std::string line, std::size_t line_number,
+                RunProgress* run)
+      : in_(in), name_(std::move(name)), shard_(shard), line_(std::move(line)), line_number_(line_number), run_(run) {}
+
+  // The next request of the shard; false at the end of the input.
+  bool next(Pending& p) {
+    while (next_line(in_, line_, line_number_)) {
+      if (blank(line_)) continue;
+      const std::size_t index = requests_++;
+      if (!shard_.owns(index)) continue;
+      p.text = std::move(line_);
+      p.index = index;
+      p.line_number = line_number_;
+      if (run_) run_->add_checks(1);
+      return true;
     }
-    return;
+    if (in_.bad()) throw ResourceLimit(name_ + ": reading failed");
+    return false;
   }
-  std::vector<RequestOutcome> outcomes(chunk.size());
-  std::vector<char> done(chunk.size(), 0);
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr failure;
-  std::mutex mutex;
-  std::condition_variable ready;
-  auto work = [&](BatchEnvironment::Worker& worker) {
-    for (std::size_t k; !failed && (k = next++) < chunk.size();) {
-      try {
-        outcomes[k] = worker.run(chunk[k].text, chunk[k].index, chunk[k].line_number);
-      } catch (...) {  // an internal error or a resource limit ends the run (exit 4)
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
-        failed = true;
-      }
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        done[k] = 1;
-      }
-      ready.notify_one();
-    }
-  };
-  std::vector<std::thread> threads;
-  for (auto& w : workers) threads.emplace_back(work, std::ref(*w));
-  for (std::size_t k = 0; k < chunk.size() && !failed; ++k) {
-    {
-      std::unique_lock<std::mutex> lock(mutex);
-      ready.wait(lock, [&] { return done[k] != 0 || failed; });
-    }
-    if (failed) break;
-    if (run && run->cancelled()) {
-      failed = true;  // the workers stop taking requests
-      break;
-    }
-    counts.add(outcomes[k].kind);
-    writer.line(outcomes[k].line);
+  // Every request of the file, in every shard, read so far.
+  std::size_t requests() const { return requests_; }
+
+ private:
+  std::istream& in_;
+  std::string name_;
+  const Shard& shard_;
+  std::string line_;
+  std::size_t line_number_;
+  RunProgress* run_;
+  std::size_t requests_ = 0;
+};
+
+// One thread: each request run and written before the next is read.
+void run_serial(RequestReader& reader, BatchEnvironment::Worker& worker, Writer& writer, Counts& counts,
+                RunProgress* run) {
+  Pending p;
+  while (reader.next(p)) {
+    stop_if_cancelled(run, writer);
+    const RequestOutcome o = worker.run(p.text, p.index, p.line_number);
+    stop_if_cancelled(run, writer);
+    counts.add(o.kind);
+    writer.line(o.line);
     written(run);
   }
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
-  stop_if_cancelled(run, writer);
 }
+
+// Several threads: a window of the next requests (at most `window` read
+// and not yet written) in a ring; each worker thread takes the oldest
+// request nobody runs yet, and this thread reads requests into the window
+// and writes each result as soon as it and all before it are done.  No
+// worker waits for another: only a request older than the whole window
+// (one that takes as long as about `window` others) holds the workers
+// back.  The threads live for the whole run.
+class Pool {
+ public:
+  Pool(std::vector<std::unique_ptr<BatchEnvironment::Worker>>& workers, std::size_t window) : ring_(window) {
+    threads_.reserve(workers.size());
+    for (auto& w : workers) threads_.emplace_back([this, &w] { work(*w); });
+  }
+  ~Pool() { stop(); }
+  Pool(const Pool&) = delete;
+  Pool& operator=(const Pool&) = delete;
+
+  void run(RequestReader& reader, Writer& writer, Counts& counts, RunProgress* run) {
+    bool more = true;
+    Pending p;
+    for (;;) {
+      // Fill the window.
+      while (more && tail_ - head_ < ring_.size()) {
+        more = reader.next(p);
+        if (!more) break;
+        std::lock_guard<std::mutex> lock(mutex_);
+        Slot& slot = ring_[tail_ % ring_.size()];
+        slot.request = std::move(p);
+        slot.done = false;
+        ++tail_;
+        if (idle_ > 0) work_ready_.notify_one();
+      }
+      if (head_ == tail_) break;  // every request written
+      // The oldest result, once done; the output is flushed at least once a
+      // second while waiting for it.
+      RequestOutcome outcome;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        Slot& slot = ring_[head_ % ring_.size()];
+        while (!slot.done && !failure_) {
+          if (head_done_.wait_until(lock, writer.next_flush()) == std::cv_status::timeout) {
+            lock.unlock();
+            writer.flush();
+            lock.lock();
+          }
+        }
+        if (failure_) break;
+        outcome = std::move(slot.outcome);
+        ++head_;
+      }
+      if (run && run->cancelled()) break;
+      counts.add(outcome.kind);
+      writer.line(outcome.line);
+      written(run);
+    }
+    stop();
+    if (failure_) std::rethrow_exception(failure_);
+    stop_if_cancelled(run, writer);
+  }
+
+ private:
+  struct Slot {
+    Pending request;
+    RequestOutcome outcome;
+    bool done = false;
+  };
+
+  void work(BatchEnvironment::Worker& worker) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      ++idle_;
+      work_ready_.wait(lock, [&] { return stopping_ || failure_ || next_ < tail_; });
+      --idle_;
+      if (stopping_ || failure_) return;
+      const std::size_t k = next_++;
+      Slot& slot = ring_[k % ring_.size()];
+      lock.unlock();
+      RequestOutcome outcome;
+      std::exception_ptr failure;
+      try {
+        outcome = worker.run(slot.request.text, slot.request.index, slot.request.line_number);
+      } catch (...) {  // an internal error or a resource limit ends the run (exit 4)
+        failure = std::current_exception();
+      }
+      lock.lock();
+      if (failure) {
+        if (!failure_) failure_ = failure;
+        head_done_.notify_one();
+        return;
+      }
+      slot.outcome = std::move(outcome);
+      slot.done = true;
+      if (k == head_) head_done_.notify_one();
+    }
+  }
+
+  // The workers stop taking requests (those running finish theirs).
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+    }
+    work_ready_.notify_all();
+    for (std::thread& t : threads_)
+      if (t.joinable()) t.join();
+  }
+
+  std::vector<Slot> ring_;
+  std::size_t head_ = 0;  // the oldest request not written
+  std::size_t next_ = 0;  // the oldest request no worker has taken
+  std::size_t tail_ = 0;  // one past the newest request read
+  std::size_t idle_ = 0;  // workers waiting for a request
+  bool stopping_ = false;
+  std::exception_ptr failure_;
+  std::mutex mutex_;
+  std::condition_variable work_ready_, head_done_;
+  std::vector<std::thread> threads_;
+};
 
 }  // namespace
 
@@ -219,28 +331,17 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
   for (int k = 0; k < threads; ++k) workers.push_back(std::make_unique<BatchEnvironment::Worker>(environment));
   Writer writer(out);
   Counts counts;
-  // Chunks bound the memory a huge input takes; results are written as
-  // they finish within a chunk.
-  const std::size_t chunk_size = 64 * static_cast<std::size_t>(threads);
-  std::vector<Pending> chunk;
-  std::size_t requests = 0;  // every request of the file, in every shard
-  while (next_line(in, line, line_number)) {
-    if (blank(line)) continue;
-    const std::size_t index = requests++;
-    if (!options.shard.owns(index)) continue;
-    chunk.push_back({std::move(line), index, line_number});
-    if (run) run->add_checks(1);
-    if (chunk.size() == chunk_size) {
-      if (run) run->set_activity("running requests");
-      run_chunk(chunk, workers, writer, counts, run);
-      chunk.clear();
-      writer.flush();
-    }
-  }
-  if (in.bad()) throw ResourceLimit(requests_name + ": reading failed");
+  RequestReader reader(in, requests_name, options.shard, std::move(line), line_number, run);
   if (run) run->set_activity("running requests");
-  run_chunk(chunk, workers, writer, counts, run);
+  if (threads == 1) {
+    run_serial(reader, *workers[0], writer, counts, run);
+  } else {
+    // The window bounds the memory a huge input takes.
+    Pool pool(workers, 64 * static_cast<std::size_t>(threads));
+    pool.run(reader, writer, counts, run);
+  }
   writer.flush();
+  const std::size_t requests = reader.requests();
   if (!out) throw InputError(options.output.empty() ? std::string("cannot write the results to standard output")
                                                     : "-o: cannot write " + quote_text(options.output));
 

@@ -5,7 +5,9 @@
 // check (a join is a start like any other: the contact tests are complete
 // after a configuration proven free, proofs/enclosures.md section 7; a join
 // that the part before cleared needs none), and
-// the parts' results are merged as the search merges its tasks.  A part
+// the parts' results are merged as the search merges its tasks (on several
+// threads the parts run at once and the merge replays the sequential
+// order: proofs/enclosures.md section 7).  A part
 // where every moving body is rational runs the rational search on the
 // exact restriction of the curves; a part with an enclosed (transcendental)
 // motion runs the Taylor-enclosure search.
@@ -16,7 +18,12 @@
 #include "src/verify/prepared_pair.h"
 #include "src/verify/search.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <exception>
+#include <thread>
+#include <vector>
 
 namespace tmcert {
 
@@ -218,25 +225,30 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   // The first part's start: proven free by the caller, or tested by the search.
   e1.start_proven_free = e2.start_proven_free = start_proven_free;
 
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+  // Part k of the check, searched with `start_free` (its start proven free:
+  // by the caller for the first part, by the part before it otherwise) on
+  // `threads` threads (the result does not depend on them).
+  const std::size_t parts = cuts.size() - 1;
+  auto run_one = [&](std::size_t k, bool start_free, int threads, CheckResult& part) {
     const Exact &t0 = cuts[k], &t1 = cuts[k + 1];
     const PartMotion pm = part_motion(mb, t0, t1);
     const PartMotion po = two ? part_motion(ob, t0, t1) : PartMotion{};
-    CheckResult part;
-    if (past_deadline(options)) {
-      // Time limit: the parts not yet searched are undecided, not cleared.
-      part.undecided.push_back({t0, interval.second, StopReason::Limit});
-      part.first_contact = std::pair{t0, interval.second};
-      detail::merge_result(result, part);
-      break;
-    }
     // The part's share of the check's progress (src/verify/progress.h).
     VerifyOptions part_options = options;
+    part_options.threads = threads;
     if (options.slot)
       part_options.slot_span = static_cast<std::uint64_t>(static_cast<double>(options.slot_span) *
                                                           CGAL::to_double((t1 - t0) / (interval.second - interval.first)));
-    if (two) run_part<2>(m, o, false, pm, po, t0, t1, part_options, tube, e2, part);
-    else run_part<1>(m, o, swapped, pm, po, t0, t1, part_options, tube, e1, part);
+    CheckExtras<1> x1 = e1;
+    CheckExtras<2> x2 = e2;
+    x1.start_proven_free = x2.start_proven_free = start_free;
+    // Only the first part's start containment of solids is the caller's,
+    // and only at the check's own start: a window of a refinement
+    // (src/verify/refine.h) starts inside the check, where a start test
+    // must test the containment too (proofs/partition.md section 3).
+    x1.start_solids_proven = x2.start_solids_proven = k == 0 && !window;
+    if (two) run_part<2>(m, o, false, pm, po, t0, t1, part_options, tube, x2, part);
+    else run_part<1>(m, o, swapped, pm, po, t0, t1, part_options, tube, x1, part);
     if (options.record_cover)  // the part's pieces as scene intervals, for certificates
       for (CoverPiece& c : part.cleared)
         if (!c.timed) {
@@ -247,11 +259,93 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
           c.t1 = c.t0 + unit;
           c.timed = true;
         }
+  };
+
+  // Several parts and threads: the parts run at once, each as if the part
+  // before it were cleared entirely (the common case: its start then needs
+  // no test), the threads left over spread over each part's pieces.  Then,
+  // at once again, the parts after a part whose run was not cleared
+  // entirely, with their start tests (a run with the start test is never
+  // more cleared than one without: the search after the test is the same,
+  // so the sequential search tests these starts whatever the part before
+  // assumed).  The merge below replays the sequential search: a part whose
+  // assumption turns out false, or that was not run (after a witness, past
+  // the time limit), is searched again there, alone, as the sequential
+  // search would have.  So the result is the sequential one for every
+  // thread count (proofs/enclosures.md section 7).
+  struct Speculative {
+    CheckResult part;
+    bool done = false;
+    bool start_free = false;  // what the run assumed
+    std::exception_ptr error;
+  };
+  std::vector<Speculative> ahead;
+  if (options.threads > 1 && parts > 1) {
+    ahead.resize(parts);
+    std::atomic<std::size_t> first_witness{parts};
+    // Runs the parts `jobs` (in parameter order) with the given start
+    // assumptions on up to options.threads threads.
+    auto round = [&](const std::vector<std::pair<std::size_t, bool>>& jobs) {
+      const int workers = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), jobs.size()));
+      const int per_part = std::max(1, options.threads / std::max(1, static_cast<int>(jobs.size())));
+      std::atomic<std::size_t> next{0};
+      auto worker = [&] {
+        for (std::size_t j = next++; j < jobs.size(); j = next++) {
+          const auto [k, start_free] = jobs[j];
+          // After a witness (one that a later run may take back: the parts
+          // after it are then left to the merge), or past the time limit.
+          if (k > first_witness.load() || past_deadline(options)) continue;
+          Speculative& s = ahead[k];
+          s = Speculative{};
+          s.start_free = start_free;
+          try {
+            run_one(k, start_free, per_part, s.part);
+            s.done = true;
+            if (s.part.witness) {
+              std::size_t w = first_witness.load();
+              while (k < w && !first_witness.compare_exchange_weak(w, k)) {}
+            }
+          } catch (...) {
+            s.error = std::current_exception();
+          }
+        }
+      };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < workers; ++t) pool.emplace_back(worker);
+      worker();
+      for (std::thread& t : pool) t.join();
+    };
+    std::vector<std::pair<std::size_t, bool>> jobs;
+    for (std::size_t k = 0; k < parts; ++k) jobs.push_back({k, k == 0 ? start_proven_free : true});
+    round(jobs);
+    jobs.clear();
+    for (std::size_t k = 1; k < parts; ++k)
+      if (ahead[k - 1].done && (!ahead[k - 1].part.undecided.empty() || ahead[k - 1].part.witness) && ahead[k].start_free)
+        jobs.push_back({k, false});
+    if (!jobs.empty()) round(jobs);
+  }
+
+  // The merge, in parameter order: each part's start is proven free by the
+  // caller (the first) or by the part before it cleared entirely.
+  bool start_free = start_proven_free;
+  for (std::size_t k = 0; k < parts; ++k) {
+    const Exact& t0 = cuts[k];
+    CheckResult part;
+    if (!ahead.empty() && ahead[k].start_free == start_free && (ahead[k].done || ahead[k].error)) {
+      if (ahead[k].error) std::rethrow_exception(ahead[k].error);
+      part = std::move(ahead[k].part);
+    } else if (past_deadline(options)) {
+      // Time limit: the parts not yet searched are undecided, not cleared.
+      part.undecided.push_back({t0, interval.second, StopReason::Limit});
+      part.first_contact = std::pair{t0, interval.second};
+      detail::merge_result(result, part);
+      break;
+    } else {
+      run_one(k, start_free, options.threads, part);
+    }
     // A part cleared entirely proves the join after it free: the next part
     // needs no start check there.
-    e1.start_proven_free = e2.start_proven_free = part.undecided.empty() && !part.witness;
-    // Only the first part's start containment is the caller's.
-    e1.start_solids_proven = e2.start_solids_proven = false;
+    start_free = part.undecided.empty() && !part.witness;
     if (!detail::merge_result(result, part)) break;
   }
   return finish();

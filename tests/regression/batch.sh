@@ -8,6 +8,8 @@
 #    same bytes with --threads 2.
 # 2. 4 local shards merged are byte-identical to the unsharded run.
 # 3. Bad request lines become error lines naming the field; the run goes on.
+#    With 2 and 3 threads, a mixed file longer than the threads' window
+#    gives the bytes of one thread (also sharded and merged).
 # 4. Bad options, a bad environment and bad merges exit 3 with nothing on stdout.
 # 5. Every check of every example request has the verdict `tmcert verify`
 #    gives the equivalent single scene.
@@ -163,6 +165,36 @@ done <<'EOF'
 13|"ok" safe -
 EOF
 if grep -q '14 of 14 requests: 2 safe, 0 collision, 0 undecided, 12 bad' "$work/err"; then pass; else fail "bad lines summary: $(cat "$work/err")"; fi
+
+# ---------------------------------------------------------------- 3b. threads
+# A mixed file longer than the threads' window of requests (64 per
+# thread): the example's requests, the bad lines, the solid's inside,
+# blank lines; the bytes are those of one thread with 2 and 3 threads, and
+# with 2 threads per shard once merged.
+python3 - "$example/requests.jsonl" "$work/bad.jsonl" "$work/inside.jsonl" "$work/mixed.jsonl" <<'EOF'
+import sys
+lines = [l.rstrip("\n") for f in sys.argv[1:4] for l in open(f) if l.strip()]
+with open(sys.argv[4], "w") as out:
+    for k in range(300):
+        out.write(lines[(k * 5) % len(lines)] + "\n")
+        if k % 11 == 5:
+            out.write("\n")
+EOF
+expect_code 1 "mixed, 1 thread" "$tmcert" batch "$work/mixed.jsonl" --scene "$example/environment.json" \
+  -o "$work/mixed-1.jsonl"
+if [ "$(wc -l <"$work/mixed-1.jsonl")" -eq 300 ] && grep -q '"error"' "$work/mixed-1.jsonl" &&
+  grep -q '"verdict":"collision"' "$work/mixed-1.jsonl"; then pass; else fail "mixed: not 300 results of all kinds"; fi
+for n in 2 3; do
+  expect_code 1 "mixed, $n threads" "$tmcert" batch "$work/mixed.jsonl" --scene "$example/environment.json" \
+    --threads "$n" -o "$work/mixed-$n.jsonl"
+  if cmp -s "$work/mixed-$n.jsonl" "$work/mixed-1.jsonl"; then pass; else fail "mixed, --threads $n: other bytes"; fi
+done
+for i in 0 1; do
+  expect_code 1 "mixed, shard $i/2, 2 threads" "$tmcert" batch "$work/mixed.jsonl" --scene "$example/environment.json" \
+    --threads 2 --shard "$i/2" -o "$work/mixed-shard-$i.jsonl"
+done
+expect_code 0 "mixed, merge" "$tmcert" batch-merge "$work/mixed-shard-1.jsonl" "$work/mixed-shard-0.jsonl"
+if cmp -s "$work/out" "$work/mixed-1.jsonl"; then pass; else fail "mixed, 2 shards of 2 threads merged: other bytes"; fi
 
 # ---------------------------------------------------------------- 4. bad options and environments
 for shard in 4/4 1/0 x 1 -1/2 2/-3 "1/2/3" ""; do

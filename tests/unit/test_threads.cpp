@@ -1,7 +1,9 @@
 // --threads: the pieces of one check run as tasks on several threads, and
 // the result (verdict, witness, first-contact bracket, undecided pieces and
 // the work statistics) is the same for every thread count, also when the
-// node budget runs out (proofs/search-and-pruning.md).
+// node budget runs out (proofs/search-and-pruning.md); the parts of a path
+// cut at its joins run at once, merged in the same way
+// (proofs/enclosures.md section 7).
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
@@ -40,6 +42,7 @@ void require_same(const CheckResult& a, const CheckResult& b, const std::string&
   BOOST_TEST(a.stats.contact.calls == b.stats.contact.calls);
   BOOST_TEST(a.stats.sphere_tests == b.stats.sphere_tests);
   BOOST_TEST(a.stats.static_tests == b.stats.static_tests);
+  BOOST_TEST(a.stats.static_configurations == b.stats.static_configurations);  // start tests
 }
 
 }  // namespace
@@ -130,6 +133,87 @@ BOOST_AUTO_TEST_CASE(the_stop_budget_ends_a_resting_contact_the_same_way_on_ever
     for (const int n : {2, 3, 8})
       require_same(one, verify_scene(scene, options, n).checks[0],
                    "resting, " + std::to_string(stops) + " stops, " + std::to_string(n) + " threads");
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(threads_over_parts)
+
+namespace {
+
+const char* kGrazingPath = R"({"format": "tmcert-scene/1", "epsilon": "1/1000",
+  "bodies": [
+    {"name": "plane", "polygons": [[[-10, -10, 0], [10, -10, 0], [0, 10, 0]]]},
+    {"name": "pendulum", "polygons": [[[0, 0, -1], ["0.1", 0, "-0.5"], ["-0.1", 0, "-0.5"]]],
+     "motion": {"type": "keyframes", "interpolation": "nlerp", "poses": [
+       {"translation": [-3, 0, 3]},
+       {"translation": [-1, 0, 3]},
+       {"translation": [0, 0, "1.000000000001"], "rotation": {"quaternion": [1, "-0.2", 0, 0]}},
+       {"translation": [0, 0, "1.000000000001"], "rotation": {"quaternion": [1, "0.3", 0, 0]}},
+       {"translation": [1, 0, 2]},
+       {"translation": [2, 0, 3]},
+       {"translation": [0, 0, -1]},
+       {"translation": [0, 0, 1]}]}}],
+  "checks": [["pendulum", "plane"]]})";
+
+}  // namespace
+
+// The parts of a keyframe, piecewise or two-body path (cut at every join)
+// run at once on several threads, each as if the part before it were
+// cleared; the merge searches a part again when that was not so.  A
+// triangle hanging from a pivot along 7 keyframe segments (nlerp: exact)
+// over a large triangle: cleared twice; swung about the pivot so that its
+// tip passes 1e-9 above the large triangle (undecided there: within
+// epsilon, then cleared pieces); lifted away (its start must be tested:
+// the part before it was not cleared entirely); cleared; down through the
+// large triangle (collision); and a part after the witness.  The result
+// is the sequential one on every thread count, with and without a node
+// budget.
+BOOST_AUTO_TEST_CASE(a_path_s_parts_merge_in_parameter_order_on_every_thread_count) {
+  const Scene scene = parse_scene_text(kGrazingPath, "grazing-path.json");
+  for (const bool exact : {false, true})
+    for (const std::uint64_t budget : {std::uint64_t(2'000'000), std::uint64_t(30), std::uint64_t(6)}) {
+      VerifyOptions options;
+      options.epsilon = *scene.epsilon;
+      options.max_depth = scene.max_depth;
+      options.max_nodes = budget;
+      options.exact_resolution = exact;
+      const CheckResult one = verify_scene(scene, options, 1).checks[0];
+      const std::string what = std::string(exact ? "exact resolution" : "balls") + ", budget " + std::to_string(budget);
+      if (budget > 1000 && !exact) {
+        // The case the test is for: undecided parts, then cleared ones, then
+        // the witness in part 6 of 7 (t in [5/7, 6/7]).
+        BOOST_TEST_INFO(what);
+        BOOST_TEST_REQUIRE(to_string(one.verdict) == "collision");
+        BOOST_TEST_REQUIRE(!one.undecided.empty());
+        BOOST_TEST(one.undecided.front().t0 > Exact(1, 7));
+        BOOST_TEST(one.undecided.back().t1 < Exact(4, 7));
+        BOOST_TEST(one.witness->t > Exact(5, 7));
+        BOOST_TEST(one.witness->t < Exact(6, 7));
+      }
+      for (const int n : {2, 3, 8})
+        require_same(one, verify_scene(scene, options, n).checks[0], what + ", " + std::to_string(n) + " threads");
+    }
+}
+
+// Enclosed (slerp) keyframes of a mesh and two moving bodies (one joint
+// curve per part): the same result on every thread count.
+BOOST_AUTO_TEST_CASE(enclosed_and_two_body_paths_give_the_same_result_on_every_thread_count) {
+  for (const std::string path : {kExamples + "gripper/gripper-path-collision-slerp.json",
+                                 std::string(TMCERT_TEST_DATA) + "/scenes/planner-two-moving-collision.json",
+                                 std::string(TMCERT_TEST_DATA) + "/scenes/planner-piecewise-second-piece.json"}) {
+    const Scene scene = parse_scene_file(path);
+    VerifyOptions options;
+    options.epsilon = scene.epsilon ? *scene.epsilon : default_epsilon(scene);
+    options.max_depth = scene.max_depth;
+    const SceneResult one = verify_scene(scene, options, 1);
+    for (const int n : {2, 8}) {
+      const SceneResult many = verify_scene(scene, options, n);
+      BOOST_TEST(to_string(one.verdict) == to_string(many.verdict));
+      for (std::size_t k = 0; k < one.checks.size(); ++k)
+        require_same(one.checks[k], many.checks[k], path + ", check " + std::to_string(k) + ", " + std::to_string(n) + " threads");
+    }
   }
 }
 
