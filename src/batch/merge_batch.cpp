@@ -1,6 +1,7 @@
 #include "src/batch/merge_batch.h"
 
 #include "src/scene/model.h"
+#include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,7 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <utility>
 
@@ -89,36 +91,38 @@ void merge_lines(std::vector<std::unique_ptr<ShardFile>>& files, const std::func
 
 std::size_t merge_batch(const std::vector<std::string>& shards, const std::string& output) {
   if (shards.empty()) throw InputError("batch-merge: at least one result file is required");
-  std::ofstream file_out;
+  // The output is checked before any work (src/scene/output_file.h): none
+  // of the result files to merge, nor the standard output's file; it is
+  // written (truncated) only after the check of every line.
+  std::optional<OutputFile> file_out;
   if (!output.empty()) {
-    // Checked before any work; opened for writing only after the check.
-    std::ofstream probe(output, std::ios::binary | std::ios::app);
-    if (!probe) throw InputError("-o: cannot write " + quote_text(output));
-  }
-  for (const std::string& shard : shards) {
-    std::error_code ec;
-    if (!output.empty() && std::filesystem::equivalent(shard, output, ec))
-      throw InputError("-o: " + quote_text(output) + " is also a result file to merge");
+    file_out.emplace("-o", output);
+    std::vector<FileIdentity> inputs;
+    for (const std::string& shard : shards)
+      if (std::optional<FileIdentity> f = file_identity(shard)) inputs.push_back(*f);
+    require_distinct({&*file_out}, inputs);
   }
   // First pass: everything checked, nothing written.
   {
     auto files = open_all(shards);
     merge_lines(files, [](const std::string&) {});
   }
-  if (!output.empty()) {
-    file_out.open(output, std::ios::binary | std::ios::trunc);
-    if (!file_out) throw InputError("-o: cannot write " + quote_text(output));
-  }
-  std::ostream& out = output.empty() ? std::cout : file_out;
   auto files = open_all(shards);
   std::size_t lines = 0;
+  std::string buffer;
+  auto flush = [&] {
+    if (file_out) file_out->append(buffer);
+    else write_stdout(buffer);
+    buffer.clear();
+  };
   merge_lines(files, [&](const std::string& line) {
-    out << line << '\n';
+    buffer += line;
+    buffer += '\n';
     ++lines;
+    if (buffer.size() >= (1u << 16)) flush();
   });
-  out.flush();
-  if (!out) throw InputError(output.empty() ? std::string("cannot write to standard output")
-                                            : "-o: cannot write " + quote_text(output));
+  flush();
+  if (file_out) file_out->finish();
   return lines;
 }
 

@@ -15,7 +15,9 @@ namespace tmcert {
 // "index", a file's indices increase, and together the files hold every
 // index from 0 to the largest exactly once.  Throws InputError naming the
 // file and line otherwise (exit 3, nothing written), or when `output`
-// cannot be written.  Returns the number of lines merged.
+// cannot be written or is one of the files to merge (src/scene/
+// output_file.h); OutputError (exit 4) when a write fails.  Returns the
+// number of lines merged.
 std::size_t merge_batch(const std::vector<std::string>& shards, const std::string& output);
 
 }  // namespace tmcert

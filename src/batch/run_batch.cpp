@@ -1,6 +1,7 @@
 #include "src/batch/run_batch.h"
 
 #include "src/batch/batch_environment.h"
+#include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 
 #include <algorithm>
@@ -16,6 +17,9 @@
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace tmcert {
 
@@ -43,21 +47,26 @@ bool next_line(std::istream& in, std::string& line, std::size_t& line_number) {
 }
 
 // Writes result lines in order and flushes at least once a second, so a
-// scheduler (or `tail -f`) sees results as they come.
+// scheduler (or `tail -f`) sees results as they come.  A write that fails
+// is OutputError (exit 4) naming the file or the standard output.
 class Writer {
  public:
-  explicit Writer(std::ostream& out) : out_(out), last_flush_(Clock::now()) {}
+  explicit Writer(OutputFile* file) : file_(file), last_flush_(Clock::now()) {}
   void line(const std::string& text) {
-    out_ << text << '\n';
-    if (Clock::now() - last_flush_ >= std::chrono::seconds(1)) flush();
+    buffer_ += text;
+    buffer_ += '\n';
+    if (buffer_.size() >= (1u << 16) || Clock::now() - last_flush_ >= std::chrono::seconds(1)) flush();
   }
   void flush() {
-    out_.flush();
+    if (file_) file_->append(buffer_);
+    else write_stdout(buffer_);
+    buffer_.clear();
     last_flush_ = Clock::now();
   }
 
  private:
-  std::ostream& out_;
+  OutputFile* file_;  // none: the standard output
+  std::string buffer_;
   Clock::time_point last_flush_;
 };
 
@@ -128,13 +137,17 @@ void run_chunk(const std::vector<Pending>& chunk, std::vector<std::unique_ptr<Ba
 
 int run_batch(const BatchOptions& options) {
   const auto started = Clock::now();
-  // Bad files are exit 3 before any work: the output first.
-  std::ofstream file_out;
-  if (!options.output.empty()) {
-    file_out.open(options.output, std::ios::binary | std::ios::trunc);
-    if (!file_out) throw InputError("-o: cannot write " + quote_text(options.output));
-  }
-  std::ostream& out = options.output.empty() ? std::cout : file_out;
+  // Bad files are exit 3 before any work: the output is checked first
+  // (src/scene/output_file.h), and written (truncated) only once the
+  // environment is read and the output is known to be none of the inputs:
+  // the requests file (or the standard input's file), the environment
+  // scene and its meshes and URDFs.
+  std::optional<OutputFile> file_out;
+  if (!options.output.empty()) file_out.emplace("-o", options.output);
+  std::vector<FileIdentity> inputs;
+  auto add_input = [&](const std::optional<FileIdentity>& f) {
+    if (f) inputs.push_back(*f);
+  };
 
   std::ifstream file_in;
   const bool from_stdin = options.requests == "-";
@@ -144,7 +157,14 @@ int run_batch(const BatchOptions& options) {
       throw InputError(options.requests + ": is a directory, not a requests file");
     file_in.open(options.requests, std::ios::binary);
     if (!file_in) throw InputError(options.requests + ": cannot open the requests file");
+    add_input(file_identity(options.requests));
+  } else {
+    struct stat info;  // the standard input's file, when it is a regular one
+    if (::fstat(STDIN_FILENO, &info) == 0 && S_ISREG(info.st_mode))
+      inputs.push_back({static_cast<std::uint64_t>(info.st_dev), static_cast<std::uint64_t>(info.st_ino), "<stdin>"});
   }
+  if (!options.scene.empty()) add_input(file_identity(options.scene));
+  if (file_out) require_distinct({&*file_out}, inputs);
   std::istream& in = from_stdin ? std::cin : file_in;
   const std::string requests_name = from_stdin ? std::string("<stdin>") : options.requests;
   // Inline bodies' meshes (and the first line's environment's) are
@@ -168,6 +188,10 @@ int run_batch(const BatchOptions& options) {
                                                  "or give --scene)");
     scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base, robots);
   }
+  if (file_out) {
+    require_distinct({&*file_out}, scene.input_files);
+    file_out->begin();
+  }
   VerifyOptions verify = options.verify;
   verify.epsilon = options.epsilon ? *options.epsilon : scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   verify.max_depth = options.max_depth ? *options.max_depth : scene.max_depth;
@@ -177,7 +201,7 @@ int run_batch(const BatchOptions& options) {
   const int threads = std::max(1, options.threads);
   std::vector<std::unique_ptr<BatchEnvironment::Worker>> workers;
   for (int k = 0; k < threads; ++k) workers.push_back(std::make_unique<BatchEnvironment::Worker>(environment));
-  Writer writer(out);
+  Writer writer(file_out ? &*file_out : nullptr);
   Counts counts;
   // Chunks bound the memory a huge input takes; results are written as
   // they finish within a chunk.
@@ -198,8 +222,7 @@ int run_batch(const BatchOptions& options) {
   if (in.bad()) throw ResourceLimit(requests_name + ": reading failed");
   run_chunk(chunk, workers, writer, counts);
   writer.flush();
-  if (!out) throw InputError(options.output.empty() ? std::string("cannot write the results to standard output")
-                                                    : "-o: cannot write " + quote_text(options.output));
+  if (file_out) file_out->finish();
 
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   char rate[64];

@@ -67,3 +67,28 @@ def test_certificate_needs_the_option() -> None:
     result = tmcert.verify(SOURCE / "examples" / "octagons-collision.json")
     with pytest.raises(tmcert.InputError, match="certificate"):
         result.certificate()
+
+
+def test_write_certificate_output_paths(tmp_path: Path) -> None:
+    # docs/scene-format.md "Output paths": an empty path, a directory or
+    # the scene file itself is an InputError before anything is written; a
+    # write that fails is a ResourceLimit naming the path, leaving no file.
+    scene_text = (SOURCE / "examples" / "octagons-near.json").read_text()
+    scene = tmp_path / "scene.json"
+    scene.write_text(scene_text)
+    result = tmcert.verify(scene, certificate=True)
+    with pytest.raises(tmcert.InputError, match="empty"):
+        result.write_certificate("")
+    with pytest.raises(tmcert.InputError, match="directory"):
+        result.write_certificate(tmp_path)
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        result.write_certificate(scene)
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        result.write_certificate(tmp_path / "." / "scene.json")
+    assert scene.read_text() == scene_text
+    if Path("/dev/full").exists():
+        with pytest.raises(tmcert.ResourceLimit, match="/dev/full"):
+            result.write_certificate("/dev/full")
+    written = tmp_path / "written.cert.json"
+    result.write_certificate(written)
+    assert written.read_text() == result.certificate()

@@ -286,7 +286,13 @@ class Result:
         return str(self._raw.certificate())
 
     def write_certificate(self, path: PathLike) -> None:
-        """Writes :meth:`certificate` to ``path`` (InputError when it cannot)."""
+        """Writes :meth:`certificate` to ``path``.
+
+        InputError, before anything is written, when ``path`` is empty, a
+        directory, cannot be written or is one of the scene's files;
+        ResourceLimit when the write fails (a full disk), leaving no partial
+        file.
+        """
         self._raw.write_certificate(os.fspath(path))
 
     def __str__(self) -> str:
