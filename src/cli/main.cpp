@@ -107,6 +107,17 @@ double time_limit_option(const std::string& option) {
 
 int run_verify(const VerifyArgs& args) {
   using namespace tmcert;
+  // Output paths are checked first (src/scene/output_file.h): a path that
+  // cannot be written is bad input (exit 3), never a verdict without its
+  // file.  Nothing is created or changed before the result is written; a
+  // FIFO is opened here once, so that its reader gets an end of file (not
+  // a wait for ever) when the run fails before writing.  After the scene is
+  // read, each must be none of its files, of the other output and of the
+  // standard output's file.
+  std::optional<OutputFile> certificate_file;
+  if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
+  std::optional<OutputFile> report_file;
+  if (!args.report.empty()) report_file.emplace("--report", args.report);
   auto owned = std::make_unique<Scene>(parse_scene_file(args.scene));
   Scene& scene = *owned;
   VerifyOptions options;
@@ -128,15 +139,6 @@ int run_verify(const VerifyArgs& args) {
   if (!args.certificate.empty())
     if (const std::string why = certificate::uncertifiable(scene); !why.empty())
       throw InputError("--certificate: certificates do not cover this scene: " + why);
-  // Output paths are checked now, before the verification (src/scene/
-  // output_file.h): a path that cannot be written, or that is an input of
-  // the scene, the other output or the standard output's file, is bad
-  // input (exit 3), never a verdict without its file.  Nothing is created
-  // or changed before the result is written.
-  std::optional<OutputFile> certificate_file;
-  if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
-  std::optional<OutputFile> report_file;
-  if (!args.report.empty()) report_file.emplace("--report", args.report);
   std::vector<const OutputFile*> outputs;
   if (certificate_file) outputs.push_back(&*certificate_file);
   if (report_file) outputs.push_back(&*report_file);

@@ -405,6 +405,7 @@ for name, first in (("leg7.json", 7), ("leg.json", 13)):
 PY
 # run_with_reader FIFO COPY ARGS...: tmcert ARGS with `cat FIFO > COPY` as
 # the FIFO's reader; tried again while the reader has not opened it yet.
+# The reader's exit status goes to reader_status (124: it waited in vain).
 run_with_reader() {
   local fifo=$1 copy=$2 reader code tries=0
   shift 2
@@ -418,6 +419,7 @@ run_with_reader() {
     sleep 0.1
   done
   wait "$reader"
+  reader_status=$?
   return "$code"
 }
 # (Under the sanitizers, the quick scene: the FIFO is still written, only
@@ -438,6 +440,12 @@ if mkfifo "$work/cert.fifo" "$work/report.fifo" 2>/dev/null; then
   run_with_reader "$work/report.fifo" "$work/from-fifo.html" verify "$fifo_scene" --report "$work/report.fifo"
   code=$?
   if [ "$code" -eq 0 ] && grep -q "</html>" "$work/from-fifo.html"; then pass; else fail "verify --report FIFO: exit code $code"; fi
+  # A run that fails before writing (a bad scene) leaves the reader an
+  # end of file, not a wait for ever.
+  run_with_reader "$work/cert.fifo" "$work/from-fifo.cert" verify "$data/bad/empty_file.json" --certificate "$work/cert.fifo"
+  code=$?
+  if [ "$code" -eq 3 ] && [ "$reader_status" -eq 0 ] && [ ! -s "$work/from-fifo.cert" ]; then pass
+  else fail "verify BAD --certificate FIFO: exit code $code, reader $reader_status"; fi
 fi
 # Write failures: exit 4 naming the path, no verdict on stdout.
 expect_write_failure() {
