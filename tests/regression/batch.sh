@@ -254,6 +254,34 @@ if mkfifo "$work/results.fifo" 2>/dev/null; then
   else fail "batch -o FIFO: exit $rc, or the reader did not get the results ($(head -c 300 "$work/err"))"; fi
 fi
 
+# Out of memory (exit 4, "out of memory") leaves no -o file behind, also
+# when it strikes after the file was begun (the gripper's slerp legs of
+# examples/gripper against its fixture; address space limits do not work
+# under AddressSanitizer).
+if [ -z "${TMCERT_SANITIZED:-}" ]; then
+  python3 - "$example/../gripper" "$work" <<'PY'
+import json, os, sys
+gripper, work = os.path.abspath(sys.argv[1]), sys.argv[2]
+scene = json.load(open(os.path.join(gripper, "gripper-path-slerp.json")))
+env = {"format": "tmcert-scene/1", "epsilon": scene["epsilon"],
+       "bodies": [{"name": "fixture", "mesh": os.path.join(gripper, "fixture.off")}]}
+json.dump(env, open(os.path.join(work, "gripper-env.json"), "w"))
+motion = scene["bodies"][1]["motion"]
+with open(os.path.join(work, "gripper-legs.jsonl"), "w") as out:
+    for k in range(8, 19):
+        leg = dict(motion, poses=motion["poses"][k:k + 2])
+        body = {"name": "gripper", "mesh": os.path.join(gripper, "gripper.off")}
+        out.write(json.dumps({"id": k, "body": body, "motion": leg}) + "\n")
+PY
+  for limit in 44 48; do
+    rm -f "$work/legs-out.jsonl"
+    expect_code 4 "batch out of memory (--memory-limit $limit)" "$tmcert" batch "$work/gripper-legs.jsonl" \
+      --scene "$work/gripper-env.json" -o "$work/legs-out.jsonl" --memory-limit "$limit"
+    if grep -q "^tmcert: out of memory" "$work/err" && [ ! -e "$work/legs-out.jsonl" ]; then pass
+    else fail "batch out of memory (--memory-limit $limit): no 'out of memory', or the -o file was left"; fi
+  done
+fi
+
 # ---------------------------------------------------------------- 5. batch agrees with verify
 # Each example request as a scene of its own: the environment, the moved
 # body with the request's motion, one check per obstacle.

@@ -509,6 +509,18 @@ if [ -z "${TMCERT_SANITIZED:-}" ]; then
   code=$?
   if [ "$code" -eq 4 ] && [ "$(cat "$work/leg.cert")" = old ]; then pass
   else fail "verify leg.json --certificate EXISTING --memory-limit 60: exit code $code, or the file changed"; fi
+  # The same certificate read by `tmcert check` under the limit (its json
+  # document dropped while memory is exhausted: std::terminate before).
+  run 120 "$tmcert" verify "$work/leg.json" --certificate "$work/leg-full.cert"
+  code=$?
+  if [ "$code" -ne 0 ]; then
+    fail "verify leg.json --certificate: exit code $code, expected 0"
+  else
+    run 120 "$tmcert" check "$work/leg-full.cert" "$work/leg.json" --memory-limit 60
+    code=$?
+    if [ "$code" -eq 4 ] && [ ! -s "$work/out" ] && grep -q "^tmcert: out of memory" "$work/err"; then pass
+    else fail "check leg-full.cert leg.json --memory-limit 60: exit code $code, expected 4 and out of memory"; fi
+  fi
 fi
 
 echo "$passed passed, $failed failed"
