@@ -2,6 +2,8 @@
 
 #include <gmp.h>
 
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 
@@ -105,6 +107,20 @@ std::string readable(const Exact& q) {
   Decimal d = to_decimal(q);
   if (d.exact) return d.text;
   return d.text + " (" + to_string(q) + ")";
+}
+
+std::string decimal_text(const Exact& q) {
+  const Decimal d = to_decimal(q, 17);
+  if (d.exact) return d.text;
+  // Exactly a double: the denominator a power of two, and the nearest
+  // double equal to q.
+  const double x = mpq_get_d(q.mpq());  // truncates; exact when q is a double
+  if (std::isfinite(x) && Exact(x) == q) {
+    char buffer[64];
+    const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);  // shortest round trip
+    return std::string(buffer, r.ptr) + " (a double)";
+  }
+  return "about " + d.text;
 }
 
 double approximate(const Exact& q) {

@@ -24,6 +24,14 @@ Decimal to_decimal(const Exact& q, int significant = 6);
 // "2.06812 (8471/4096)", "0.5", "-3".
 std::string readable(const Exact& q);
 
+// A decimal for messages that compare values (a joint at q outside its
+// limits): the exact decimal when q has one of at most 17 significant
+// digits ("3.5", "-2.8973"); a double given as one (a value from NumPy or
+// a C++ double, exactly its binary value) as the shortest decimal that
+// reads back as that double, followed by " (a double)"; anything else as
+// "about " and its 17-digit decimal.  Never a bare p/q fraction.
+std::string decimal_text(const Exact& q);
+
 // The double nearest to q's 17-significant-digit decimal (within one unit
 // in the last place of the nearest double), for JSON approximations;
 // +-infinity beyond the double range.

@@ -108,6 +108,10 @@ class TMCERT_API Result {
   // checks' own defaults (CheckResult::epsilon), as the JSON's "epsilon".
   const Rational& epsilon() const;
   const std::vector<CheckResult>& checks() const;
+  // The scene's notes and warnings (Scene::notes(), Scene::warnings()), as
+  // the result document's "notes" and "warnings".
+  const std::vector<std::string>& notes() const;
+  const std::vector<std::string>& warnings() const;
 
   // The tmcert-result/1 document, byte for byte what `tmcert verify --json`
   // prints for the same scene and options (up to the "seconds").
@@ -125,6 +129,12 @@ class TMCERT_API Result {
   // fails (a full disk), leaving no partial file (docs/scene-format.md
   // "Output paths").
   void write_certificate(const std::string& path) const;
+
+  // The visual report (`tmcert verify --report`): one self-contained HTML
+  // page showing the scene, the motion and this result.
+  std::string report_html() const;
+  // Writes report_html() to `path`, with the rules of write_certificate().
+  void write_report(const std::string& path) const;
 
   // Internal (src/api/).
   struct Impl;

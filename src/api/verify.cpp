@@ -4,6 +4,7 @@
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/report.h"
+#include "src/html/report_html.h"
 #include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
@@ -13,6 +14,7 @@
 #include "tmcert/verify.h"
 
 #include <cmath>
+#include <exception>
 #include <cstdlib>
 #include <fstream>
 
@@ -153,6 +155,56 @@ tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyO
   return options;
 }
 
+namespace {
+
+Progress public_progress(const tmcert::ProgressReport& r) {
+  Progress p;
+  p.fraction = r.fraction;
+  p.checks_done = r.checks_done;
+  p.checks = r.checks;
+  p.activity = r.activity;
+  p.seconds = r.seconds;
+  return p;
+}
+
+// verify_scene with the public progress callback on a watcher thread
+// (src/verify/progress.h).
+tmcert::SceneResult verify_with_progress(const tmcert::Scene& scene, tmcert::VerifyOptions o,
+                                         const VerifyOptions& options) {
+  if (!options.progress) return tmcert::verify_scene(scene, o, o.threads);
+  if (!std::isfinite(options.progress_interval) || !(options.progress_interval > 0) || options.progress_interval > 3600)
+    throw InputError("progress_interval: must be a number of seconds, > 0 and at most 3600");
+  tmcert::RunProgress run;
+  o.run = &run;
+  std::exception_ptr callback_error;
+  tmcert::SceneResult result;
+  try {
+    tmcert::ProgressWatcher watcher(
+        run,
+        [&](const tmcert::ProgressReport& r) {
+          try {
+            return options.progress(public_progress(r));
+          } catch (...) {
+            callback_error = std::current_exception();
+            return false;
+          }
+        },
+        options.progress_interval);
+    result = tmcert::verify_scene(scene, o, o.threads);
+  } catch (const tmcert::Cancelled&) {
+    if (callback_error) std::rethrow_exception(callback_error);
+    throw;
+  }
+  if (callback_error) std::rethrow_exception(callback_error);
+  tmcert::ProgressReport last = run.report();
+  last.fraction = 1;
+  last.activity = "done";
+  options.progress(public_progress(last));  // the run is over: its answer no longer matters
+  return result;
+}
+
+}  // namespace
+
 Result verify(const Scene& scene, const VerifyOptions& options) {
   return public_errors([&] {
     const std::shared_ptr<const tmcert::Scene>& internal = scene.impl().scene;
@@ -163,7 +215,7 @@ Result verify(const Scene& scene, const VerifyOptions& options) {
         throw InputError("certificate: certificates do not cover this scene: " + why);
     auto impl = std::make_shared<Result::Impl>();
     impl->scene = internal;
-    impl->internal = tmcert::verify_scene(*internal, o, o.threads);
+    impl->internal = verify_with_progress(*internal, o, options);
     impl->certificate = options.certificate;
     impl->epsilon = to_rational(impl->internal.epsilon);
     impl->checks.reserve(impl->internal.checks.size());
@@ -179,6 +231,8 @@ Kernel Result::kernel() const { return same_enum<Kernel>(impl_->internal.kernel)
 bool Result::certified() const { return impl_->internal.certified; }
 const Rational& Result::epsilon() const { return impl_->epsilon; }
 const std::vector<CheckResult>& Result::checks() const { return impl_->checks; }
+const std::vector<std::string>& Result::notes() const { return impl_->scene->notes; }
+const std::vector<std::string>& Result::warnings() const { return impl_->scene->warnings; }
 
 std::string Result::to_json() const { return tmcert::result_json(*impl_->scene, impl_->internal); }
 std::string Result::summary() const { return tmcert::result_summary(*impl_->scene, impl_->internal); }
@@ -198,6 +252,19 @@ void Result::write_certificate(const std::string& path) const {
     tmcert::OutputFile file("certificate", path);
     tmcert::require_distinct({&file}, impl_->scene->input_files);
     file.write(certificate());
+  });
+}
+
+std::string Result::report_html() const {
+  return public_errors([&] { return tmcert::report_html(*impl_->scene, impl_->internal); });
+}
+
+void Result::write_report(const std::string& path) const {
+  // The rules of write_certificate.
+  public_errors([&] {
+    tmcert::OutputFile file("report", path);
+    tmcert::require_distinct({&file}, impl_->scene->input_files);
+    file.write(report_html());
   });
 }
 

@@ -23,6 +23,17 @@ struct BatchOptions {
   std::optional<int> max_depth;
   int threads = 1;       // requests run in parallel (output order kept)
   bool stats = false;    // each check's "stats", wall-clock seconds included
+  bool quiet = false;    // no summary line on stderr
+  // Progress and cancellation: verify.run (src/verify/progress.h) counts
+  // the shard's requests as its items (those read so far, those written);
+  // once it is cancelled, no further result line is written and run_batch
+  // throws Cancelled (the output then ends after the last complete line).
+};
+
+// What a run did (its summary line).
+struct BatchCounts {
+  std::size_t requests = 0;  // every request of the file, in every shard
+  std::size_t safe = 0, collision = 0, undecided = 0, error = 0;  // of the shard's
 };
 
 // Runs the shard's requests and returns the exit code: 1 when a request
@@ -32,6 +43,6 @@ struct BatchOptions {
 // an input (the requests, the environment scene or its files), before any
 // result is written; OutputError (exit 4) when writing the results fails
 // (the results file is removed then, src/scene/output_file.h).
-int run_batch(const BatchOptions& options);
+int run_batch(const BatchOptions& options, BatchCounts* counts = nullptr);
 
 }  // namespace tmcert

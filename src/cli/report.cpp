@@ -431,6 +431,15 @@ std::string result_json(const Scene& scene, const SceneResult& r) {
     }
     w.end_array();
   }
+  // What the reader did to the input (docs/scene-format.md, "Data from
+  // real pipelines"): present only when there is something to say.
+  for (const auto& [key, list] : {std::pair{"notes", &scene.notes}, std::pair{"warnings", &scene.warnings}}) {
+    if (list->empty()) continue;
+    w.key(key);
+    w.begin_array();
+    for (const std::string& note : *list) w.value(note);
+    w.end_array();
+  }
   w.key("checks");
   w.begin_array();
   for (const CheckResult& c : r.checks) write_check(w, scene, c);
@@ -539,6 +548,8 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
   if (r.epsilon_per_check) out << "per check: 1/1000 of its bodies' box";
   else out << readable(r.epsilon);
   out << "]\n";
+  for (const std::string& note : scene.notes) out << "  note: " << note << "\n";
+  for (const std::string& warning : scene.warnings) out << "  warning: " << warning << "\n";
   for (const Body& b : scene.bodies) {
     if (b.enlarged.empty()) continue;
     out << "  note: " << b.name << " is an enlarged model: its ";

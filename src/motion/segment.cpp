@@ -1,5 +1,7 @@
 #include "src/motion/segment.h"
 
+#include "kernels/decimal.h"
+
 #include "src/motion/bezier.h"
 #include "src/motion/chain.h"
 
@@ -143,11 +145,11 @@ std::string rotation_matrix_problem(const std::array<Exact, 9>& m) {
     for (int j = 0; j < 3; ++j) {
       const Exact d = m[3 * i] * m[3 * j] + m[3 * i + 1] * m[3 * j + 1] + m[3 * i + 2] * m[3 * j + 2];
       if (d != (i == j ? 1 : 0)) return "the rows are not exactly orthonormal (row " + std::to_string(i) + " . row " +
-                                        std::to_string(j) + " = " + to_string(d) + ")";
+                                        std::to_string(j) + " = " + decimal_text(d) + ")";
     }
   const Exact det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
                     m[2] * (m[3] * m[7] - m[4] * m[6]);
-  if (det != 1) return "the determinant is " + to_string(det) + ", not +1 (a reflection)";
+  if (det != 1) return "the determinant is " + decimal_text(det) + ", not +1 (a reflection)";
   return {};
 }
 

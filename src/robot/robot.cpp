@@ -1,5 +1,7 @@
 #include "src/robot/robot.h"
 
+#include "kernels/decimal.h"
+
 #include "src/scene/parse.h"
 
 #include <algorithm>
@@ -90,8 +92,8 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
       if (joint.type != RobotJoint::Type::Revolute && joint.type != RobotJoint::Type::Prismatic) continue;
       if (row[c] < *joint.lower || row[c] > *joint.upper)
         throw JointPathError("positions", {k, c}, "waypoint " + std::to_string(k) + ": joint " + quoted(joint.name) + " at " +
-                                                      to_string(row[c]) + " is outside its limits [" + to_string(*joint.lower) +
-                                                      ", " + to_string(*joint.upper) + "]");
+                                                      decimal_text(row[c]) + " is outside its limits [" +
+                                                      decimal_text(*joint.lower) + ", " + decimal_text(*joint.upper) + "]");
     }
   }
 }

@@ -156,6 +156,14 @@ struct Scene {
   // scene's, and per check when written there (empty: the scene's for all).
   Exact clearance = 0;
   std::vector<std::optional<Exact>> check_clearance;  // parallel to checks
+  // What the reader did to data from real pipelines that a user should
+  // know (docs/scene-format.md, "Data from real pipelines"): mesh faces not
+  // exactly planar split into fans, zero-area faces read as segments
+  // (`notes`); input read in a way the user may not mean, such as an rpy
+  // angle above 2 pi read as radians (`warnings`, also printed on stderr by
+  // the command line).  Each names the file and the field.
+  std::vector<std::string> notes;
+  std::vector<std::string> warnings;
   Exact clearance_of(std::size_t check) const {
     if (check < check_clearance.size() && check_clearance[check]) return *check_clearance[check];
     return clearance;

@@ -523,10 +523,18 @@ struct Check {
 
   // A piece cleared entirely (options.record_cover), for certificates.
   void cleared(const Node& n) {
+    piece_done(n);
     if (options.record_cover) result.cleared.push_back({n.index, n.depth});
   }
 
+  // A piece is finished (cleared or recorded): its share of the check's
+  // progress (src/verify/progress.h).
+  void piece_done(const Node& n) {
+    if (options.slot && n.depth < 64) options.slot->add(options.slot_span >> n.depth);
+  }
+
   void record(const Node& n, StopReason reason) {
+    piece_done(n);
     const Exact t0 = scene_t(n.u0()), t1 = scene_t(n.u1());
     if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
       result.undecided.back().t1 = t1;
@@ -1022,7 +1030,7 @@ struct Check {
     std::vector<std::optional<Item<Policy>>> originals(entries.size());
     std::vector<char> complete(entries.size(), 0);
     std::vector<std::exception_ptr> errors(entries.size());
-    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> first_witness{entries.size()};
     std::atomic<std::uint64_t> spent{0};
     for (std::size_t i = 0; i < entries.size(); ++i)
@@ -1043,8 +1051,6 @@ struct Check {
         } catch (...) {
           errors[i] = std::current_exception();
         }
-        const std::size_t d = ++done;
-        if (options.progress) options.progress(static_cast<double>(d) / task_count);
       }
     };
     if (task_count > 0) {

@@ -257,7 +257,15 @@ Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
 Verifier::~Verifier() = default;
 
 const PreparedBody& Verifier::prepared(int body) const {
-  std::call_once(once_[body], [&] { prepared_[body] = std::make_unique<PreparedBody>(scene_.bodies[body]); });
+  std::call_once(once_[body], [&] {
+    const Body& b = scene_.bodies[body];
+    if (options_.run)
+      options_.run->set_step("preparing body " + b.name + " (" + std::to_string(b.polygons.size()) + " polygons, " +
+                             std::to_string(b.segments.size() + b.points.size()) + " segments and points: features, " +
+                             "metric, bounding-volume hierarchy)");
+    prepared_[body] = std::make_unique<PreparedBody>(b);
+    if (options_.run) options_.run->set_step("");
+  });
   return *prepared_[body];
 }
 
@@ -381,6 +389,14 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
                      "\"]: two moving bodies must share their motion interval");
   // The time limit counts from here, per check.
   VerifyOptions options = options_;
+  // The check's share of the run's progress (src/verify/progress.h).
+  std::optional<RunProgress::Slot> slot;
+  if (options.run && options.run->checks_are_items()) {
+    slot.emplace(*options.run);
+    options.slot = &*slot;
+    options.slot_span = RunProgress::kUnit;
+    options.run->set_activity("checking " + scene_.bodies[a].name + " x " + scene_.bodies[b].name);
+  }
   if (options.time_limit > 0)
     options.deadline = std::chrono::steady_clock::now() +
                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -488,9 +504,10 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   const std::size_t checks = scene.checks.size();
   VerifyOptions per_check = options;
   per_check.threads = std::max(options.threads, static_cast<int>(threads / std::max<std::size_t>(1, checks)));
-  if (checks != 1) per_check.progress = nullptr;
-  std::atomic<std::size_t> finished{0};
-  std::mutex progress_mutex;
+  if (options.run) {
+    options.run->set_checks(checks);
+    options.run->set_activity("bounding what the bodies sweep");
+  }
   const Verifier verifier(scene, per_check);
   out.checks.resize(scene.checks.size());
   std::atomic<std::size_t> next{0};
@@ -499,13 +516,9 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   auto worker = [&] {
     try {
       for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
+        if (options.run && options.run->cancelled()) break;  // no result: see below
         const auto [a, b] = scene.checks[k];
         out.checks[k] = verifier.check(a, b, scene.clearance_of(k));
-        const std::size_t f = ++finished;
-        if (options.progress && checks > 1) {
-          std::lock_guard<std::mutex> lock(progress_mutex);
-          options.progress(static_cast<double>(f) / checks);
-        }
       }
     } catch (...) {  // reported by the caller; never a verdict
       std::lock_guard<std::mutex> lock(failure_mutex);
@@ -519,6 +532,8 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   worker();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+  // A cancelled run has checks cut short or not run: no result at all.
+  if (options.run && options.run->cancelled()) throw Cancelled();
 
   // The scene's epsilon: the given one, or the largest of the checks' own.
   if (options.epsilon) out.epsilon = *options.epsilon;

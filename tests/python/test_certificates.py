@@ -92,3 +92,33 @@ def test_write_certificate_output_paths(tmp_path: Path) -> None:
     written = tmp_path / "written.cert.json"
     result.write_certificate(written)
     assert written.read_text() == result.certificate()
+
+
+def test_write_report_and_batch_output_paths(tmp_path: Path) -> None:
+    # The same rules for the report and batch outputs; an empty file name
+    # is refused in Python (None is absent), never taken as the standard
+    # output.
+    scene_text = (SOURCE / "examples" / "octagons-near.json").read_text()
+    scene = tmp_path / "scene.json"
+    scene.write_text(scene_text)
+    result = tmcert.verify(scene)
+    with pytest.raises(tmcert.InputError, match="empty"):
+        result.write_report("")
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        result.write_report(scene)
+    assert scene.read_text() == scene_text
+    if Path("/dev/full").exists():
+        with pytest.raises(tmcert.ResourceLimit, match="/dev/full"):
+            result.write_report("/dev/full")
+    batch = SOURCE / "examples" / "batch"
+    requests = tmp_path / "requests.jsonl"
+    requests.write_bytes((batch / "requests.jsonl").read_bytes())
+    with pytest.raises(tmcert.InputError, match="output: the file name is empty"):
+        tmcert.batch(requests, scene=batch / "environment.json", output="")
+    with pytest.raises(tmcert.InputError, match="scene: the file name is empty"):
+        tmcert.batch(requests, scene="")
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        tmcert.batch(requests, scene=batch / "environment.json", output=requests)
+    assert requests.read_bytes() == (batch / "requests.jsonl").read_bytes()
+    with pytest.raises(tmcert.InputError, match="output: the file name is empty"):
+        tmcert.batch_merge([requests], output="")
