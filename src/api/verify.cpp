@@ -1,6 +1,7 @@
 // verify() and Result (include/tmcert/verify.h, result.h): the internal
 // verifier with the command line's option rules, and its result seen
 // through exact Rationals and Times with doubles next to them.
+#include "kernels/decimal.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/report.h"
@@ -16,6 +17,8 @@
 #include <cmath>
 #include <exception>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <fstream>
 
 namespace tmcert::api {
@@ -56,8 +59,9 @@ AlgebraicNumber public_root(const tmcert::AlgebraicTime& a) {
   for (const CGAL::Gmpz& c : a.root_of) out.root_of.push_back(tmcert::to_string(tmcert::Exact(c)));
   out.lower = to_rational(a.lo);
   out.upper = to_rational(a.hi);
-  out.approx_text = a.approx;
-  out.approx = std::strtod(a.approx.c_str(), nullptr);
+  out.approx_text = a.approx;  // the shortest decimal of the nearest double, or the 17-digit decimal beyond range
+  const double x = std::strtod(a.approx.c_str(), nullptr);
+  out.approx = std::isfinite(x) && x != 0 ? x : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 
@@ -71,7 +75,9 @@ Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::Ch
     std::array<std::array<Rational, 2>, 3> box;
     for (int k = 0; k < 3; ++k) {
       box[k] = {to_rational((*w.point_box)[k][0]), to_rational((*w.point_box)[k][1])};
-      out.point_approx[k] = (box[k][0].approx + box[k][1].approx) / 2;
+      // The exact centre's nearest double (not the mean of two doubles).
+      const std::optional<double> c = tmcert::nearest_double(((*w.point_box)[k][0] + (*w.point_box)[k][1]) / 2);
+      out.point_approx[k] = c ? *c : std::numeric_limits<double>::quiet_NaN();
     }
     out.point_box = box;
   } else {

@@ -541,6 +541,7 @@ PYBIND11_MODULE(_tmcert, m) {
   py::class_<api::Rational>(m, "_Rational")
       .def_readonly("text", &api::Rational::text)
       .def_readonly("approx", &api::Rational::approx)
+      .def_readonly("approx_text", &api::Rational::approx_text)
       .def("fraction", &to_fraction);
   py::class_<api::AlgebraicNumber>(m, "_AlgebraicNumber")
       .def_readonly("root_of", &api::AlgebraicNumber::root_of)

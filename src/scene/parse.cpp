@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <climits>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -1158,7 +1159,31 @@ class SceneReader {
     }
     if (const Node* m = find(obj, "motion")) motion(b, *m, path.member("motion"));
     if (const Node* t = find(obj, "tolerance")) b.tolerance = non_negative(*t, path.member("tolerance"));
+    if (!b.mass_is_default) normalise_mass_scale(b);
     return b;
+  }
+
+  // Mass weights far outside the double range (1e400, 1e-400) would
+  // overflow or vanish in every enclosure of the body's metric.  The
+  // metric's norm scales with the square root of the weights, so weights
+  // multiplied by 100^-m and the tolerance (a length in that metric) by
+  // 10^-m give the same set of admissible motions, the same distances and
+  // the same verdicts, exactly (proofs/input-exactness.md); a clearance is
+  // turned into the metric from the weights as they are then.  Weights
+  // whose largest is within (2^-32, 2^32) stay as written.
+  static void normalise_mass_scale(Body& b) {
+    long top = LONG_MIN;
+    for (const Exact& w : b.mass.weights)
+      top = std::max(top, static_cast<long>(mpz_sizeinbase(mpq_numref(w.mpq()), 2)) -
+                              static_cast<long>(mpz_sizeinbase(mpq_denref(w.mpq()), 2)));
+    if (top == LONG_MIN || (top > -32 && top < 32)) return;
+    const long m = std::lround(static_cast<double>(top) * 0.30102999566398120 / 2);  // 100^m ~ 2^top
+    CGAL::Gmpz ten;
+    mpz_ui_pow_ui(ten.mpz(), 10, static_cast<unsigned long>(m < 0 ? -m : m));
+    const Exact length = m > 0 ? Exact(CGAL::Gmpz(1), ten) : Exact(ten);  // 10^-m
+    const Exact weight = length * length;                                 // 100^-m
+    for (Exact& w : b.mass.weights) w *= weight;
+    b.tolerance *= length;
   }
 
   Exact non_negative(const Node& node, const Path& path) const {
@@ -1572,6 +1597,7 @@ class SceneReader {
       m.weights = positive_weights(*weights, path.member("weights"), list.size(), "control point");
     else
       m.weights.assign(list.size(), Exact(1));
+    normalise_weights(m);  // the same curve; weights of 1e400 would overflow every enclosure
     return m;
   }
 

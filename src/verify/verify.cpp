@@ -74,17 +74,32 @@ namespace {
 // An axis-aligned box of exact points: its lower and upper corners.
 using ReachBox = std::array<Vec3E, 2>;
 
+// The maps of a rational curve for its box: its control points (with
+// positive weights the curve lies in their convex hull), except for an
+// nlerp keyframe segment, whose control points carry the scale of the
+// quaternions as written (a unit bar under a quaternion of 1e9 would get a
+// box of 1e9): there its exact poses at s = k/8, poses along the motion (a
+// tolerance, not a bound: the box of these poses lies inside the swept one).
+void add_curve_maps(const Motion& m, std::vector<Mat34E>& maps) {
+  if (!m.nlerp) {
+    maps.insert(maps.end(), m.control_points.begin(), m.control_points.end());
+    return;
+  }
+  for (int k = 0; k <= 8; ++k) maps.push_back(motion_pose(m, m.t0 + (m.t1 - m.t0) * Exact(k, 8)));
+}
+
 // The box of a body's vertices under every control point of its motion
-// (keyframe and link poses at their ends, approximately for enclosed
-// ones: a tolerance, not a bound); nullopt for a body without vertices.
+// (nlerp keyframes: poses along them; keyframe and link poses at their
+// ends, approximately for enclosed ones: a tolerance, not a bound);
+// nullopt for a body without vertices.
 std::optional<ReachBox> reach_box(const Body& b) {
   std::vector<Mat34E> maps;
-  if (b.motion) maps = b.motion->control_points;
+  if (b.motion) add_curve_maps(*b.motion, maps);
   else if (!b.trajectory) maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
   if (b.trajectory)
     for (const MotionSegment& seg : b.trajectory->segments) {
       if (seg.rational) {
-        maps.insert(maps.end(), seg.rational->control_points.begin(), seg.rational->control_points.end());
+        add_curve_maps(*seg.rational, maps);
         continue;
       }
       // The keyframe poses (a tolerance, not a bound: the approximate

@@ -59,7 +59,13 @@ block = section.split("```python\n", 1)[1].split("```", 1)[0]
 print(block)
 PY
 expected=$(grep -E '^print\(' "$work/example.py" | sed -n 's/.*  # \(.*\)$/\1/p' | head -1)
-got=$(cd "$src" && "$venv_python" "$work/example.py" | head -1)
+# The whole output goes to a file first: `| head -1` would close the pipe
+# while the example still prints (BrokenPipeError, and pipefail).
+if (cd "$src" && "$venv_python" "$work/example.py") >"$work/example.out"; then
+  got=$(head -1 "$work/example.out")
+else
+  got="(the example exited with an error)"
+fi
 if [ -n "$expected" ] && [ "$got" = "$expected" ]; then
   passed=$((passed + 1))
 else

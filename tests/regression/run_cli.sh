@@ -179,6 +179,31 @@ expect_in out '  warning: ' "verify pipeline-rpy-degrees.json"
 run 60 "$tmcert" verify "$data/bad/kf_matrix_float_noise.json"
 expect_in err 'the nearest rotation is the unit quaternion [w, x, y, z] = [0.96592582628906' "verify kf_matrix_float_noise.json"
 expect_in err 'write "rotation": {"quaternion": [' "verify kf_matrix_float_noise.json"
+# Approximations (docs/scene-format.md "Approximations"): an irrational
+# contact time beyond the double range is the 17-digit decimal, a string
+# also where a JSON number would be (never inf); a tiny one its nearest
+# double (not a width-limited guess).
+expect_json_text() {
+  local scene=$1
+  shift
+  run 60 "$tmcert" verify "$scene" --json
+  local text
+  for text in "$@"; do
+    if ! grep -qF -- "$text" "$work/out"; then
+      fail "tmcert verify $scene --json: output does not contain '$text'"
+      return
+    fi
+  done
+  if grep -qiE '(^|[^a-z])-?inf(inity)?([^a-z]|$)' "$work/out"; then
+    fail "tmcert verify $scene --json: 'inf' in the output"
+    return
+  fi
+  pass
+}
+expect_json_text "$data/scenes/numbers-root-1e400.json" '"approx": "6.8232780382801933e+400"' \
+  '"t_approx": "6.8232780382801933e+400"'
+expect_json_text "$data/scenes/numbers-root-1e-20.json" '"approx": "6.823278038280193e-21"' \
+  '"t_approx": 6.823278038280193e-21'
 
 # 3. `tmcert check CERTIFICATE SCENE` (docs/certificate-format.md): exit 0
 #    with the proven claims on stdout, 1 for a false claim or another scene,

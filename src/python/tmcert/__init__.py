@@ -29,7 +29,9 @@ check ``safe`` or ``collision`` (with an exact witness), or reports it
 Results carry exact values (``fractions.Fraction``, or an
 :class:`AlgebraicNumber` for a contact at an irrational instant) next to a
 ``*_float`` view of each for people and plots (a float64 NumPy array
-when NumPy is installed, else a tuple of floats; NumPy is optional).  Bad
+when NumPy is installed, else a tuple of floats; NumPy is optional): each
+float is the nearest to the exact value, or NaN for a value beyond the float range (|x| >= 2**1024 -
+2**970, or nonzero and at most 2**-1075), never an infinity.  Bad
 input raises :class:`InputError` (a ``ValueError``) with the message the
 command line prints after ``tmcert: ``; a resource limit that leaves no
 honest answer raises :class:`ResourceLimit`; a run cancelled by its
