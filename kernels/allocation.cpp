@@ -5,17 +5,37 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <new>
 
 namespace tmcert {
 namespace {
 
-[[noreturn]] void out_of_memory() {
-  // No allocation, no stdio: only write(2) and _exit(2) are safe here.
-  static const char message[] = "tmcert: out of memory\n";
-  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
+// Registered output files (remove_on_fatal_exit): plain atomics, read by
+// the handlers without allocating or locking.
+constexpr int kMaxRegistered = 16;
+std::atomic<const char*> g_registered[kMaxRegistered];
+
+void remove_registered() {
+  for (auto& slot : g_registered)
+    if (const char* path = slot.exchange(nullptr)) ::unlink(path);
+}
+
+[[noreturn]] void fatal_exit(const char* message, std::size_t length) {
+  // No allocation, no stdio: only unlink(2), write(2) and _exit(2), which
+  // are safe wherever this is reached.
+  remove_registered();
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, length);
   ::_exit(4);
+}
+
+[[noreturn]] void out_of_memory() {
+  static const char message[] = "tmcert: out of memory\n";
+  fatal_exit(message, sizeof message - 1);
 }
 
 void* checked_malloc(std::size_t n) {
@@ -40,11 +60,56 @@ void* checked_realloc(void* old, std::size_t n) {
 void* gmp_realloc(void* old, std::size_t, std::size_t n) { return checked_realloc(old, n); }
 void gmp_free(void* p, std::size_t) { std::free(p); }
 
+// The reserve for unwinding (see allocation.h): address space only, never
+// touched (so it costs no memory), given back at the first failed C++
+// allocation.
+std::atomic<void*> g_reserve{nullptr};
+constexpr std::size_t kMaxReserve = std::size_t{64} << 20;
+
+void take_reserve(std::size_t bytes) {
+  if (void* old = g_reserve.exchange(nullptr)) std::free(old);
+  // Smaller when the system refuses (a low limit set from outside).
+  for (; bytes >= (std::size_t{1} << 20); bytes /= 2)
+    if (void* p = std::malloc(bytes)) {
+      g_reserve = p;
+      return;
+    }
+}
+
+void release_reserve_and_throw() {
+  if (void* p = g_reserve.exchange(nullptr)) std::free(p);
+  throw std::bad_alloc();
+}
+
+[[noreturn]] void on_terminate() {
+  static const char internal[] = "tmcert: internal error (an exception that could not be handled)\n";
+  bool memory = false;
+  if (const std::exception_ptr e = std::current_exception()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (const std::bad_alloc&) {
+      memory = true;
+    } catch (...) {
+    }
+  }
+  if (memory) out_of_memory();
+  fatal_exit(internal, sizeof internal - 1);
+}
+
 }  // namespace
 
 void install_allocation_failure_handlers() {
   mp_set_memory_functions(checked_malloc, gmp_realloc, gmp_free);
   __flint_set_memory_functions(checked_malloc, checked_calloc, checked_realloc, std::free);
+  // The reserve: an eighth of a limit set from outside (ulimit -v), at
+  // most 64 MiB.
+  struct rlimit limit;
+  std::size_t reserve = kMaxReserve;
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur / 8 < reserve)
+    reserve = static_cast<std::size_t>(limit.rlim_cur / 8);
+  take_reserve(reserve);
+  std::set_new_handler(release_reserve_and_throw);
+  std::set_terminate(on_terminate);
 }
 
 bool limit_address_space(unsigned long long mebibytes) {
@@ -54,7 +119,26 @@ bool limit_address_space(unsigned long long mebibytes) {
   const rlim_t bytes = static_cast<rlim_t>(mebibytes) << 20;
   if (limit.rlim_max != RLIM_INFINITY && bytes > limit.rlim_max) return false;
   limit.rlim_cur = bytes;
-  return ::setrlimit(RLIMIT_AS, &limit) == 0;
+  if (::setrlimit(RLIMIT_AS, &limit) != 0) return false;
+  // The reserve within the new limit: given back first, then taken again
+  // at its size (the old one may not fit).
+  if (g_reserve.load()) take_reserve(std::min<std::size_t>(kMaxReserve, static_cast<std::size_t>(bytes / 8)));
+  return true;
+}
+
+bool remove_on_fatal_exit(const char* path) {
+  for (auto& slot : g_registered) {
+    const char* expected = nullptr;
+    if (slot.compare_exchange_strong(expected, path)) return true;
+  }
+  return false;
+}
+
+void keep_on_fatal_exit(const char* path) {
+  for (auto& slot : g_registered) {
+    const char* expected = path;
+    if (slot.compare_exchange_strong(expected, nullptr)) return;
+  }
 }
 
 }  // namespace tmcert

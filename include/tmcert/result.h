@@ -138,13 +138,17 @@ class TMCERT_API Result {
   // certificate-format.md), for `tmcert check` or check_certificate().
   // Needs VerifyOptions::certificate; throws InputError otherwise.
   std::string certificate() const;
-  // Writes certificate() to `path`; throws InputError when it cannot.
+  // Writes certificate() to `path`.  Throws InputError, before anything is
+  // written, when the path is empty, a directory, cannot be written, or is
+  // one of the files the scene was read from; ResourceLimit when the write
+  // fails (a full disk), leaving no partial file (docs/scene-format.md
+  // "Output paths").
   void write_certificate(const std::string& path) const;
 
   // The visual report (`tmcert verify --report`): one self-contained HTML
   // page showing the scene, the motion and this result.
   std::string report_html() const;
-  // Writes report_html() to `path`; throws InputError when it cannot.
+  // Writes report_html() to `path`, with the rules of write_certificate().
   void write_report(const std::string& path) const;
 
   // Internal (src/api/).

@@ -6,6 +6,7 @@
 #include "src/certificate/writer.h"
 #include "src/cli/report.h"
 #include "src/html/report_html.h"
+#include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
@@ -256,11 +257,15 @@ std::string Result::certificate() const {
 }
 
 void Result::write_certificate(const std::string& path) const {
-  const std::string document = certificate();
-  std::ofstream out(path, std::ios::binary);
-  out << document;
-  out.close();
-  if (!out) throw InputError("certificate: cannot write " + tmcert::quote_text(path));
+  // The command line's rules for output paths (src/scene/output_file.h):
+  // checked first (InputError: empty, a directory, not writable, or one of
+  // the scene's files), written only once the document is whole, a failed
+  // write a ResourceLimit naming the path, leaving no partial file.
+  public_errors([&] {
+    tmcert::OutputFile file("certificate", path);
+    tmcert::require_distinct({&file}, impl_->scene->input_files);
+    file.write(certificate());
+  });
 }
 
 std::string Result::report_html() const {
@@ -268,11 +273,12 @@ std::string Result::report_html() const {
 }
 
 void Result::write_report(const std::string& path) const {
-  const std::string page = report_html();
-  std::ofstream out(path, std::ios::binary);
-  out << page;
-  out.close();
-  if (!out) throw InputError("report: cannot write " + tmcert::quote_text(path));
+  // The rules of write_certificate.
+  public_errors([&] {
+    tmcert::OutputFile file("report", path);
+    tmcert::require_distinct({&file}, impl_->scene->input_files);
+    file.write(report_html());
+  });
 }
 
 namespace {

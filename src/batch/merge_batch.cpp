@@ -1,6 +1,7 @@
 #include "src/batch/merge_batch.h"
 
 #include "src/scene/model.h"
+#include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <queue>
 #include <random>
 #include <sys/stat.h>
@@ -178,7 +180,7 @@ std::size_t merge_into(const std::vector<std::string>& shards, std::FILE* out, c
     failed |= std::fwrite(line, 1, size, out) != size || std::fputc('\n', out) == EOF;
   });
   errno = 0;
-  if (failed || std::fflush(out) != 0 || std::ferror(out)) throw InputError(what + reason(errno));
+  if (failed || std::fflush(out) != 0 || std::ferror(out)) throw OutputError(what + reason(errno));
   return lines;
 }
 
@@ -224,7 +226,7 @@ class Replacement {
     errno = 0;
     const int closed = std::fclose(out_.release());
     if (closed != 0 || std::rename(path_.c_str(), target_.c_str()) != 0)
-      throw InputError("-o: cannot write " + quote_text(target_.string()) + reason(errno));
+      throw OutputError("-o: cannot write " + quote_text(target_.string()) + reason(errno));
     done_ = true;
   }
 
@@ -239,10 +241,16 @@ class Replacement {
 
 std::size_t merge_batch(const std::vector<std::string>& shards, const std::string& output) {
   if (shards.empty()) throw InputError("batch-merge: at least one result file is required");
-  for (const std::string& shard : shards) {
-    std::error_code ec;
-    if (!output.empty() && std::filesystem::equivalent(shard, output, ec))
-      throw InputError("-o: " + quote_text(output) + " is also a result file to merge");
+  // The output is checked before any work (src/scene/output_file.h): none
+  // of the result files to merge, nor the standard output's file; it is
+  // written (truncated) only after the check of every line.
+  std::optional<OutputFile> file_out;
+  if (!output.empty()) {
+    file_out.emplace("-o", output);
+    std::vector<FileIdentity> inputs;
+    for (const std::string& shard : shards)
+      if (std::optional<FileIdentity> f = file_identity(shard)) inputs.push_back(*f);
+    require_distinct({&*file_out}, inputs);
   }
   // A new or plain file: one pass into a replacement.
   if (!output.empty()) {
@@ -271,14 +279,21 @@ std::size_t merge_batch(const std::vector<std::string>& shards, const std::strin
     auto files = open_all(shards);
     merge_lines(files, [](const char*, std::size_t) {});
   }
-  if (output.empty()) return merge_into(shards, stdout, "cannot write to standard output");
-  errno = 0;
-  std::unique_ptr<std::FILE, FileCloser> out(std::fopen(output.c_str(), "wb"));
-  if (!out) throw InputError("-o: cannot write " + quote_text(output) + reason(errno));
-  std::setvbuf(out.get(), nullptr, _IOFBF, kBuffer);
-  const std::size_t lines = merge_into(shards, out.get(), "-o: cannot write " + quote_text(output));
-  errno = 0;
-  if (std::fclose(out.release()) != 0) throw InputError("-o: cannot write " + quote_text(output) + reason(errno));
+  auto files = open_all(shards);
+  std::string buffer;
+  auto flush = [&] {
+    if (file_out) file_out->append(buffer);
+    else write_stdout(buffer);
+    buffer.clear();
+  };
+  if (file_out) file_out->begin();
+  const std::size_t lines = merge_lines(files, [&](const char* line, std::size_t size) {
+    buffer.append(line, size);
+    buffer += '\n';
+    if (buffer.size() >= (1u << 16)) flush();
+  });
+  flush();
+  if (file_out) file_out->finish();
   return lines;
 }
 

@@ -1,6 +1,7 @@
 #include "src/batch/run_batch.h"
 
 #include "src/batch/batch_environment.h"
+#include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 
 #include <algorithm>
@@ -16,6 +17,9 @@
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace tmcert {
 
@@ -43,23 +47,28 @@ bool next_line(std::istream& in, std::string& line, std::size_t& line_number) {
 }
 
 // Writes result lines in order and flushes at least once a second, so a
-// scheduler (or `tail -f`) sees results as they come.
+// scheduler (or `tail -f`) sees results as they come.  A write that fails
+// is OutputError (exit 4) naming the file or the standard output.
 class Writer {
  public:
-  explicit Writer(std::ostream& out) : out_(out), last_flush_(Clock::now()) {}
+  explicit Writer(OutputFile* file) : file_(file), last_flush_(Clock::now()) {}
   void line(const std::string& text) {
-    out_ << text << '\n';
-    if (Clock::now() - last_flush_ >= std::chrono::seconds(1)) flush();
+    buffer_ += text;
+    buffer_ += '\n';
+    if (buffer_.size() >= (1u << 16) || Clock::now() - last_flush_ >= std::chrono::seconds(1)) flush();
   }
   void flush() {
-    out_.flush();
+    if (file_) file_->append(buffer_);
+    else write_stdout(buffer_);
+    buffer_.clear();
     last_flush_ = Clock::now();
   }
   // When the next flush is due.
   Clock::time_point next_flush() const { return last_flush_ + std::chrono::seconds(1); }
 
  private:
-  std::ostream& out_;
+  OutputFile* file_;  // none: the standard output
+  std::string buffer_;
   Clock::time_point last_flush_;
 };
 
@@ -267,13 +276,17 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
     run->count_other_items();
     run->set_activity("reading the environment");
   }
-  // Bad files are exit 3 before any work: the output first.
-  std::ofstream file_out;
-  if (!options.output.empty()) {
-    file_out.open(options.output, std::ios::binary | std::ios::trunc);
-    if (!file_out) throw InputError("-o: cannot write " + quote_text(options.output));
-  }
-  std::ostream& out = options.output.empty() ? std::cout : file_out;
+  // Bad files are exit 3 before any work: the output is checked first
+  // (src/scene/output_file.h), and written (truncated) only once the
+  // environment is read and the output is known to be none of the inputs:
+  // the requests file (or the standard input's file), the environment
+  // scene and its meshes and URDFs.
+  std::optional<OutputFile> file_out;
+  if (!options.output.empty()) file_out.emplace("-o", options.output);
+  std::vector<FileIdentity> inputs;
+  auto add_input = [&](const std::optional<FileIdentity>& f) {
+    if (f) inputs.push_back(*f);
+  };
 
   std::ifstream file_in;
   const bool from_stdin = options.requests == "-";
@@ -283,7 +296,14 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
       throw InputError(options.requests + ": is a directory, not a requests file");
     file_in.open(options.requests, std::ios::binary);
     if (!file_in) throw InputError(options.requests + ": cannot open the requests file");
+    add_input(file_identity(options.requests));
+  } else {
+    struct stat info;  // the standard input's file, when it is a regular one
+    if (::fstat(STDIN_FILENO, &info) == 0 && S_ISREG(info.st_mode))
+      inputs.push_back({static_cast<std::uint64_t>(info.st_dev), static_cast<std::uint64_t>(info.st_ino), "<stdin>"});
   }
+  if (!options.scene.empty()) add_input(file_identity(options.scene));
+  if (file_out) require_distinct({&*file_out}, inputs);
   std::istream& in = from_stdin ? std::cin : file_in;
   const std::string requests_name = from_stdin ? std::string("<stdin>") : options.requests;
   // Inline bodies' meshes (and the first line's environment's) are
@@ -307,6 +327,10 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
                                                  "or give --scene)");
     scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base, robots);
   }
+  if (file_out) {
+    require_distinct({&*file_out}, scene.input_files);
+    file_out->begin();
+  }
   // What the reader did to the environment's data (docs/scene-format.md,
   // "Data from real pipelines"), once, on stderr.
   if (!options.quiet) {
@@ -329,21 +353,29 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
   const int threads = std::max(1, options.threads);
   std::vector<std::unique_ptr<BatchEnvironment::Worker>> workers;
   for (int k = 0; k < threads; ++k) workers.push_back(std::make_unique<BatchEnvironment::Worker>(environment));
-  Writer writer(out);
+  Writer writer(file_out ? &*file_out : nullptr);
   Counts counts;
   RequestReader reader(in, requests_name, options.shard, std::move(line), line_number, run);
-  if (run) run->set_activity("running requests");
-  if (threads == 1) {
-    run_serial(reader, *workers[0], writer, counts, run);
-  } else {
-    // The window bounds the memory a huge input takes.
-    Pool pool(workers, 64 * static_cast<std::size_t>(threads));
-    pool.run(reader, writer, counts, run);
+  try {
+    if (run) run->set_activity("running requests");
+    if (threads == 1) {
+      run_serial(reader, *workers[0], writer, counts, run);
+    } else {
+      // The window bounds the memory a huge input takes.
+      Pool pool(workers, 64 * static_cast<std::size_t>(threads));
+      pool.run(reader, writer, counts, run);
+    }
+    writer.flush();
+  } catch (const Cancelled&) {
+    // A cancelled run's output ends after its last complete line, which
+    // stands (include/tmcert/batch.h): the results file is closed, not
+    // removed as after a failure.
+    writer.flush();
+    if (file_out) file_out->finish();
+    throw;
   }
-  writer.flush();
+  if (file_out) file_out->finish();
   const std::size_t requests = reader.requests();
-  if (!out) throw InputError(options.output.empty() ? std::string("cannot write the results to standard output")
-                                                    : "-o: cannot write " + quote_text(options.output));
 
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
   char rate[64];

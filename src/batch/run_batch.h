@@ -42,8 +42,10 @@ struct BatchCounts {
 // Runs the shard's requests and returns the exit code: 1 when a request
 // collides, else 2 when one is undecided or bad (a bad request line is not
 // certified), else 0.  A summary goes to stderr.  Throws InputError (exit
-// 3) for a bad environment, a bad or unwritable file before any result is
-// written.
+// 3) for a bad environment, a bad or unwritable file, or an output that is
+// an input (the requests, the environment scene or its files), before any
+// result is written; OutputError (exit 4) when writing the results fails
+// (the results file is removed then, src/scene/output_file.h).
 int run_batch(const BatchOptions& options, BatchCounts* counts = nullptr);
 
 }  // namespace tmcert

@@ -5,9 +5,9 @@
 #include "src/batch/run_batch.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/cli/output_file.h"
 #include "src/cli/report.h"
 #include "src/html/report_html.h"
+#include "src/scene/output_file.h"
 #include "src/scene/parse.h"
 #include "src/verify/progress.h"
 #include "src/verify/verify.h"
@@ -16,6 +16,8 @@
 
 #include <sys/ioctl.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <cerrno>
@@ -30,6 +32,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 // The scene of `verify`, kept to the end of the process (run_verify).  A
@@ -162,6 +165,17 @@ void print_warnings(const tmcert::Scene& scene) {
 
 int run_verify(const VerifyArgs& args) {
   using namespace tmcert;
+  // Output paths are checked first (src/scene/output_file.h): a path that
+  // cannot be written is bad input (exit 3), never a verdict without its
+  // file.  Nothing is created or changed before the result is written; a
+  // FIFO is opened here once, so that its reader gets an end of file (not
+  // a wait for ever) when the run fails before writing.  After the scene is
+  // read, each must be none of its files, of the other output and of the
+  // standard output's file.
+  std::optional<OutputFile> certificate_file;
+  if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
+  std::optional<OutputFile> report_file;
+  if (!args.report.empty()) report_file.emplace("--report", args.report);
   RunProgress run;
   std::optional<TerminalProgress> progress;
   if (isatty(STDERR_FILENO)) progress.emplace(run);
@@ -198,35 +212,39 @@ int run_verify(const VerifyArgs& args) {
   if (!args.certificate.empty())
     if (const std::string why = certificate::uncertifiable(scene); !why.empty())
       throw InputError("--certificate: certificates do not cover this scene: " + why);
-  // Output paths are tried now, before the verification: a path that
-  // cannot be written is bad input (exit 3), never a verdict without its
-  // file.
-  std::optional<OutputFile> certificate_file;
-  if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
-  std::optional<OutputFile> report_file;
-  if (!args.report.empty()) report_file.emplace("--report", args.report);
+  std::vector<const OutputFile*> outputs;
+  if (certificate_file) outputs.push_back(&*certificate_file);
+  if (report_file) outputs.push_back(&*report_file);
+  require_distinct(outputs, scene.input_files);
   options.run = &run;
   const SceneResult result = verify_scene(scene, options, args.threads);
+  // Every document is built before anything is written, and the files
+  // before the verdict is printed: running out of memory on the way leaves
+  // no file and prints no verdict (exit 4), and a write that fails is exit
+  // 4 naming the path (OutputError), never a verdict without its file.
+  certificate::WriteStats stats;
+  std::string certificate_text, report_text;
   if (certificate_file) {
     run.set_activity("writing the certificate " + args.certificate);
-    // Written before the verdict is printed: a certificate that cannot be
-    // written is bad input (a bad output path, exit 3), not a verdict
-    // without its proof.
-    certificate::WriteStats stats;
-    certificate_file->write(certificate::certificate_json(scene, result, &stats));
-    if (progress) progress.reset();  // erases the progress line before anything is printed
+    certificate_text = certificate::certificate_json(scene, result, &stats);
+  }
+  if (report_file) {
+    run.set_activity("writing the report " + args.report);
+    report_text = report_html(scene, result);
+  }
+  const std::string printed = args.json ? result_json(scene, result) : result_summary(scene, result);
+  progress.reset();  // erases the progress line before anything is printed
+  if (certificate_file) {
+    certificate_file->write(certificate_text);
+    std::string().swap(certificate_text);
     std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
               << stats.separations << " separations, " << stats.seconds << " s)\n";
   }
   if (report_file) {
-    if (!progress && isatty(STDERR_FILENO)) progress.emplace(run);
-    run.set_activity("writing the report " + args.report);
-    report_file->write(report_html(scene, result));
-    progress.reset();
+    report_file->write(report_text);
     std::cerr << "tmcert: report written to " << args.report << "\n";
   }
-  progress.reset();
-  std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
+  write_stdout(printed);
   // The process ends now: freeing a scene of many bodies number by number
   // (every coordinate a GMP rational) took longer than verifying it, so the
   // scene is kept, reachable, for the system to reclaim.
@@ -246,9 +264,9 @@ int run_certificate_check(const std::string& certificate_file, const std::string
     std::cerr << "tmcert: rejected: " << outcome.message << "\n";
     return 1;
   }
-  std::cout << "tmcert: certificate holds: every claim is proven\n";
-  for (const std::string& line : outcome.proven) std::cout << "  " << line << "\n";
-  std::cout << std::flush;
+  std::string printed = "tmcert: certificate holds: every claim is proven\n";
+  for (const std::string& line : outcome.proven) printed += "  " + line + "\n";
+  write_stdout(printed);
   return 0;
 }
 
@@ -310,6 +328,10 @@ std::string unknown_command(const std::string& word, const std::vector<std::stri
 
 int main(int argc, char** argv) {
   tmcert::install_allocation_failure_handlers();
+  // A reader that goes away (a closed pipe, a FIFO's reader) makes the
+  // write fail with EPIPE, reported as a failed write (exit 4) naming the
+  // output, instead of killing the process without a word.
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{"tmcert: certified collision checks of moving polyhedra"};
   app.set_version_flag("--version", "tmcert 0.1.0");
   app.require_subcommand(1);
@@ -324,8 +346,8 @@ int main(int argc, char** argv) {
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
-  verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
-  verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
+  CLI::Option* certificate_option = verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
+  CLI::Option* report_option = verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
@@ -344,8 +366,8 @@ int main(int argc, char** argv) {
   batch->add_option("requests", batch_args.options.requests,
                     "requests file (JSON Lines; - for standard input); its first line is the environment "
                     "unless --scene is given")->required();
-  batch->add_option("--scene", batch_args.options.scene, "the environment scene (tmcert-scene/1, fixed bodies)");
-  batch->add_option("-o,--output", batch_args.options.output, "results file (default: standard output)");
+  CLI::Option* batch_scene_option = batch->add_option("--scene", batch_args.options.scene, "the environment scene (tmcert-scene/1, fixed bodies)");
+  CLI::Option* batch_output_option = batch->add_option("-o,--output", batch_args.options.output, "results file (default: standard output)");
   batch->add_option("--shard", batch_args.shard, "i/n: run only the requests whose index is i modulo n");
   batch->add_option("--epsilon", batch_args.epsilon, "termination tolerance, a length, fixed (overrides the environment); 'auto' or absent (and none in the "
                     "environment): the environment's default, undecided parts searched again at epsilon/10, ... down to "
@@ -364,7 +386,7 @@ int main(int argc, char** argv) {
   CLI::App* merge = app.add_subcommand("batch-merge", "merge the result files of the shards of a batch run "
                                                       "(the bytes of the unsharded run)");
   merge->add_option("results", merge_files, "result files of the shards (any order)")->required();
-  merge->add_option("-o,--output", merge_output, "merged file (default: standard output)");
+  CLI::Option* merge_output_option = merge->add_option("-o,--output", merge_output, "merged file (default: standard output)");
   unsigned long long memory_limit = 0;
   for (CLI::App* sub : {verify, check, batch})
     sub->add_option("--memory-limit", memory_limit,
@@ -382,12 +404,28 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
-    return app.exit(e);  // --help, --version
+    const int code = app.exit(e);  // --help, --version
+    try {
+      tmcert::flush_stdout();
+    } catch (const tmcert::OutputError& error) {
+      std::cerr << "tmcert: " << error.what() << "\n";
+      return kExitInternal;
+    }
+    return code;
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kExitBadInput;
   }
 
+  // A file option given an empty name is refused, not taken as absent.
+  for (const auto& [option, value, name] :
+       {std::tuple{certificate_option, &args.certificate, "--certificate"}, {report_option, &args.report, "--report"},
+        {batch_scene_option, &batch_args.options.scene, "--scene"}, {batch_output_option, &batch_args.options.output, "-o"},
+        {merge_output_option, &merge_output, "-o"}})
+    if (option->count() > 0 && value->empty()) {
+      std::cerr << "tmcert: " << name << ": the file name is empty\n";
+      return kExitBadInput;
+    }
   if (memory_limit && !tmcert::limit_address_space(memory_limit)) {
     std::cerr << "tmcert: --memory-limit: the system refuses a limit of " << memory_limit << " MiB\n";
     return kExitBadInput;
@@ -404,6 +442,9 @@ int main(int argc, char** argv) {
   } catch (const tmcert::InputError& e) {
     std::cerr << "tmcert: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const tmcert::OutputError& e) {
+    std::cerr << "tmcert: " << e.what() << "\n";
+    return kExitInternal;
   } catch (const tmcert::ResourceLimit& e) {
     std::cerr << "tmcert: resource limit: " << e.what() << "\n";
     return kExitInternal;

@@ -1,5 +1,6 @@
-// Reading URDF (robot.h): urdfdom checks the structure (one root, a tree,
-// every joint's links exist, limits where required) and gives the tree;
+// Reading URDF (robot.h): the tree is checked here first (require_tree:
+// one parent joint per link, one root, no cycle, with messages naming the
+// links and joints), then urdfdom checks the structure again and gives it;
 // every number is read again from the XML text (TinyXML, the parser urdfdom
 // itself uses) with the exact decimal reader, because urdfdom stores
 // doubles.
@@ -98,7 +99,7 @@ class UrdfReader {
     }
     for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint"))
       model->joints.push_back(joint(j, link_ids));
-    for (std::size_t j = 0; j < model->joints.size(); ++j) model->links[model->joints[j].child].parent_joint = static_cast<int>(j);
+    require_tree(*model);
     // The structure (one root, a tree, ...) through urdfdom, after our own
     // reading so that our messages (naming the element) come first.
     urdf::ModelInterfaceSharedPtr urdf;
@@ -137,6 +138,75 @@ class UrdfReader {
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(source_ + ": " + what); }
+
+  // The links and joints must form a tree (docs/scene-format.md "Robots"):
+  // every joint name once, every link the child of at most one joint, one
+  // link (the root) the child of none, and every link reached from the
+  // root.  Checked here, naming the links and joints, rather than left to
+  // urdfdom, which keeps one of two parent joints silently and does not
+  // look for cycles away from the root.  Sets each link's parent joint and
+  // the root.
+  void require_tree(RobotModel& model) const {
+    if (model.links.empty()) fail("no <link> (a robot needs at least one link)");
+    std::map<std::string, std::size_t> joint_ids;
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const RobotJoint& joint = model.joints[j];
+      if (!joint_ids.emplace(joint.name, j).second) fail("joint " + quote_text(joint.name) + ": defined twice");
+      if (joint.parent == joint.child)
+        fail("joint " + quote_text(joint.name) + ": its parent and child are the same link " +
+             quote_text(model.links[joint.child].name) + " (a URDF must be a tree)");
+      RobotLink& child = model.links[joint.child];
+      if (child.parent_joint >= 0)
+        fail("link " + quote_text(child.name) + ": the child of two joints, " +
+             quote_text(model.joints[child.parent_joint].name) + " and " + quote_text(joint.name) +
+             " (a URDF must be a tree: each link has at most one parent joint)");
+      child.parent_joint = static_cast<int>(j);
+    }
+    std::vector<std::size_t> roots;
+    for (std::size_t l = 0; l < model.links.size(); ++l)
+      if (model.links[l].parent_joint < 0) roots.push_back(l);
+    if (roots.size() > 1)
+      fail("links " + quote_text(model.links[roots[0]].name) + " and " + quote_text(model.links[roots[1]].name) +
+           " are both roots (the child of no joint); a URDF must be a tree with one root, every other link "
+           "connected to it by joints");
+    // With one root and one parent joint per other link, a link that the
+    // root does not reach lies on a cycle of joints (and so does the root's
+    // absence).
+    std::vector<std::vector<std::size_t>> children(model.links.size());
+    for (const RobotJoint& joint : model.joints) children[joint.parent].push_back(joint.child);
+    std::vector<char> reached(model.links.size(), 0);
+    if (!roots.empty()) {
+      std::vector<std::size_t> stack{roots[0]};
+      reached[roots[0]] = 1;
+      while (!stack.empty()) {
+        const std::size_t l = stack.back();
+        stack.pop_back();
+        for (std::size_t c : children[l])
+          if (!reached[c]) {
+            reached[c] = 1;
+            stack.push_back(c);
+          }
+      }
+    }
+    for (std::size_t l = 0; l < model.links.size(); ++l) {
+      if (reached[l]) continue;
+      // Up the parent joints from l until a link repeats: that is the cycle.
+      std::vector<int> seen(model.links.size(), -1);
+      std::vector<std::size_t> path;
+      std::size_t k = l;
+      while (seen[k] < 0) {
+        seen[k] = static_cast<int>(path.size());
+        path.push_back(k);
+        k = static_cast<std::size_t>(model.joints[model.links[k].parent_joint].parent);
+      }
+      std::string joints;
+      for (std::size_t i = static_cast<std::size_t>(seen[k]); i < path.size(); ++i)
+        joints += (joints.empty() ? "" : ", ") + quote_text(model.joints[model.links[path[i]].parent_joint].name);
+      fail("joints " + joints + " form a cycle through link " + quote_text(model.links[k].name) +
+           " (a URDF must be a tree)");
+    }
+    model.root = static_cast<int>(roots[0]);
+  }
 
   bool is_xacro(const std::string& text) const {
     return source_.ends_with(".xacro") || text.find("xmlns:xacro") != std::string::npos ||

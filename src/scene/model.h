@@ -5,6 +5,7 @@
 
 #include "kernels/number_types.h"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -138,8 +139,20 @@ struct Body {
   }
 };
 
+// A file as the system knows it (device and inode: the same file under
+// any name, through links and different spellings).
+struct FileIdentity {
+  std::uint64_t device = 0, inode = 0;
+  std::string path;  // as it was named, for messages
+  bool same(const FileIdentity& o) const { return device == o.device && inode == o.inode; }
+};
+
 struct Scene {
   std::string source;                   // file name, for messages
+  // The files read for the scene (the scene file, its meshes, URDFs and
+  // SRDFs): no output may be written over one of them (docs/scene-format.md
+  // "Output paths").  Empty for a scene built in code or from text alone.
+  std::vector<FileIdentity> input_files;
   std::vector<Body> bodies;
   std::optional<Exact> epsilon;         // absent: per check (default_epsilon of its two bodies)
   int max_depth = 40;

@@ -1880,15 +1880,21 @@ Scene parse_scene_text(const std::string& text, const std::string& source) {
   std::error_code ec;
   std::filesystem::path base;
   if (!source.empty() && std::filesystem::is_regular_file(source, ec)) base = std::filesystem::path(source).parent_path();
-  return parse_with_base(text, source, base);
+  const InputRecord record;
+  Scene scene = parse_with_base(text, source, base);
+  scene.input_files = record.files();
+  return scene;
 }
 
 Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
                        std::vector<SceneRobot>& robots) {
   const Tree tree = parse_json(text, source);
+  const InputRecord record;
   SceneReader reader(source, base, tree);
   reader.robots_out_ = &robots;
-  return reader.read();
+  Scene scene = reader.read();
+  scene.input_files = record.files();
+  return scene;
 }
 
 void parse_request_line(const std::string& text, const std::string& source, const std::string& base,
@@ -1903,6 +1909,7 @@ void parse_request_line(const std::string& text, const std::string& source, cons
 namespace {
 
 Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots) {
+  const InputRecord record;  // the scene's files (Scene::input_files)
   // Only a regular file, and at most kMaxFileBytes of it (docs/scene-format.md).
   std::string text = read_regular_file(path, kMaxFileBytes);
   // The text goes once it is parsed: for a large scene it is a good part of
@@ -1911,7 +1918,9 @@ Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots) 
   std::string().swap(text);
   SceneReader reader(path, std::filesystem::path(path).parent_path(), tree);
   reader.robots_out_ = robots;
-  return reader.read();
+  Scene scene = reader.read();
+  scene.input_files = record.files();
+  return scene;
 }
 
 }  // namespace

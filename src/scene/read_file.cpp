@@ -30,7 +30,23 @@ std::string kind_of(mode_t mode) {
   return "a special file";
 }
 
+thread_local InputRecord* t_record = nullptr;
+
 }  // namespace
+
+InputRecord::InputRecord() : outer_(t_record) { t_record = this; }
+
+InputRecord::~InputRecord() {
+  t_record = outer_;
+  if (outer_)
+    for (FileIdentity& f : files_) outer_->add(std::move(f));
+}
+
+void InputRecord::add(FileIdentity file) {
+  for (const FileIdentity& f : files_)
+    if (f.same(file)) return;
+  files_.push_back(std::move(file));
+}
 
 std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes) {
   // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer.
@@ -40,6 +56,8 @@ std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes)
   if (::fstat(file.fd, &info) != 0) throw InputError(path + ": cannot read file (" + std::strerror(errno) + ")");
   if (!S_ISREG(info.st_mode))
     throw InputError(path + ": not a regular file (it is " + kind_of(info.st_mode) + "); only regular files are read");
+  if (t_record)
+    t_record->add({static_cast<std::uint64_t>(info.st_dev), static_cast<std::uint64_t>(info.st_ino), path});
   const std::string too_large = path + ": file too large (more than " + std::to_string(max_bytes) + " bytes)";
   if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) throw InputError(too_large);
   // A regular file never blocks; reading stops at max_bytes + 1 whatever

@@ -3,8 +3,11 @@
 // end), and at most a given number of bytes.
 #pragma once
 
+#include "src/scene/model.h"
+
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tmcert {
 
@@ -13,6 +16,26 @@ namespace tmcert {
 // regular file, cannot be read, or holds more than `max_bytes` bytes (also
 // when it grows beyond that while being read).  Never blocks on opening:
 // the file is opened non-blocking and checked before anything is read.
+// While an InputRecord lives on this thread, it also notes the identity
+// of every file read (see InputRecord).
 std::string read_regular_file(const std::string& path, std::uintmax_t max_bytes);
+
+// Notes the files that read_regular_file reads on this thread while it
+// lives (a scene file, its meshes, URDFs and SRDFs), so that outputs can be
+// checked against every input.  Records nest: an inner record's files also
+// go to the outer one when it ends.
+class InputRecord {
+ public:
+  InputRecord();
+  ~InputRecord();
+  InputRecord(const InputRecord&) = delete;
+  InputRecord& operator=(const InputRecord&) = delete;
+  const std::vector<FileIdentity>& files() const { return files_; }
+  void add(FileIdentity file);
+
+ private:
+  InputRecord* outer_;
+  std::vector<FileIdentity> files_;
+};
 
 }  // namespace tmcert

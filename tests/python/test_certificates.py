@@ -67,3 +67,58 @@ def test_certificate_needs_the_option() -> None:
     result = tmcert.verify(SOURCE / "examples" / "octagons-collision.json")
     with pytest.raises(tmcert.InputError, match="certificate"):
         result.certificate()
+
+
+def test_write_certificate_output_paths(tmp_path: Path) -> None:
+    # docs/scene-format.md "Output paths": an empty path, a directory or
+    # the scene file itself is an InputError before anything is written; a
+    # write that fails is a ResourceLimit naming the path, leaving no file.
+    scene_text = (SOURCE / "examples" / "octagons-near.json").read_text()
+    scene = tmp_path / "scene.json"
+    scene.write_text(scene_text)
+    result = tmcert.verify(scene, certificate=True)
+    with pytest.raises(tmcert.InputError, match="empty"):
+        result.write_certificate("")
+    with pytest.raises(tmcert.InputError, match="directory"):
+        result.write_certificate(tmp_path)
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        result.write_certificate(scene)
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        result.write_certificate(tmp_path / "." / "scene.json")
+    assert scene.read_text() == scene_text
+    if Path("/dev/full").exists():
+        with pytest.raises(tmcert.ResourceLimit, match="/dev/full"):
+            result.write_certificate("/dev/full")
+    written = tmp_path / "written.cert.json"
+    result.write_certificate(written)
+    assert written.read_text() == result.certificate()
+
+
+def test_write_report_and_batch_output_paths(tmp_path: Path) -> None:
+    # The same rules for the report and batch outputs; an empty file name
+    # is refused in Python (None is absent), never taken as the standard
+    # output.
+    scene_text = (SOURCE / "examples" / "octagons-near.json").read_text()
+    scene = tmp_path / "scene.json"
+    scene.write_text(scene_text)
+    result = tmcert.verify(scene)
+    with pytest.raises(tmcert.InputError, match="empty"):
+        result.write_report("")
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        result.write_report(scene)
+    assert scene.read_text() == scene_text
+    if Path("/dev/full").exists():
+        with pytest.raises(tmcert.ResourceLimit, match="/dev/full"):
+            result.write_report("/dev/full")
+    batch = SOURCE / "examples" / "batch"
+    requests = tmp_path / "requests.jsonl"
+    requests.write_bytes((batch / "requests.jsonl").read_bytes())
+    with pytest.raises(tmcert.InputError, match="output: the file name is empty"):
+        tmcert.batch(requests, scene=batch / "environment.json", output="")
+    with pytest.raises(tmcert.InputError, match="scene: the file name is empty"):
+        tmcert.batch(requests, scene="")
+    with pytest.raises(tmcert.InputError, match="is the input file"):
+        tmcert.batch(requests, scene=batch / "environment.json", output=requests)
+    assert requests.read_bytes() == (batch / "requests.jsonl").read_bytes()
+    with pytest.raises(tmcert.InputError, match="output: the file name is empty"):
+        tmcert.batch_merge([requests], output="")

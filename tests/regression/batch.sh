@@ -228,8 +228,91 @@ expect_bad "merge with a repeated shard" "is also in another file" "$tmcert" bat
   "$work/shard-0.jsonl" "$work/shard-1.jsonl" "$work/shard-2.jsonl" "$work/shard-3.jsonl"
 printf '{"index":0}\nnot json\n' >"$work/junk.jsonl"
 expect_bad "merge of a bad line" "junk.jsonl line 2: not a result line" "$tmcert" batch-merge "$work/junk.jsonl"
-expect_bad "merge onto its input" "is also a result file" "$tmcert" batch-merge "$work/shard-0.jsonl" \
+expect_bad "merge onto its input" "is the input file" "$tmcert" batch-merge "$work/shard-0.jsonl" \
   -o "$work/shard-0.jsonl"
+
+# ---------------------------------------------------------------- 4b. output paths (docs/scene-format.md "Output paths")
+# An output that is an input (the requests, under another spelling or a
+# link, the environment scene, the merged files) or empty is exit 3 before
+# anything is written: the inputs keep their bytes.
+cp "$example/requests.jsonl" "$work/req.jsonl"
+cp "$example/environment.json" "$work/env.json"
+ln -sf req.jsonl "$work/req-link.jsonl"
+{ cat "$work/env.json" | tr -d '\n'; echo; cat "$work/req.jsonl"; } >"$work/with-env.jsonl"
+cp "$work/with-env.jsonl" "$work/with-env.copy"
+for out in "$work/req.jsonl" "$work/./req.jsonl" "$work/req-link.jsonl"; do
+  expect_bad "-o onto the requests ($out)" "is the input file" "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" -o "$out"
+done
+expect_bad "-o onto the environment" "is the input file" "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" -o "$work/env.json"
+expect_bad "-o onto the requests read from standard input" "is the input file '<stdin>'" \
+  "$tmcert" batch - --scene "$work/env.json" -o "$work/req.jsonl" <"$work/req.jsonl"
+expect_bad "-o onto requests with their environment" "is the input file" "$tmcert" batch "$work/with-env.jsonl" -o "$work/with-env.jsonl"
+if cmp -s "$example/requests.jsonl" "$work/req.jsonl" && cmp -s "$example/environment.json" "$work/env.json" &&
+   cmp -s "$work/with-env.jsonl" "$work/with-env.copy"; then pass; else fail "an input was changed by a refused -o"; fi
+expect_bad "-o empty" "-o: the file name is empty" "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" -o ""
+expect_bad "--scene empty" "--scene: the file name is empty" "$tmcert" batch "$work/req.jsonl" --scene ""
+expect_bad "batch-merge -o empty" "-o: the file name is empty" "$tmcert" batch-merge "$work/shard-0.jsonl" -o ""
+timeout 120 "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" -o "$work/stdout.jsonl" >"$work/stdout.jsonl" 2>"$work/err"
+rc=$?
+if [ "$rc" -eq 3 ] && [ ! -s "$work/stdout.jsonl" ] && grep -q "the file the standard output goes to" "$work/err"; then pass
+else fail "-o the file standard output goes to: exit $rc: $(cat "$work/err")"; fi
+# A write that fails is exit 4 naming the file (or the standard output).
+if [ -w /dev/full ]; then
+  expect_code 4 "batch -o /dev/full" "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" -o /dev/full
+  if grep -qF -- "-o: cannot write '/dev/full'" "$work/err"; then pass; else fail "batch -o /dev/full: $(cat "$work/err")"; fi
+  timeout 120 "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" >/dev/full 2>"$work/err"
+  rc=$?
+  if [ "$rc" -eq 4 ] && grep -q "standard output" "$work/err"; then pass; else fail "batch >/dev/full: exit $rc: $(cat "$work/err")"; fi
+  expect_code 4 "batch-merge -o /dev/full" "$tmcert" batch-merge "$work/shard-0.jsonl" "$work/shard-1.jsonl" \
+    "$work/shard-2.jsonl" "$work/shard-3.jsonl" -o /dev/full
+  timeout 120 "$tmcert" batch-merge "$work/shard-0.jsonl" "$work/shard-1.jsonl" "$work/shard-2.jsonl" \
+    "$work/shard-3.jsonl" >/dev/full 2>"$work/err"
+  rc=$?
+  if [ "$rc" -eq 4 ] && grep -q "standard output" "$work/err"; then pass; else fail "batch-merge >/dev/full: exit $rc: $(cat "$work/err")"; fi
+fi
+# -o to a FIFO with a reader: the reader gets every result line (the
+# check opens the FIFO once, and that descriptor is written).
+if mkfifo "$work/results.fifo" 2>/dev/null; then
+  timeout 120 cat "$work/results.fifo" >"$work/from-fifo.jsonl" &
+  reader=$!
+  for _ in $(seq 100); do  # again while the reader has not opened the FIFO yet
+    timeout 120 "$tmcert" batch "$work/req.jsonl" --scene "$work/env.json" -o "$work/results.fifo" >"$work/out" 2>"$work/err"
+    rc=$?
+    if [ "$rc" -ne 3 ] || ! grep -q "no process has this FIFO open" "$work/err"; then break; fi
+    sleep 0.1
+  done
+  wait "$reader"
+  if [ "$rc" -eq 1 ] && cmp -s "$work/from-fifo.jsonl" "$work/example.jsonl"; then pass
+  else fail "batch -o FIFO: exit $rc, or the reader did not get the results ($(head -c 300 "$work/err"))"; fi
+fi
+
+# Out of memory (exit 4, "out of memory") leaves no -o file behind, also
+# when it strikes after the file was begun (the gripper's slerp legs of
+# examples/gripper against its fixture; address space limits do not work
+# under AddressSanitizer).
+if [ -z "${TMCERT_SANITIZED:-}" ]; then
+  python3 - "$example/../gripper" "$work" <<'PY'
+import json, os, sys
+gripper, work = os.path.abspath(sys.argv[1]), sys.argv[2]
+scene = json.load(open(os.path.join(gripper, "gripper-path-slerp.json")))
+env = {"format": "tmcert-scene/1", "epsilon": scene["epsilon"],
+       "bodies": [{"name": "fixture", "mesh": os.path.join(gripper, "fixture.off")}]}
+json.dump(env, open(os.path.join(work, "gripper-env.json"), "w"))
+motion = scene["bodies"][1]["motion"]
+with open(os.path.join(work, "gripper-legs.jsonl"), "w") as out:
+    for k in range(8, 19):
+        leg = dict(motion, poses=motion["poses"][k:k + 2])
+        body = {"name": "gripper", "mesh": os.path.join(gripper, "gripper.off")}
+        out.write(json.dumps({"id": k, "body": body, "motion": leg}) + "\n")
+PY
+  for limit in 44 48; do
+    rm -f "$work/legs-out.jsonl"
+    expect_code 4 "batch out of memory (--memory-limit $limit)" "$tmcert" batch "$work/gripper-legs.jsonl" \
+      --scene "$work/gripper-env.json" -o "$work/legs-out.jsonl" --memory-limit "$limit"
+    if grep -q "^tmcert: out of memory" "$work/err" && [ ! -e "$work/legs-out.jsonl" ]; then pass
+    else fail "batch out of memory (--memory-limit $limit): no 'out of memory', or the -o file was left"; fi
+  done
+fi
 
 # ---------------------------------------------------------------- 5. batch agrees with verify
 # Each example request as a scene of its own: the environment, the moved

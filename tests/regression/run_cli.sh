@@ -430,5 +430,175 @@ if [ -z "${TMCERT_SANITIZED:-}" ]; then
   fi
 fi
 
+# 7. Output paths (docs/scene-format.md "Output paths"): an output that is
+#    empty, an input (the scene, its mesh, under any spelling or link),
+#    another output or the standard output's file is exit 3 before the run
+#    and changes nothing; a FIFO with a reader gets the whole file; a write
+#    that fails (/dev/full) is exit 4 naming the path, for every command
+#    and for the standard output; nothing partial is left.
+cp "$good" "$work/scene.json"
+cp "$good" "$work/scene.orig"
+ln -sf scene.json "$work/scene-link.json"
+expect_refusal "--certificate: the file name is empty" verify "$good" --certificate ""
+expect_refusal "--report: the file name is empty" verify "$good" --report ""
+for out in "$work/scene.json" "$work/./scene.json" "$work/scene-link.json"; do
+  expect_refusal "is the input file" verify "$work/scene.json" --certificate "$out"
+  expect_refusal "is the input file" verify "$work/scene.json" --report "$out"
+done
+if cmp -s "$work/scene.json" "$work/scene.orig"; then pass; else fail "a refused output changed the scene"; fi
+mkdir -p "$work/meshes"
+cp "$data/meshes/cube.off" "$work/meshes/cube.off"
+sed 's|"../meshes/cube.off"|"meshes/cube.off"|g' "$data/scenes/solid-inside.json" >"$work/mesh-scene.json"
+expect_refusal "is the input file '$work/meshes/cube.off'" verify "$work/mesh-scene.json" --report "$work/meshes/cube.off"
+if cmp -s "$work/meshes/cube.off" "$data/meshes/cube.off"; then pass; else fail "a refused output changed the mesh"; fi
+rm -f "$work/both.out"
+mkdir -p "$work/x"
+expect_refusal "--report: '$work/both.out' is the same file as --certificate" \
+  verify "$good" --certificate "$work/both.out" --report "$work/both.out"
+expect_refusal "is the same file as --certificate" verify "$good" --certificate "$work/both.out" --report "$work/x/../both.out"
+if [ ! -e "$work/both.out" ]; then pass; else fail "a refused output was created"; fi
+timeout 60 "$tmcert" verify "$good" --certificate "$work/stdout.cert" >"$work/stdout.cert" 2>"$work/err"
+code=$?
+if [ "$code" -eq 3 ] && [ ! -s "$work/stdout.cert" ] && grep -q "the file the standard output goes to" "$work/err"; then pass
+else fail "verify --certificate F > F: exit code $code, expected 3"; fi
+# A FIFO without a reader is refused at once; with one, the reader gets
+# the whole certificate (before: the check's open and close gave it an end
+# of file, and the write then waited for a reader forever).
+# Legs of the gripper's slerp path (examples/gripper) as scenes of their
+# own: leg 7 verifies in about a second (time for a FIFO's reader to see
+# an early end of file), leg 13 has a large certificate (98117 separations).
+python3 - "$examples/gripper/gripper-path-slerp.json" "$work" <<'PY'
+import json, os, sys
+source, work = sys.argv[1], sys.argv[2]
+scene = json.load(open(source))
+base = os.path.dirname(os.path.abspath(source))
+for body in scene["bodies"]:
+    if "mesh" in body:
+        body["mesh"] = os.path.join(base, body["mesh"])
+poses = scene["bodies"][1]["motion"]["poses"]
+for name, first in (("leg7.json", 7), ("leg.json", 13)):
+    scene["bodies"][1]["motion"]["poses"] = poses[first:first + 2]
+    json.dump(scene, open(os.path.join(work, name), "w"))
+PY
+# run_with_reader FIFO COPY ARGS...: tmcert ARGS with `cat FIFO > COPY` as
+# the FIFO's reader; tried again while the reader has not opened it yet.
+# The reader's exit status goes to reader_status (124: it waited in vain).
+run_with_reader() {
+  local fifo=$1 copy=$2 reader code tries=0
+  shift 2
+  timeout 120 cat "$fifo" >"$copy" &
+  reader=$!
+  while :; do
+    run 60 "$tmcert" "$@"
+    code=$?
+    tries=$((tries + 1))
+    if [ "$code" -ne 3 ] || ! grep -q "no process has this FIFO open" "$work/err" || [ "$tries" -ge 100 ]; then break; fi
+    sleep 0.1
+  done
+  wait "$reader"
+  reader_status=$?
+  return "$code"
+}
+# (Under the sanitizers, the quick scene: the FIFO is still written, only
+# the early end of file of before might go unseen.)
+fifo_scene="$work/leg7.json"
+if [ -n "${TMCERT_SANITIZED:-}" ]; then fifo_scene="$good"; fi
+if mkfifo "$work/cert.fifo" "$work/report.fifo" 2>/dev/null; then
+  expect_refusal "no process has this FIFO open for reading" verify "$good" --certificate "$work/cert.fifo"
+  run_with_reader "$work/cert.fifo" "$work/from-fifo.cert" verify "$fifo_scene" --certificate "$work/cert.fifo"
+  code=$?
+  if [ "$code" -ne 0 ]; then
+    fail "verify --certificate FIFO: exit code $code, expected 0"
+  elif ! run 60 "$tmcert" check "$work/from-fifo.cert" "$fifo_scene"; then
+    fail "verify --certificate FIFO: the reader did not get a whole certificate"
+  else
+    pass
+  fi
+  run_with_reader "$work/report.fifo" "$work/from-fifo.html" verify "$fifo_scene" --report "$work/report.fifo"
+  code=$?
+  if [ "$code" -eq 0 ] && grep -q "</html>" "$work/from-fifo.html"; then pass; else fail "verify --report FIFO: exit code $code"; fi
+  # A run that fails before writing (a bad scene) leaves the reader an
+  # end of file, not a wait for ever.
+  run_with_reader "$work/cert.fifo" "$work/from-fifo.cert" verify "$data/bad/empty_file.json" --certificate "$work/cert.fifo"
+  code=$?
+  if [ "$code" -eq 3 ] && [ "$reader_status" -eq 0 ] && [ ! -s "$work/from-fifo.cert" ]; then pass
+  else fail "verify BAD --certificate FIFO: exit code $code, reader $reader_status"; fi
+fi
+# Write failures: exit 4 naming the path, no verdict on stdout.
+expect_write_failure() {
+  local substring=$1 code
+  shift
+  run 60 "$tmcert" "$@"
+  code=$?
+  if [ "$code" -ne 4 ]; then
+    fail "tmcert $*: exit code $code, expected 4"
+  elif [ -s "$work/out" ]; then
+    fail "tmcert $*: output on stdout with exit code 4"
+  elif ! grep -qF -- "$substring" "$work/err"; then
+    fail "tmcert $*: stderr does not contain '$substring'"
+  else
+    pass
+  fi
+}
+# The standard output on /dev/full: exit 4 naming it.
+expect_stdout_failure() {
+  local code
+  timeout 60 "$tmcert" "$@" >/dev/full 2>"$work/err"
+  code=$?
+  if [ "$code" -ne 4 ]; then
+    fail "tmcert $* >/dev/full: exit code $code, expected 4"
+  elif ! grep -q "cannot write the standard output" "$work/err"; then
+    fail "tmcert $* >/dev/full: stderr does not name the standard output"
+  else
+    pass
+  fi
+}
+if [ -w /dev/full ]; then
+  expect_write_failure "--certificate: cannot write '/dev/full': No space left on device" verify "$good" --certificate /dev/full
+  expect_write_failure "--report: cannot write '/dev/full'" verify "$good" --report /dev/full
+  expect_stdout_failure verify "$good"
+  expect_stdout_failure verify "$good" --json
+  expect_stdout_failure verify "$examples/octagons-collision.json" --json
+  expect_stdout_failure check "$data/certificates/probe-safe.cert.json" "$data/certificates/probe-safe.json"
+  expect_stdout_failure --help
+fi
+# Out of memory while the certificate is built (the json documents of a
+# large certificate, whose destruction allocates: std::terminate before)
+# is exit 4 with "out of memory", no verdict, no file left, and an existing
+# file unchanged.
+if [ -z "${TMCERT_SANITIZED:-}" ]; then
+  for limit in 60 100; do
+    rm -f "$work/leg.cert"
+    run 120 "$tmcert" verify "$work/leg.json" --certificate "$work/leg.cert" --memory-limit "$limit"
+    code=$?
+    if [ "$code" -ne 4 ]; then
+      fail "verify leg.json --certificate --memory-limit $limit: exit code $code, expected 4"
+    elif [ -s "$work/out" ] || ! grep -q "^tmcert: out of memory" "$work/err"; then
+      fail "verify leg.json --certificate --memory-limit $limit: a verdict or no 'out of memory'"
+    elif [ -e "$work/leg.cert" ]; then
+      fail "verify leg.json --certificate --memory-limit $limit: a file was left behind"
+    else
+      pass
+    fi
+  done
+  printf 'old\n' >"$work/leg.cert"
+  run 120 "$tmcert" verify "$work/leg.json" --certificate "$work/leg.cert" --memory-limit 60
+  code=$?
+  if [ "$code" -eq 4 ] && [ "$(cat "$work/leg.cert")" = old ]; then pass
+  else fail "verify leg.json --certificate EXISTING --memory-limit 60: exit code $code, or the file changed"; fi
+  # The same certificate read by `tmcert check` under the limit (its json
+  # document dropped while memory is exhausted: std::terminate before).
+  run 120 "$tmcert" verify "$work/leg.json" --certificate "$work/leg-full.cert"
+  code=$?
+  if [ "$code" -ne 0 ]; then
+    fail "verify leg.json --certificate: exit code $code, expected 0"
+  else
+    run 120 "$tmcert" check "$work/leg-full.cert" "$work/leg.json" --memory-limit 60
+    code=$?
+    if [ "$code" -eq 4 ] && [ ! -s "$work/out" ] && grep -q "^tmcert: out of memory" "$work/err"; then pass
+    else fail "check leg-full.cert leg.json --memory-limit 60: exit code $code, expected 4 and out of memory"; fi
+  fi
+fi
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -187,6 +187,11 @@ const char* kTwoLinks = R"(<robot name="r">
   <joint name="j" type="TYPE"><parent link="a"/><child link="b"/><axis xyz="AXIS"/>LIMIT</joint>
 </robot>)";
 
+std::string robot_root_name(const std::string& urdf) {
+  const std::shared_ptr<const RobotModel> model = load_urdf_text(urdf, "t.urdf", kData + "/robots");
+  return model->links[model->root].name;
+}
+
 std::string two_links(const std::string& type, const std::string& geometry = "<box size=\"1 1 1\"/>",
                       const std::string& limit = "<limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>", const std::string& axis = "0 0 1") {
   std::string s = kTwoLinks;
@@ -535,7 +540,7 @@ BOOST_AUTO_TEST_CASE(urdf_errors_name_the_element) {
   BOOST_TEST(urdf_error(two_links("fixed", "<capsule radius=\"1\" length=\"1\"/>")).find("unsupported geometry <capsule>") !=
              std::string::npos);
   BOOST_TEST(urdf_error("<robot name=\"x\"><link name=\"a\"/>").find("XML error") != std::string::npos);
-  BOOST_TEST(urdf_error("<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/></robot>").find("not a valid URDF") !=
+  BOOST_TEST(urdf_error("<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/></robot>").find("t.urdf: links \"a\" and \"b\" are both roots") !=
              std::string::npos);
   BOOST_CHECK_THROW(load_urdf(kData + "/robots/does-not-exist.urdf"), InputError);
   // xacro is expanded by the xacro tool: say so (by name, or by its namespace).
@@ -550,6 +555,55 @@ BOOST_AUTO_TEST_CASE(urdf_errors_name_the_element) {
   }
   BOOST_TEST(urdf_error(xacro).find("t.urdf: this is xacro (URDF macros), not plain URDF: run xacro first: xacro t.urdf > t-expanded.urdf") !=
              std::string::npos, urdf_error(xacro));
+}
+
+// The links and joints must form a tree: every way they can fail to is
+// refused naming the file, the links and the joints, never resolved by a
+// silent choice (before, the last of two parent joints in file order won).
+BOOST_AUTO_TEST_CASE(urdf_must_be_a_tree) {
+  auto robot = [](const std::string& links, const std::string& joints) {
+    std::string s = "<robot name=\"r\">";
+    for (char c : links) s += std::string("<link name=\"") + c + "\"/>";
+    return s + joints + "</robot>";
+  };
+  auto fixed = [](const std::string& name, char parent, char child) {
+    return "<joint name=\"" + name + "\" type=\"fixed\"><parent link=\"" + parent + "\"/><child link=\"" + child +
+           "\"/></joint>";
+  };
+  auto has = [](const std::string& error, const std::string& part) {
+    const bool found = error.find(part) != std::string::npos;
+    if (!found) BOOST_TEST_MESSAGE("error: " + error);
+    return found;
+  };
+  // A tree is accepted.
+  BOOST_TEST(robot_root_name(robot("abc", fixed("j1", 'a', 'b') + fixed("j2", 'a', 'c'))) == "a");
+  // A link that is the child of two joints (in either order).
+  const std::string two_parents = urdf_error(robot("abc", fixed("j1", 'a', 'b') + fixed("j2", 'b', 'c') + fixed("k", 'a', 'c')));
+  BOOST_TEST(has(two_parents, "t.urdf: link \"c\": the child of two joints, \"j2\" and \"k\""));
+  BOOST_TEST(has(urdf_error(robot("abc", fixed("k", 'a', 'c') + fixed("j1", 'a', 'b') + fixed("j2", 'b', 'c'))),
+                 "link \"c\": the child of two joints, \"k\" and \"j2\""));
+  // A cycle away from the root (urdfdom finds one root and accepts it).
+  BOOST_TEST(has(urdf_error(robot("abc", fixed("j1", 'a', 'b') + fixed("j2", 'c', 'b') + fixed("j3", 'b', 'c'))),
+                 "link \"b\": the child of two joints"));
+  const std::string cycle = urdf_error(robot("rbc", fixed("j2", 'c', 'b') + fixed("j3", 'b', 'c')));
+  BOOST_TEST(has(cycle, "t.urdf: joints"));
+  BOOST_TEST(has(cycle, "form a cycle"));
+  BOOST_TEST(has(cycle, "\"j2\""));
+  BOOST_TEST(has(cycle, "\"j3\""));
+  BOOST_TEST(has(urdf_error(robot("abcd", fixed("j1", 'a', 'b') + fixed("j2", 'd', 'c') + fixed("j3", 'c', 'd'))),
+                 "form a cycle"));
+  // No root at all (a cycle through every link), a joint from a link to itself.
+  BOOST_TEST(has(urdf_error(robot("ab", fixed("j1", 'a', 'b') + fixed("j2", 'b', 'a'))), "form a cycle"));
+  BOOST_TEST(has(urdf_error(robot("ab", fixed("j1", 'a', 'b') + fixed("s", 'b', 'b'))),
+                 "joint \"s\": its parent and child are the same link \"b\""));
+  // Two roots: a lone link, or two separate trees.
+  BOOST_TEST(has(urdf_error(robot("abc", fixed("j1", 'a', 'b'))), "links \"a\" and \"c\" are both roots"));
+  BOOST_TEST(has(urdf_error(robot("abcd", fixed("j1", 'a', 'b') + fixed("j2", 'c', 'd'))), "links \"a\" and \"c\" are both roots"));
+  // Joint names once; links that exist.
+  BOOST_TEST(has(urdf_error(robot("abc", fixed("j", 'a', 'b') + fixed("j", 'a', 'c'))), "joint \"j\": defined twice"));
+  BOOST_TEST(has(urdf_error(robot("ab", fixed("j", 'a', 'x'))), "joint \"j\": unknown child link \"x\""));
+  BOOST_TEST(has(urdf_error(robot("ab", fixed("j", 'x', 'b'))), "joint \"j\": unknown parent link \"x\""));
+  BOOST_TEST(has(urdf_error("<robot name=\"r\"></robot>"), "t.urdf: no <link>"));
 }
 
 BOOST_AUTO_TEST_CASE(verdicts_through_the_api) {

@@ -335,7 +335,13 @@ class Result:
         return str(self._raw.certificate())
 
     def write_certificate(self, path: PathLike) -> None:
-        """Writes :meth:`certificate` to ``path`` (InputError when it cannot)."""
+        """Writes :meth:`certificate` to ``path``.
+
+        InputError, before anything is written, when ``path`` is empty, a
+        directory, cannot be written or is one of the scene's files;
+        ResourceLimit when the write fails (a full disk), leaving no partial
+        file.
+        """
         self._raw.write_certificate(os.fspath(path))
 
     @property
@@ -356,7 +362,7 @@ class Result:
         return str(self._raw.report_html())
 
     def write_report(self, path: PathLike) -> None:
-        """Writes :meth:`report_html` to ``path`` (InputError when it cannot)."""
+        """Writes :meth:`report_html` to ``path``, with the rules of :meth:`write_certificate`."""
         self._raw.write_report(os.fspath(path))
 
     def __str__(self) -> str:
@@ -819,6 +825,9 @@ def batch(requests: Union[PathLike, Iterable[Union[Mapping[str, Any], str]]], sc
     """
     import tempfile
 
+    # An empty file name is refused, never taken as absent (None is absent).
+    _named_file(scene, "scene")
+    _named_file(output, "output")
     with tempfile.TemporaryDirectory(prefix="tmcert-batch-") as work:
         if isinstance(requests, (str, os.PathLike)):
             requests_file = os.fspath(requests)
@@ -872,6 +881,7 @@ def batch_merge(shards: Iterable[PathLike], output: Optional[PathLike] = None) -
     import tempfile
 
     files = [os.fspath(f) for f in shards]
+    _named_file(output, "output")
     if output is not None:
         _tmcert.batch_merge(files, os.fspath(output))
         return None
@@ -880,6 +890,12 @@ def batch_merge(shards: Iterable[PathLike], output: Optional[PathLike] = None) -
         _tmcert.batch_merge(files, out_file)
         with open(out_file, encoding="utf-8") as f:
             return f.read()
+
+
+def _named_file(path: Optional[PathLike], what: str) -> None:
+    """InputError for a file option given as an empty name (docs/scene-format.md "Output paths")."""
+    if path is not None and os.fspath(path) == "":
+        raise InputError(f"{what}: the file name is empty")
 
 
 def _bounded(value: Any, what: str, low: int, high: int) -> int:
