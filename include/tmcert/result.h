@@ -32,11 +32,14 @@ enum class Kernel {
 enum class StopReason {
   Epsilon,  // the bodies come within about epsilon there
   Depth,    // the subdivision depth limit was reached
-  Limit     // a node, stop or time limit
+  Limit,    // a node, stop or time limit
+  // A URDF cylinder's or sphere's circumscribed polyhedron touches there,
+  // and neither a contact of the true shape nor its absence was proven.
+  EnlargedModel
 };
 
 // "safe", "collision", "undecided"; "filtered", "exact", "fast";
-// "epsilon", "depth", "limit" (as in tmcert-result/1).
+// "epsilon", "depth", "limit", "enlarged_model" (as in tmcert-result/1).
 TMCERT_API const char* to_string(Verdict v);
 TMCERT_API const char* to_string(Kernel k);
 TMCERT_API const char* to_string(StopReason r);

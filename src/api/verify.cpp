@@ -29,7 +29,8 @@ static_assert(static_cast<int>(Kernel::Filtered) == static_cast<int>(tmcert::Ker
               static_cast<int>(Kernel::Fast) == static_cast<int>(tmcert::KernelKind::Fast));
 static_assert(static_cast<int>(StopReason::Epsilon) == static_cast<int>(tmcert::StopReason::Epsilon) &&
               static_cast<int>(StopReason::Depth) == static_cast<int>(tmcert::StopReason::Depth) &&
-              static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit));
+              static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit) &&
+              static_cast<int>(StopReason::EnlargedModel) == static_cast<int>(tmcert::StopReason::EnlargedModel));
 
 template <typename To, typename From>
 To same_enum(From value) {

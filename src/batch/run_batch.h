@@ -23,6 +23,7 @@ struct BatchOptions {
   std::optional<int> max_depth;
   int threads = 1;       // requests run in parallel (output order kept)
   bool stats = false;    // each check's "stats", wall-clock seconds included
+  std::vector<std::string> package_paths;  // --package-path (ReadOptions)
 };
 
 // Runs the shard's requests and returns the exit code: 1 when a request

@@ -431,6 +431,15 @@ std::string result_json(const Scene& scene, const SceneResult& r) {
     }
     w.end_array();
   }
+  // What the reader did to the input (docs/scene-format.md, "Data from
+  // real pipelines"): present only when there is something to say.
+  for (const auto& [key, list] : {std::pair{"notes", &scene.notes}, std::pair{"warnings", &scene.warnings}}) {
+    if (list->empty()) continue;
+    w.key(key);
+    w.begin_array();
+    for (const std::string& note : *list) w.value(note);
+    w.end_array();
+  }
   w.key("checks");
   w.begin_array();
   for (const CheckResult& c : r.checks) write_check(w, scene, c);
@@ -501,6 +510,13 @@ std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReaso
         return "--time-limit " + t.str() + " was reached; try a larger --time-limit";
       }
       return "a budget of the check was used up";
+    case StopReason::EnlargedModel:
+      return c.verdict == Verdict::Collision
+                 ? "a URDF cylinder's or sphere's circumscribed polyhedron touches there; the contact of the true "
+                   "shape was proven only at the witness"
+                 : "a URDF cylinder's or sphere's circumscribed polyhedron touches there, and no contact of the true "
+                   "shape was proven, even on the finest polyhedron (the shapes come within about 0.01% (a cylinder) "
+                   "or 0.25% (a sphere) of the radius there, or the poses are enclosed too loosely to decide)";
   }
   return {};
 }
@@ -539,12 +555,14 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
   if (r.epsilon_per_check) out << "per check: 1/1000 of its bodies' box";
   else out << readable(r.epsilon);
   out << "]\n";
+  for (const std::string& note : scene.notes) out << "  note: " << note << "\n";
   for (const Body& b : scene.bodies) {
     if (b.enlarged.empty()) continue;
     out << "  note: " << b.name << " is an enlarged model: its ";
     for (std::size_t i = 0; i < b.enlarged.size(); ++i) out << (i ? ", " : "") << b.enlarged[i];
     out << (b.enlarged.size() == 1 ? " is replaced by a circumscribed polyhedron" : " are replaced by circumscribed polyhedra")
-        << " (safe holds for the true shapes; a collision is one of the model)\n";
+        << (b.primitive ? " (safe holds for the true shape; a collision is proven on it)\n"
+                        : " (safe holds for the true shapes; a collision is one of the model)\n");
   }
   for (const CheckResult& c : r.checks) {
     const std::string& name_a = scene.bodies[c.bodies[0]].name;

@@ -122,6 +122,20 @@ struct Body {
   // URDF cylinders and spheres): the body contains them and is larger, so
   // `safe` holds for them and a collision is one of the enlarged model.
   std::vector<std::string> enlarged;
+  // A robot link's URDF cylinder or sphere (src/robot/urdf.cpp), when the
+  // body is one: the true shape, in the body frame (a cylinder of this
+  // radius and length about the z axis, or a ball of this radius, centred
+  // at the origin); the polygons are its circumscribed polyhedron at
+  // refinement `level` (src/robot/primitives.h).  `safe` may rest on the
+  // polyhedron; a collision is reported only when proven on the true shape
+  // (proofs/robot-links.md section 6).
+  struct Primitive {
+    enum class Kind { Cylinder, Sphere };
+    Kind kind = Kind::Sphere;
+    Exact radius = 0, length = 0;
+    int level = 0;
+  };
+  std::optional<Primitive> primitive;
 
   // Moves over a parameter interval (a one-pose motion does not).
   bool moves() const { return trajectory || (motion && motion->degree() >= 1); }
@@ -143,6 +157,14 @@ struct Scene {
   // scene's, and per check when written there (empty: the scene's for all).
   Exact clearance = 0;
   std::vector<std::optional<Exact>> check_clearance;  // parallel to checks
+  // What the reader did to data from real pipelines that a user should
+  // know (docs/scene-format.md, "Data from real pipelines"): mesh faces not
+  // exactly planar split into fans, zero-area faces read as segments
+  // (`notes`); input read in a way the user may not mean, such as an rpy
+  // angle above 2 pi read as radians (`warnings`, also printed on stderr by
+  // the command line).  Each names the file and the field.
+  std::vector<std::string> notes;
+  std::vector<std::string> warnings;
   Exact clearance_of(std::size_t check) const {
     if (check < check_clearance.size() && check_clearance[check]) return *check_clearance[check];
     return clearance;

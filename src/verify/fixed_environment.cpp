@@ -513,6 +513,7 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
           r.first_contact = std::pair{t0, t1};
         }
         out.checks.push_back(r);
+        settle_enlarged(out.checks.back(), *prepared_[a], *prepared_[b], t1);
         record(out.checks.size() - 1);
         continue;
       }
@@ -542,6 +543,10 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
                              std::chrono::duration<double>(options.time_limit));
     out.checks.push_back(
         detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free));
+    // A URDF cylinder's or sphere's collision only proven on its true shape
+    // (true_shape.h); no finer polyhedra here (a planner's edge is then not
+    // certified).
+    settle_enlarged(out.checks.back(), *prepared_[a], *prepared_[b], t1);
     record(out.checks.size() - 1);
   }
   for (CheckResult& r : out.checks) r.epsilon = *options_.epsilon;

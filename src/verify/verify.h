@@ -20,7 +20,10 @@ namespace tmcert {
 
 enum class Verdict { Safe, Collision, Undecided };
 enum class KernelKind { Filtered, Exact, Fast };
-enum class StopReason { Epsilon, Depth, Limit };
+// EnlargedModel: a URDF cylinder's or sphere's circumscribed polyhedron
+// touches there, and neither a contact of the true shape nor its absence
+// was proven (proofs/robot-links.md section 6).
+enum class StopReason { Epsilon, Depth, Limit, EnlargedModel };
 
 const char* to_string(Verdict v);
 const char* to_string(KernelKind k);
@@ -104,6 +107,9 @@ struct Witness {
   // Clearance: a point of each body (in the check's order) no farther apart
   // than the clearance; `point` is the first of them.
   std::optional<std::array<Vec3E, 2>> points;
+  // Proven on the true shape of a URDF cylinder or sphere (a body of the
+  // check has Body::primitive; src/verify/true_shape.h).
+  bool true_shape = false;
 };
 
 struct UndecidedInterval {
