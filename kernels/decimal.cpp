@@ -2,7 +2,12 @@
 
 #include <gmp.h>
 
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 
 namespace tmcert {
@@ -32,10 +37,19 @@ void times_power_of_ten(mpz_ptr out, mpz_srcptr a, long k) {
 
 }  // namespace
 
-Decimal to_decimal(const Exact& q, int significant) {
-  if (significant < 1) significant = 1;
-  const int sign = mpq_sgn(q.mpq());
-  if (sign == 0) return {"0", true};
+namespace {
+
+// |q| (q != 0) rounded to `significant` digits, ties to even: the digit
+// string m (significant digits, 10^(s-1) <= m < 10^s) and the decimal
+// exponent e of its first digit, so |q| ~ m * 10^(e - s + 1); `exact` when
+// no rounding happened.
+struct Rounded {
+  std::string digits;
+  long exponent;
+  bool exact;
+};
+
+Rounded round_significant(const Exact& q, int significant) {
   Z n, d;
   mpz_abs(n.v, mpq_numref(q.mpq()));
   mpz_set(d.v, mpq_denref(q.mpq()));
@@ -78,6 +92,23 @@ Decimal to_decimal(const Exact& q, int significant) {
     s.pop_back();
     ++e;
   }
+  return {s, e, exact};
+}
+
+std::string exponent_text(long e) {
+  const long a = e < 0 ? -e : e;
+  return std::string("e") + (e < 0 ? "-" : "+") + (a < 10 ? "0" : "") + std::to_string(a);
+}
+
+}  // namespace
+
+Decimal to_decimal(const Exact& q, int significant) {
+  if (significant < 1) significant = 1;
+  const int sign = mpq_sgn(q.mpq());
+  if (sign == 0) return {"0", true};
+  Rounded rounded = round_significant(q, significant);
+  std::string& s = rounded.digits;
+  const long e = rounded.exponent;
   while (s.size() > 1 && s.back() == '0') s.pop_back();
 
   std::string text = sign < 0 ? "-" : "";
@@ -95,10 +126,20 @@ Decimal to_decimal(const Exact& q, int significant) {
   } else {
     text += s.substr(0, 1);
     if (s.size() > 1) text += "." + s.substr(1);
-    const long a = e < 0 ? -e : e;
-    text += std::string("e") + (e < 0 ? "-" : "+") + (a < 10 ? "0" : "") + std::to_string(a);
+    text += exponent_text(e);
   }
-  return {text, exact};
+  return {text, rounded.exact};
+}
+
+std::string scientific(const Exact& q, int significant) {
+  if (significant < 1) significant = 1;
+  const int sign = mpq_sgn(q.mpq());
+  if (sign == 0) return "0." + std::string(static_cast<std::size_t>(significant - 1), '0') + "e+00";
+  const Rounded r = round_significant(q, significant);
+  std::string text = sign < 0 ? "-" : "";
+  text += r.digits.substr(0, 1);
+  if (r.digits.size() > 1) text += "." + r.digits.substr(1);
+  return text + exponent_text(r.exponent);
 }
 
 std::string readable(const Exact& q) {
@@ -107,8 +148,60 @@ std::string readable(const Exact& q) {
   return d.text + " (" + to_string(q) + ")";
 }
 
-double approximate(const Exact& q) {
-  return std::strtod(to_decimal(q, 17).text.c_str(), nullptr);
+std::string decimal_text(const Exact& q) {
+  const Decimal d = to_decimal(q, 17);
+  if (d.exact) return d.text;
+  // Exactly a double: the denominator a power of two, and the nearest
+  // double equal to q.
+  const double x = mpq_get_d(q.mpq());  // truncates; exact when q is a double
+  if (std::isfinite(x) && Exact(x) == q) {
+    char buffer[64];
+    const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);  // shortest round trip
+    return std::string(buffer, r.ptr) + " (a double)";
+  }
+  return "about " + d.text;
+}
+
+std::optional<double> nearest_double(const Exact& q) {
+  const int sign = mpq_sgn(q.mpq());
+  if (sign == 0) return 0.0;
+  // The tightest enclosure: q itself when it is a double, else the two
+  // adjacent doubles around it ([DBL_MAX, inf] beyond the largest, [0,
+  // the smallest subnormal] below it; CGAL rounds subnormals exactly).
+  const Interval box = to_interval(q);
+  const double lo = box.inf(), hi = box.sup();
+  if (lo == hi) return lo;
+  constexpr double kMax = std::numeric_limits<double>::max();
+  if (std::isinf(lo) || std::isinf(hi)) {
+    // IEEE rounding to nearest gives the largest double below 2^1024 -
+    // 2^970 (halfway to the next power of two) and infinity from there on
+    // (the tie goes to infinity: the largest double's significand is odd).
+    Exact limit(1);
+    mpq_mul_2exp(limit.mpq(), limit.mpq(), 1024);
+    Exact step(1);
+    mpq_mul_2exp(step.mpq(), step.mpq(), 970);
+    limit -= step;
+    if (CGAL::abs(q) < limit) return sign > 0 ? kMax : -kMax;
+    return std::nullopt;
+  }
+  const Exact below = q - Exact(lo), above = Exact(hi) - q;
+  double out;
+  if (below < above) out = lo;
+  else if (above < below) out = hi;
+  else out = (std::bit_cast<std::uint64_t>(lo) & 1) == 0 ? lo : hi;  // a tie: the even significand
+  if (out == 0) return std::nullopt;  // q != 0 would print as zero
+  return out;
+}
+
+std::string shortest(double d) {
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, d).ptr;
+  return std::string(buffer, end);
+}
+
+std::string approximation(const Exact& q) {
+  if (const std::optional<double> d = nearest_double(q)) return shortest(*d);
+  return scientific(q, 17);
 }
 
 }  // namespace tmcert

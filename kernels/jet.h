@@ -76,4 +76,13 @@ inline Jet sinc(const Jet& x) {
   return {f, f1 * x.d, f2 * CGAL::square(x.d) + f1 * x.dd};
 }
 
+// The jet of f_m(x) (validated::factorial_series): sinc for m = 1,
+// (1 - cos x)/x^2 for m = 2, (x - sin x)/x^3 for m = 3, regular at 0 and
+// enclosed by their series for |x| <= 4 (the whole line beyond), by the
+// chain rule as for sinc.
+inline Jet factorial_series(const Jet& x, int m) {
+  const std::array<Interval, 3> f = validated::factorial_series(x.v, m);
+  return {f[0], f[1] * x.d, f[2] * CGAL::square(x.d) + f[1] * x.dd};
+}
+
 }  // namespace tmcert

@@ -1,5 +1,7 @@
 #include "kernels/real_roots.h"
 
+#include "kernels/decimal.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -643,18 +645,92 @@ PolyZ compose_affine(const PolyZ& p, const Exact& x0, const Exact& scale) {
   return primitive(acc);
 }
 
-std::string approximate(RealRoot r, int digits) {
-  if (!r.is_rational()) {
-    const Exact mag = CGAL::abs(r.lo) > CGAL::abs(r.hi) ? CGAL::abs(r.lo) : CGAL::abs(r.hi);
-    const Exact scale = mag > 1 ? mag : Exact(1);
-    Integer ten_power;
-    mpz_ui_pow_ui(ten_power.mpz(), 10, static_cast<unsigned long>(digits + 2));
-    refine_to(r, scale / Exact(ten_power));
+namespace {
+
+// L with |x| in (2^(L-1), 2^(L+1)) for x != 0 (bit lengths of numerator and
+// denominator).
+long log2_magnitude(const Exact& x) {
+  return static_cast<long>(mpz_sizeinbase(x.numerator().mpz(), 2)) -
+         static_cast<long>(mpz_sizeinbase(x.denominator().mpz(), 2));
+}
+
+Exact power_of_two(long e) {
+  Exact out(1);
+  if (e >= 0) mpq_mul_2exp(out.mpq(), out.mpq(), static_cast<mp_bitcnt_t>(e));
+  else mpq_div_2exp(out.mpq(), out.mpq(), static_cast<mp_bitcnt_t>(-e));
+  return out;
+}
+
+// Cuts r's interval at m (lo < m < hi) by the exact sign there.
+void cut(RealRoot& r, const Exact& m, CGAL::Sign slo) {
+  const CGAL::Sign sm = sign_at(r.poly, m);
+  if (sm == CGAL::ZERO) r.lo = r.hi = m;
+  else if (sm == slo) r.lo = m;
+  else r.hi = m;
+}
+
+// Narrows r (not rational) until its interval lies on one side of 0 with
+// ends within a factor 2 in magnitude, by cuts at 0, at powers of two
+// halving the binary exponent range, and, from 0, at big / 2^g with g
+// doubling: a root of 1e-3000 takes some forty cuts, not ten thousand
+// bisections.  The root is never 0 here (0 is rational: a root at 0 has a
+// zero interval).
+void narrow_magnitude(RealRoot& r) {
+  if (r.is_rational()) return;
+  const CGAL::Sign slo = sign_at(r.poly, r.lo);
+  if (r.lo < 0 && r.hi > 0) cut(r, Exact(0), slo);
+  long g = 1;
+  for (int k = 0; !r.is_rational(); ++k) {
+    if (k > kMaxBisections) throw ExactLimit("narrow_magnitude: too many cuts");
+    const bool negative = r.hi <= 0;
+    const Exact small = negative ? -r.hi : r.lo, big = negative ? -r.lo : r.hi;
+    if (small != 0 && big <= 2 * small) return;
+    Exact m;
+    if (small == 0) {
+      m = big * power_of_two(-g);
+      if (g < (1L << 40)) g *= 2;
+    } else {
+      const long el = log2_magnitude(small), eh = log2_magnitude(big);
+      m = eh - el >= 4 ? power_of_two(el + (eh - el) / 2) : (small + big) / 2;
+    }
+    cut(r, negative ? -m : m, slo);
   }
-  const double x = CGAL::to_double((r.lo + r.hi) / 2);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
+}
+
+}  // namespace
+
+std::string approximate(RealRoot r) {
+  if (r.is_rational()) return approximation(r.lo);
+  narrow_magnitude(r);
+  // Rounding to the nearest double, and to 17 significant digits, is
+  // monotone: when both ends of the interval give the same result, so
+  // does every point between, the root included.  The boundaries between
+  // results are rational and the root is not, so refining ends this.
+  for (long bits = 64; !r.is_rational(); bits += 64) {
+    if (bits > 64 * kMaxBisections) throw ExactLimit("approximate: too many refinements");
+    const std::optional<double> a = nearest_double(r.lo), b = nearest_double(r.hi);
+    if (a && b && *a == *b) return shortest(*a);
+    if (!a && !b) {
+      const std::string x = scientific(r.lo, 17);
+      if (x == scientific(r.hi, 17)) return x;
+    }
+    const Exact small = r.hi <= 0 ? -r.hi : r.lo;
+    refine_to(r, small * power_of_two(-bits));
+  }
+  return approximation(r.lo);
+}
+
+std::string approximate_decimal(RealRoot r, int significant) {
+  if (r.is_rational()) return to_decimal(r.lo, significant).text;
+  narrow_magnitude(r);
+  for (long bits = 32; !r.is_rational(); bits += 32) {
+    if (bits > 32 * kMaxBisections) throw ExactLimit("approximate_decimal: too many refinements");
+    const std::string x = to_decimal(r.lo, significant).text;
+    if (x == to_decimal(r.hi, significant).text) return x;
+    const Exact small = r.hi <= 0 ? -r.hi : r.lo;
+    refine_to(r, small * power_of_two(-bits));
+  }
+  return to_decimal(r.lo, significant).text;
 }
 
 }  // namespace tmcert

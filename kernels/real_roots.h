@@ -104,7 +104,15 @@ bool settle_rational(RealRoot& r);
 // polynomial in the curve parameter to the scene parameter (scale != 0).
 PolyZ compose_affine(const PolyZ& p, const Exact& x0, const Exact& scale);
 
-// A decimal approximation of r with about `digits` significant digits.
-std::string approximate(RealRoot r, int digits = 15);
+// The approximation results print for r (kernels/decimal.h's
+// approximation() of the real number): the shortest decimal of the double
+// nearest to r, or beyond the double range r's 17-significant-digit
+// decimal with exponent.  Refines a copy of r until every point of its
+// interval has the same one.  Throws ExactLimit past a cap it never meets
+// for an isolated root (the boundaries between results are rational).
+std::string approximate(RealRoot r);
+// r rounded to `significant` digits as to_decimal writes it (the human
+// summary's six digits rounded from the exact value), likewise.
+std::string approximate_decimal(RealRoot r, int significant = 6);
 
 }  // namespace tmcert

@@ -86,6 +86,132 @@ Interval atan2(const Interval& y, const Interval& x) {
   return finite(out) ? out : whole;
 }
 
+namespace {
+
+// The ball's largest magnitude, as a double rounded up.
+double magnitude_bound(const Ball& x) {
+  Float m;
+  arb_get_abs_ubound_arf(m.v, x.v, kPrec);
+  return arf_get_d(m.v, ARF_RND_UP);
+}
+
+}  // namespace
+
+std::array<Interval, 3> factorial_series(const Interval& x, int m) {
+  const std::array<Interval, 3> whole{kWhole, kWhole, kWhole};
+  if (!finite(x) || m < 1 || m > 3) return whole;
+  Ball b;
+  set(b, x);
+  const double X = magnitude_bound(b);
+  if (!(X <= 4)) return whole;
+  // Terms k < kTerms exactly in ball arithmetic (every point of the ball);
+  // the rest of each series, terms (2k)^j x^(2k-j) / (2k+m)! for k >= kTerms
+  // in magnitude, falls by a factor below 1/400 per term for |x| <= 4
+  // ((1 + 1/k)^2 x^2 / ((2k+m+1)(2k+m+2)) with k >= 40), so it is at most
+  // twice its first term.
+  constexpr int kTerms = 40;
+  Ball x2, power, fact, term, sum0, sum1, sum2, c;
+  arb_mul(x2.v, b.v, b.v, kPrec);
+  arb_one(power.v);  // x^(2k)
+  arb_fac_ui(fact.v, static_cast<ulong>(m), kPrec);  // (2k+m)!
+  arb_zero(sum0.v);
+  arb_zero(sum1.v);
+  arb_zero(sum2.v);
+  Ball power_m1, power_m2;  // x^(2k-1), x^(2k-2) for k >= 1
+  for (int k = 0; k < kTerms; ++k) {
+    if (k > 0) {
+      arb_set(power_m2.v, power.v);        // x^(2k-2)
+      arb_mul(power_m1.v, power.v, b.v, kPrec);  // x^(2k-1)
+      arb_mul(power.v, power.v, x2.v, kPrec);    // x^(2k)
+      arb_mul_ui(fact.v, fact.v, static_cast<ulong>((2 * k + m - 1) * (2 * k + m)), kPrec);
+    }
+    // a_k = (-1)^k / (2k+m)!
+    arb_inv(c.v, fact.v, kPrec);
+    if (k % 2) arb_neg(c.v, c.v);
+    arb_mul(term.v, c.v, power.v, kPrec);
+    arb_add(sum0.v, sum0.v, term.v, kPrec);
+    if (k > 0) {
+      arb_mul(term.v, c.v, power_m1.v, kPrec);
+      arb_mul_ui(term.v, term.v, static_cast<ulong>(2 * k), kPrec);
+      arb_add(sum1.v, sum1.v, term.v, kPrec);
+      arb_mul(term.v, c.v, power_m2.v, kPrec);
+      arb_mul_ui(term.v, term.v, static_cast<ulong>(2 * k * (2 * k - 1)), kPrec);
+      arb_add(sum2.v, sum2.v, term.v, kPrec);
+    }
+  }
+  // Bounds of the rests: 2 (2N)^j X^(2N-j) / (2N+m)! with N = kTerms.
+  Ball xb, rest, n_fact;
+  arb_set_d(xb.v, X);
+  arb_fac_ui(n_fact.v, static_cast<ulong>(2 * kTerms + m), kPrec);
+  Ball* sums[3] = {&sum0, &sum1, &sum2};
+  for (int j = 0; j < 3; ++j) {
+    arb_pow_ui(rest.v, xb.v, static_cast<ulong>(2 * kTerms - j), kPrec);
+    for (int i = 0; i < j; ++i) arb_mul_ui(rest.v, rest.v, static_cast<ulong>(2 * kTerms), kPrec);
+    arb_mul_ui(rest.v, rest.v, 2, kPrec);
+    arb_div(rest.v, rest.v, n_fact.v, kPrec);
+    Float bound;
+    arb_get_abs_ubound_arf(bound.v, rest.v, kPrec);
+    arb_add_error_arf(sums[j]->v, bound.v);
+  }
+  return {get(sum0), get(sum1), get(sum2)};
+}
+
+Interval screw_inverse_coefficient(const Interval& phi) {
+  if (!finite(phi)) return kWhole;
+  Ball b;
+  set(b, phi);
+  const double P = magnitude_bound(b);
+  Ball out;
+  if (P <= 1) {
+    // sum_{n=1}^{N} 2 zeta(2n) phi^(2n-2) / (2 pi)^(2n); every term is
+    // positive and the term ratio is at most phi^2 / (2 pi)^2 < 1/39, so
+    // the rest is below 2 zeta(2N+2) P^(2N) / (2 pi)^(2N+2) / (1 - 1/39),
+    // and zeta < 2.
+    constexpr int kTerms = 25;
+    Ball two_pi, inv2, power, term, z, ph2;
+    arb_const_pi(two_pi.v, kPrec);
+    arb_mul_2exp_si(two_pi.v, two_pi.v, 1);
+    arb_mul(inv2.v, two_pi.v, two_pi.v, kPrec);
+    arb_inv(inv2.v, inv2.v, kPrec);  // 1 / (2 pi)^2
+    arb_mul(ph2.v, b.v, b.v, kPrec);
+    arb_set(power.v, inv2.v);  // phi^(2n-2) / (2 pi)^(2n)
+    arb_zero(out.v);
+    for (int n = 1; n <= kTerms; ++n) {
+      if (n > 1) {
+        arb_mul(power.v, power.v, ph2.v, kPrec);
+        arb_mul(power.v, power.v, inv2.v, kPrec);
+      }
+      arb_zeta_ui(z.v, static_cast<ulong>(2 * n), kPrec);
+      arb_mul(term.v, z.v, power.v, kPrec);
+      arb_mul_2exp_si(term.v, term.v, 1);
+      arb_add(out.v, out.v, term.v, kPrec);
+    }
+    Ball rest, pb;
+    arb_set_d(pb.v, P);
+    arb_pow_ui(rest.v, pb.v, static_cast<ulong>(2 * kTerms), kPrec);
+    Ball inv_pow;
+    arb_pow_ui(inv_pow.v, inv2.v, static_cast<ulong>(kTerms + 1), kPrec);
+    arb_mul(rest.v, rest.v, inv_pow.v, kPrec);
+    arb_mul_ui(rest.v, rest.v, 4 * 39, kPrec);
+    arb_div_ui(rest.v, rest.v, 38, kPrec);
+    Float bound;
+    arb_get_abs_ubound_arf(bound.v, rest.v, kPrec);
+    arb_add_error_arf(out.v, bound.v);
+  } else {
+    // (1 - h cos h / sin h) / phi^2 with h = phi / 2.
+    Ball h, s, c, t;
+    arb_mul_2exp_si(h.v, b.v, -1);
+    arb_sin_cos(s.v, c.v, h.v, kPrec);
+    arb_mul(t.v, h.v, c.v, kPrec);
+    arb_div(t.v, t.v, s.v, kPrec);
+    arb_sub_ui(t.v, t.v, 1, kPrec);
+    arb_neg(t.v, t.v);
+    arb_mul(s.v, b.v, b.v, kPrec);
+    arb_div(out.v, t.v, s.v, kPrec);
+  }
+  return get(out);
+}
+
 Interval pi() {
   Ball p;
   arb_const_pi(p.v, kPrec);

@@ -13,6 +13,8 @@
 
 #include "kernels/number_types.h"
 
+#include <array>
+
 namespace tmcert::validated {
 
 // Enclosures of the function over every point of `x` (an interval with a
@@ -22,6 +24,19 @@ Interval cos(const Interval& x);
 // atan2(y, x) in (-pi, pi]; x and y must not both contain 0 (else the whole
 // range [-pi, pi] is returned, which is still an enclosure).
 Interval atan2(const Interval& y, const Interval& x);
+// The entire functions f_m(x) = sum_{k>=0} (-1)^k x^(2k) / (2k+m)! for
+// m = 1, 2, 3, i.e. sin(x)/x, (1 - cos x)/x^2 and (x - sin x)/x^3 (all
+// regular at 0, where they are 1, 1/2 and 1/6), with their first and
+// second derivatives {f, f', f''}, enclosed for every x in the interval by
+// the series (40 terms and a bound of the rest) when |x| <= 4; the whole
+// line for a wider or non-finite x.  proofs/enclosures.md section 2.
+std::array<Interval, 3> factorial_series(const Interval& x, int m);
+// C(phi) = (1 - (phi/2) cot(phi/2)) / phi^2 (1/12 at 0), the coefficient
+// of K^2 in the inverse of SE(3)'s left Jacobian, enclosed for every phi
+// in the interval: by its series sum_{n>=1} 2 zeta(2n) phi^(2n-2) / (2 pi)^(2n)
+// when |phi| <= 1, else by the closed form (the whole line where that is
+// not finite).  proofs/enclosures.md section 3.
+Interval screw_inverse_coefficient(const Interval& phi);
 // pi, enclosed.
 Interval pi();
 // A rational enclosed by an interval of width at most one unit in the last

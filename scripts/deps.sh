@@ -16,9 +16,12 @@ packages=(
   libtinyxml-dev libconsole-bridge-dev
   libassimp-dev         # COLLADA (.dae) meshes (src/scene/mesh.cpp)
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
+  libassimp-dev         # only for bench/omplapp_fcl.cpp (OMPL.app's COLLADA meshes, as OMPL.app reads them)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python package (src/python/), its tests and example
   chromium              # the visual report's test (tests/html/report_browser.py), headless
+  python3-venv python3-mypy  # pip install . into a fresh environment, the stubs' check (tests/python)
+  slurm-wlm munge       # the single-node Slurm of the batch example's test (tests/regression/slurm.sh)
 )
 if [ "${1:-}" = "fuzz" ]; then
   # libFuzzer (-fsanitize=fuzzer) comes with clang's compiler-rt.

@@ -26,6 +26,13 @@ class TMCERT_API ResourceLimit : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The run was cancelled (VerifyOptions::progress returned false, or a
+// batch's progress callback did): there is no result.
+class TMCERT_API Cancelled : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace tmcert::api
 
 namespace tmcert {

@@ -60,7 +60,14 @@ struct Rational {
   std::string text = "0";         // "p/q" in lowest terms (q > 1), or "p" when q = 1
   std::string numerator = "0";    // p, with its sign
   std::string denominator = "1";  // q > 0
-  double approx = 0;              // the double nearest to p/q (ties to even), for people
+  // The double nearest to p/q (ties to even), for people; NaN when p/q is
+  // beyond the double range (that double would be infinite, or 0 for
+  // p != 0), never an infinity or a clamped value.
+  double approx = 0;
+  // The approximation as results print it: the shortest decimal that reads
+  // back as `approx`, or beyond the double range p/q's 17-significant-digit
+  // decimal with exponent ("1.0000000000000000e+400").
+  std::string approx_text = "0";
 };
 
 // An irrational real number: the only root of the polynomial `root_of`
@@ -69,8 +76,11 @@ struct Rational {
 struct AlgebraicNumber {
   std::vector<std::string> root_of;  // integer coefficients, constant term first
   Rational lower, upper;             // the isolating interval, open
-  std::string approx_text;           // the root as a decimal (15 digits), for people
-  double approx = 0;                 // the root as a double, for people
+  // For people: the shortest decimal that reads back as the double nearest
+  // to the root, or beyond the double range its 17-significant-digit
+  // decimal with exponent; and that double (NaN beyond the range).
+  std::string approx_text;
+  double approx = 0;
 };
 
 // A parameter (time) of a result: rational, or an algebraic number when a

@@ -30,9 +30,9 @@
 // or another link), all_pairs; threads and certificate are not (an edge is
 // one search; no certificates of edges).
 //
-// This header is not installed with the library: the adapter is the
-// in-tree CMake target tmcert_ompl (add tmcert with add_subdirectory and
-// link tmcert_ompl; it needs OMPL, Debian's libompl-dev).
+// The adapter is the CMake target tmcert::ompl (it needs OMPL, Debian's
+// libompl-dev): find_package(tmcert REQUIRED COMPONENTS ompl) for an
+// installed tmcert, or the same target after add_subdirectory.
 #pragma once
 
 #include "tmcert/errors.h"

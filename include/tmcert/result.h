@@ -111,6 +111,10 @@ class TMCERT_API Result {
   // checks' own defaults (CheckResult::epsilon), as the JSON's "epsilon".
   const Rational& epsilon() const;
   const std::vector<CheckResult>& checks() const;
+  // The scene's notes and warnings (Scene::notes(), Scene::warnings()), as
+  // the result document's "notes" and "warnings".
+  const std::vector<std::string>& notes() const;
+  const std::vector<std::string>& warnings() const;
 
   // The tmcert-result/1 document, byte for byte what `tmcert verify --json`
   // prints for the same scene and options (up to the "seconds").
@@ -124,6 +128,12 @@ class TMCERT_API Result {
   std::string certificate() const;
   // Writes certificate() to `path`; throws InputError when it cannot.
   void write_certificate(const std::string& path) const;
+
+  // The visual report (`tmcert verify --report`): one self-contained HTML
+  // page showing the scene, the motion and this result.
+  std::string report_html() const;
+  // Writes report_html() to `path`; throws InputError when it cannot.
+  void write_report(const std::string& path) const;
 
   // Internal (src/api/).
   struct Impl;

@@ -47,6 +47,14 @@ class TMCERT_API Scene {
   int max_depth() const;
   // The file name, "SceneBuilder", or the source given to from_json.
   const std::string& source() const;
+  // What the reader did to data from real pipelines (docs/scene-format.md,
+  // "Data from real pipelines"): mesh faces not exactly planar split into
+  // fans, zero-area faces read as segments (notes); input read in a way
+  // that may not be meant, such as an rpy angle above 2 pi read as radians
+  // (warnings).  One line each, naming the file and the field; also in
+  // Result::notes() and Result::warnings().
+  const std::vector<std::string>& notes() const;
+  const std::vector<std::string>& warnings() const;
 
   // Internal (src/api/): the validated scene.
   struct Impl;

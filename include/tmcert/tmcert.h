@@ -12,11 +12,12 @@
 // Headers: numbers.h (Number, Rational, Time), motion.h (Motion, Pose, ...),
 // scene_builder.h (SceneBuilder), scene.h (Scene), verify.h (verify,
 // VerifyOptions), result.h (Result, CheckResult, Witness), certificate.h
-// (check_certificate), errors.h (InputError, ResourceLimit).  They use only
-// the C++20 standard library; link the target tmcert::tmcert (shared) or
-// tmcert::tmcert_static from find_package(tmcert).  ompl.h, the certified
-// OMPL motion validator, is not included here nor installed: it needs OMPL
-// and the in-tree target tmcert_ompl.
+// (check_certificate), errors.h (InputError, ResourceLimit, Cancelled),
+// batch.h (batch, batch_merge).  They use only the C++20 standard library;
+// link the target tmcert::tmcert (shared) or tmcert::tmcert_static from
+// find_package(tmcert).  ompl.h, the certified OMPL motion validator, is
+// not included here: it needs OMPL; link tmcert::ompl from
+// find_package(tmcert COMPONENTS ompl).
 //
 // Namespaces.  Every public type and function is declared in
 // `tmcert::api`, and every public header makes it visible as `tmcert::X`
@@ -28,6 +29,7 @@
 // per qualified name.  Only the library's own sources (src/api/) see both.
 #pragma once
 
+#include "tmcert/batch.h"
 #include "tmcert/certificate.h"
 #include "tmcert/errors.h"
 #include "tmcert/export.h"

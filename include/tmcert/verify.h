@@ -6,9 +6,30 @@
 #include "tmcert/result.h"
 #include "tmcert/scene.h"
 
+#include <cstddef>
+#include <functional>
 #include <optional>
+#include <string>
 
 namespace tmcert::api {
+
+// What VerifyOptions::progress is given while verify() runs.
+struct Progress {
+  // The share of the checks' work done: each check counts as one part of
+  // the whole, and within a running check, the share of its parameter
+  // interval already decided.  Below 1 while any check is left; 1 once
+  // every check is done, and in the last call.  What verify() does before
+  // the checks (bounding the sweeps) and within them (preparing a large
+  // body) is named by `activity`, not hidden behind the fraction.
+  double fraction = 0;
+  std::size_t checks_done = 0;
+  std::size_t checks = 0;  // 0 until verify() knows them
+  // What verify() does now, for people ("checking gripper x fixture",
+  // "checking a x b: preparing body terrain (...)"); the wording is not
+  // an interface.
+  std::string activity;
+  double seconds = 0;  // since verify() started
+};
 
 // Options of verify(), as the command line's (tmcert verify --help).
 struct VerifyOptions {
@@ -30,12 +51,25 @@ struct VerifyOptions {
   // Keep what Result::certificate() needs (a certified kernel, and a scene
   // that certificates cover; otherwise verify() throws InputError).
   bool certificate = false;
+  // Progress and cancellation.  When set, verify() calls it about every
+  // `progress_interval` seconds from a thread of its own (never two calls
+  // at once, none after verify() returns or throws), and once more from the
+  // calling thread with fraction 1 just before it returns a result.
+  // Returning false cancels the run: every check stops within about one
+  // subdivision node's work (what it had not decided is never taken as
+  // cleared) and verify() throws Cancelled instead of returning a result.
+  // An exception thrown by the callback cancels the run the same way and
+  // is rethrown by verify().  The callback runs while verify() works:
+  // keep it short.
+  std::function<bool(const Progress&)> progress;
+  double progress_interval = 0.5;  // seconds, > 0 and at most 3600
 };
 
 // Verifies every check of `scene`.  Throws InputError for bad options or a
 // scene that cannot be verified (a solid that is not closed, nothing to
 // check), ResourceLimit when a resource limit leaves no honest answer,
-// std::bad_alloc when memory runs out.
+// std::bad_alloc when memory runs out, Cancelled when the progress
+// callback cancels the run.
 TMCERT_API Result verify(const Scene& scene, const VerifyOptions& options = {});
 
 }  // namespace tmcert::api

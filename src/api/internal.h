@@ -62,6 +62,8 @@ auto public_errors(F&& f) -> decltype(f()) {
     throw InputError(e.what());
   } catch (const tmcert::ResourceLimit& e) {
     throw ResourceLimit(e.what());
+  } catch (const tmcert::Cancelled& e) {
+    throw Cancelled("cancelled by the progress callback");
   }
 }
 

@@ -86,5 +86,7 @@ Rational Scene::default_epsilon(const std::string& a, const std::string& b) cons
 int Scene::max_depth() const { return impl_->scene->max_depth; }
 
 const std::string& Scene::source() const { return impl_->scene->source; }
+const std::vector<std::string>& Scene::notes() const { return impl_->scene->notes; }
+const std::vector<std::string>& Scene::warnings() const { return impl_->scene->warnings; }
 
 }  // namespace tmcert::api

@@ -1,9 +1,11 @@
 // verify() and Result (include/tmcert/verify.h, result.h): the internal
 // verifier with the command line's option rules, and its result seen
 // through exact Rationals and Times with doubles next to them.
+#include "kernels/decimal.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/report.h"
+#include "src/html/report_html.h"
 #include "src/scene/parse.h"
 #include "src/verify/verify.h"
 
@@ -12,7 +14,10 @@
 #include "tmcert/verify.h"
 
 #include <cmath>
+#include <exception>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <fstream>
 
 namespace tmcert::api {
@@ -54,8 +59,9 @@ AlgebraicNumber public_root(const tmcert::AlgebraicTime& a) {
   for (const CGAL::Gmpz& c : a.root_of) out.root_of.push_back(tmcert::to_string(tmcert::Exact(c)));
   out.lower = to_rational(a.lo);
   out.upper = to_rational(a.hi);
-  out.approx_text = a.approx;
-  out.approx = std::strtod(a.approx.c_str(), nullptr);
+  out.approx_text = a.approx;  // the shortest decimal of the nearest double, or the 17-digit decimal beyond range
+  const double x = std::strtod(a.approx.c_str(), nullptr);
+  out.approx = std::isfinite(x) && x != 0 ? x : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 
@@ -69,7 +75,9 @@ Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::Ch
     std::array<std::array<Rational, 2>, 3> box;
     for (int k = 0; k < 3; ++k) {
       box[k] = {to_rational((*w.point_box)[k][0]), to_rational((*w.point_box)[k][1])};
-      out.point_approx[k] = (box[k][0].approx + box[k][1].approx) / 2;
+      // The exact centre's nearest double (not the mean of two doubles).
+      const std::optional<double> c = tmcert::nearest_double(((*w.point_box)[k][0] + (*w.point_box)[k][1]) / 2);
+      out.point_approx[k] = c ? *c : std::numeric_limits<double>::quiet_NaN();
     }
     out.point_box = box;
   } else {
@@ -153,6 +161,56 @@ tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyO
   return options;
 }
 
+namespace {
+
+Progress public_progress(const tmcert::ProgressReport& r) {
+  Progress p;
+  p.fraction = r.fraction;
+  p.checks_done = r.checks_done;
+  p.checks = r.checks;
+  p.activity = r.activity;
+  p.seconds = r.seconds;
+  return p;
+}
+
+// verify_scene with the public progress callback on a watcher thread
+// (src/verify/progress.h).
+tmcert::SceneResult verify_with_progress(const tmcert::Scene& scene, tmcert::VerifyOptions o,
+                                         const VerifyOptions& options) {
+  if (!options.progress) return tmcert::verify_scene(scene, o, o.threads);
+  if (!std::isfinite(options.progress_interval) || !(options.progress_interval > 0) || options.progress_interval > 3600)
+    throw InputError("progress_interval: must be a number of seconds, > 0 and at most 3600");
+  tmcert::RunProgress run;
+  o.run = &run;
+  std::exception_ptr callback_error;
+  tmcert::SceneResult result;
+  try {
+    tmcert::ProgressWatcher watcher(
+        run,
+        [&](const tmcert::ProgressReport& r) {
+          try {
+            return options.progress(public_progress(r));
+          } catch (...) {
+            callback_error = std::current_exception();
+            return false;
+          }
+        },
+        options.progress_interval);
+    result = tmcert::verify_scene(scene, o, o.threads);
+  } catch (const tmcert::Cancelled&) {
+    if (callback_error) std::rethrow_exception(callback_error);
+    throw;
+  }
+  if (callback_error) std::rethrow_exception(callback_error);
+  tmcert::ProgressReport last = run.report();
+  last.fraction = 1;
+  last.activity = "done";
+  options.progress(public_progress(last));  // the run is over: its answer no longer matters
+  return result;
+}
+
+}  // namespace
+
 Result verify(const Scene& scene, const VerifyOptions& options) {
   return public_errors([&] {
     const std::shared_ptr<const tmcert::Scene>& internal = scene.impl().scene;
@@ -163,7 +221,7 @@ Result verify(const Scene& scene, const VerifyOptions& options) {
         throw InputError("certificate: certificates do not cover this scene: " + why);
     auto impl = std::make_shared<Result::Impl>();
     impl->scene = internal;
-    impl->internal = tmcert::verify_scene(*internal, o, o.threads);
+    impl->internal = verify_with_progress(*internal, o, options);
     impl->certificate = options.certificate;
     impl->epsilon = to_rational(impl->internal.epsilon);
     impl->checks.reserve(impl->internal.checks.size());
@@ -179,6 +237,8 @@ Kernel Result::kernel() const { return same_enum<Kernel>(impl_->internal.kernel)
 bool Result::certified() const { return impl_->internal.certified; }
 const Rational& Result::epsilon() const { return impl_->epsilon; }
 const std::vector<CheckResult>& Result::checks() const { return impl_->checks; }
+const std::vector<std::string>& Result::notes() const { return impl_->scene->notes; }
+const std::vector<std::string>& Result::warnings() const { return impl_->scene->warnings; }
 
 std::string Result::to_json() const { return tmcert::result_json(*impl_->scene, impl_->internal); }
 std::string Result::summary() const { return tmcert::result_summary(*impl_->scene, impl_->internal); }
@@ -195,6 +255,18 @@ void Result::write_certificate(const std::string& path) const {
   out << document;
   out.close();
   if (!out) throw InputError("certificate: cannot write " + tmcert::quote_text(path));
+}
+
+std::string Result::report_html() const {
+  return public_errors([&] { return tmcert::report_html(*impl_->scene, impl_->internal); });
+}
+
+void Result::write_report(const std::string& path) const {
+  const std::string page = report_html();
+  std::ofstream out(path, std::ios::binary);
+  out << page;
+  out.close();
+  if (!out) throw InputError("report: cannot write " + tmcert::quote_text(path));
 }
 
 namespace {

@@ -214,6 +214,14 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
                                                : RequestOutcome::Kind::Undecided;
     out.line = head + request.id + ",\"verdict\":\"" + to_string(verdict) + "\"";
     if (env.options_.kernel == KernelKind::Fast) out.line += ",\"certified\":false";
+    // What the reader did to the line's own data (an inline body's mesh,
+    // rpy angles): as a result document's "notes" and "warnings".
+    for (const auto& [key, list] : {std::pair{"notes", &request.notes}, std::pair{"warnings", &request.warnings}}) {
+      if (list->empty()) continue;
+      out.line += std::string(",\"") + key + "\":[";
+      for (std::size_t k = 0; k < list->size(); ++k) out.line += (k ? "," : "") + json_string((*list)[k]);
+      out.line += "]";
+    }
     out.line += ",\"checks\":[" + checks + "]}";
   } catch (const InputError& e) {
     std::string what = e.what();

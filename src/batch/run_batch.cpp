@@ -76,13 +76,29 @@ struct Counts {
 
 // Runs a chunk of requests on the workers (one thread each) and writes
 // their results in order, each as soon as it and all before it are done.
+// Cancelled runs write nothing more: an outcome is written only when the
+// run was not cancelled once it was complete (checked after it is done, so
+// no line computed under a cancellation is written).
+void written(RunProgress* run) {
+  if (run) run->item_done();
+}
+void stop_if_cancelled(RunProgress* run, Writer& writer) {
+  if (run && run->cancelled()) {
+    writer.flush();
+    throw Cancelled();
+  }
+}
+
 void run_chunk(const std::vector<Pending>& chunk, std::vector<std::unique_ptr<BatchEnvironment::Worker>>& workers,
-               Writer& writer, Counts& counts) {
+               Writer& writer, Counts& counts, RunProgress* run) {
   if (workers.size() == 1) {
     for (const Pending& p : chunk) {
+      stop_if_cancelled(run, writer);
       const RequestOutcome o = workers[0]->run(p.text, p.index, p.line_number);
+      stop_if_cancelled(run, writer);
       counts.add(o.kind);
       writer.line(o.line);
+      written(run);
     }
     return;
   }
@@ -117,17 +133,28 @@ void run_chunk(const std::vector<Pending>& chunk, std::vector<std::unique_ptr<Ba
       ready.wait(lock, [&] { return done[k] != 0 || failed; });
     }
     if (failed) break;
+    if (run && run->cancelled()) {
+      failed = true;  // the workers stop taking requests
+      break;
+    }
     counts.add(outcomes[k].kind);
     writer.line(outcomes[k].line);
+    written(run);
   }
   for (std::thread& t : threads) t.join();
   if (failure) std::rethrow_exception(failure);
+  stop_if_cancelled(run, writer);
 }
 
 }  // namespace
 
-int run_batch(const BatchOptions& options) {
+int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
   const auto started = Clock::now();
+  RunProgress* const run = options.verify.run;
+  if (run) {
+    run->count_other_items();
+    run->set_activity("reading the environment");
+  }
   // Bad files are exit 3 before any work: the output first.
   std::ofstream file_out;
   if (!options.output.empty()) {
@@ -169,6 +196,13 @@ int run_batch(const BatchOptions& options) {
     scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base, robots,
                              ReadOptions{options.package_paths});
   }
+  // What the reader did to the environment's data (docs/scene-format.md,
+  // "Data from real pipelines"), once, on stderr.
+  if (!options.quiet) {
+    for (const std::string& note : scene.notes) std::cerr << "tmcert batch: note: " << note << "\n";
+    for (const std::string& warning : scene.warnings) std::cerr << "tmcert batch: warning: " << warning << "\n";
+  }
+  if (run) run->set_activity("preparing the environment");
   VerifyOptions verify = options.verify;
   verify.epsilon = options.epsilon ? *options.epsilon : scene.epsilon ? *scene.epsilon : default_epsilon(scene);
   verify.max_depth = options.max_depth ? *options.max_depth : scene.max_depth;
@@ -190,14 +224,17 @@ int run_batch(const BatchOptions& options) {
     const std::size_t index = requests++;
     if (!options.shard.owns(index)) continue;
     chunk.push_back({std::move(line), index, line_number});
+    if (run) run->add_checks(1);
     if (chunk.size() == chunk_size) {
-      run_chunk(chunk, workers, writer, counts);
+      if (run) run->set_activity("running requests");
+      run_chunk(chunk, workers, writer, counts, run);
       chunk.clear();
       writer.flush();
     }
   }
   if (in.bad()) throw ResourceLimit(requests_name + ": reading failed");
-  run_chunk(chunk, workers, writer, counts);
+  if (run) run->set_activity("running requests");
+  run_chunk(chunk, workers, writer, counts, run);
   writer.flush();
   if (!out) throw InputError(options.output.empty() ? std::string("cannot write the results to standard output")
                                                     : "-o: cannot write " + quote_text(options.output));
@@ -206,6 +243,14 @@ int run_batch(const BatchOptions& options) {
   char rate[64];
   std::snprintf(rate, sizeof rate, "%.2f s, %.1f requests/s", seconds,
                 seconds > 0 ? static_cast<double>(counts.total()) / seconds : 0.0);
+  if (counts_out) {
+    counts_out->requests = requests;
+    counts_out->safe = counts.safe;
+    counts_out->collision = counts.collision;
+    counts_out->undecided = counts.undecided;
+    counts_out->error = counts.error;
+  }
+  if (!options.quiet)
   std::cerr << "tmcert batch: shard " << options.shard.index << "/" << options.shard.count << ": " << counts.total()
             << " of " << requests << " requests: " << counts.safe << " safe, " << counts.collision << " collision, "
             << counts.undecided << " undecided, " << counts.error << " bad; " << rate

@@ -24,6 +24,17 @@ struct BatchOptions {
   int threads = 1;       // requests run in parallel (output order kept)
   bool stats = false;    // each check's "stats", wall-clock seconds included
   std::vector<std::string> package_paths;  // --package-path (ReadOptions)
+  bool quiet = false;    // no summary line on stderr
+  // Progress and cancellation: verify.run (src/verify/progress.h) counts
+  // the shard's requests as its items (those read so far, those written);
+  // once it is cancelled, no further result line is written and run_batch
+  // throws Cancelled (the output then ends after the last complete line).
+};
+
+// What a run did (its summary line).
+struct BatchCounts {
+  std::size_t requests = 0;  // every request of the file, in every shard
+  std::size_t safe = 0, collision = 0, undecided = 0, error = 0;  // of the shard's
 };
 
 // Runs the shard's requests and returns the exit code: 1 when a request
@@ -31,6 +42,6 @@ struct BatchOptions {
 // certified), else 0.  A summary goes to stderr.  Throws InputError (exit
 // 3) for a bad environment, a bad or unwritable file before any result is
 // written.
-int run_batch(const BatchOptions& options);
+int run_batch(const BatchOptions& options, BatchCounts* counts = nullptr);
 
 }  // namespace tmcert

@@ -47,6 +47,10 @@ B operator-(const B& a) { B r; arb_neg(r.v, a.v); return r; }
 B operator*(const B& a, const B& b) { B r; arb_mul(r.v, a.v, b.v, kPrec); return r; }
 B operator/(const B& a, const B& b) { B r; arb_div(r.v, a.v, b.v, kPrec); return r; }
 B bsqrt(const B& a) { B r; arb_sqrt(r.v, a.v, kPrec); return r; }
+// The square root of a sum of squares: arb_sqrtpos drops the negative part
+// that the ball of such a sum may have near 0 (arb_sqrt would give an
+// indeterminate ball there).
+B bsqrt_nonnegative(const B& a) { B r; arb_sqrtpos(r.v, a.v, kPrec); return r; }
 B bsin(const B& a) { B r; arb_sin(r.v, a.v, kPrec); return r; }
 B bcos(const B& a) { B r; arb_cos(r.v, a.v, kPrec); return r; }
 B bsinc(const B& a) { B r; arb_sinc(r.v, a.v, kPrec); return r; }
@@ -81,6 +85,94 @@ V3 mul(const M3& m, const V3& x) {
 }
 V3 cross(const V3& a, const V3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+// ---------------------------------------------------------------- series
+
+// The largest magnitude of a ball, rounded up (a double; infinite when the
+// ball is not finite).
+double magnitude(const B& x) {
+  arf_t m;
+  arf_init(m);
+  arb_get_abs_ubound_arf(m, x.v, kPrec);
+  const double d = arf_get_d(m, ARF_RND_UP);
+  arf_clear(m);
+  return d;
+}
+
+// f_m(x) = sum_{k>=0} (-1)^k x^(2k) / (2k+m)! (m = 2: (1 - cos x)/x^2,
+// m = 3: (x - sin x)/x^3), for every x in the ball, regular at 0: 60 terms
+// and the bound of the rest, twice its first term (the terms fall by a
+// factor below 1/1000 from there for |x| <= 4); the whole line for a wider
+// ball.
+B factorial_series(const B& x, int m) {
+  B out;
+  if (!(magnitude(x) <= 4)) {
+    arb_indeterminate(out.v);
+    return out;
+  }
+  constexpr int kTerms = 60;
+  const B x2 = x * x;
+  B power(1), fact;
+  arb_fac_ui(fact.v, static_cast<ulong>(m), kPrec);
+  arb_zero(out.v);
+  for (int k = 0; k < kTerms; ++k) {
+    if (k > 0) {
+      power = power * x2;
+      arb_mul_ui(fact.v, fact.v, static_cast<ulong>((2 * k + m - 1) * (2 * k + m)), kPrec);
+    }
+    const B term = power / fact;
+    out = k % 2 ? out - term : out + term;
+  }
+  B rest;
+  arb_set_d(rest.v, magnitude(x));
+  arb_pow_ui(rest.v, rest.v, 2 * kTerms, kPrec);
+  B nf;
+  arb_fac_ui(nf.v, static_cast<ulong>(2 * kTerms + m), kPrec);
+  rest = B(2) * rest / nf;
+  arf_t bound;
+  arf_init(bound);
+  arb_get_abs_ubound_arf(bound, rest.v, kPrec);
+  arb_add_error_arf(out.v, bound);
+  arf_clear(bound);
+  return out;
+}
+
+// C(phi) = (1 - (phi/2) cot(phi/2)) / phi^2 for every phi in the ball:
+// for |phi| <= 1 the series sum_{n>=1} 2 zeta(2n) phi^(2n-2) / (2 pi)^(2n)
+// (positive terms falling by phi^2 / (2 pi)^2 < 1/39 each, zeta < 2: the
+// rest after N terms is below 4 (39/38) |phi|^(2N) / (2 pi)^(2N+2)),
+// otherwise the closed form.
+B screw_inverse_coefficient(const B& phi) {
+  const double P = magnitude(phi);
+  if (!(P <= 1)) {
+    const B h = phi / B(2);
+    return (B(1) - h * bcos(h) / bsin(h)) / (phi * phi);
+  }
+  constexpr int kTerms = 40;
+  B two_pi;
+  arb_const_pi(two_pi.v, kPrec);
+  two_pi = B(2) * two_pi;
+  const B inv2 = B(1) / (two_pi * two_pi);
+  const B ph2 = phi * phi;
+  B power = inv2, out(0), z;
+  for (int n = 1; n <= kTerms; ++n) {
+    if (n > 1) power = power * ph2 * inv2;
+    arb_zeta_ui(z.v, static_cast<ulong>(2 * n), kPrec);
+    out = out + B(2) * z * power;
+  }
+  B rest;
+  arb_set_d(rest.v, P);
+  arb_pow_ui(rest.v, rest.v, 2 * kTerms, kPrec);
+  B inv_pow;
+  arb_pow_ui(inv_pow.v, inv2.v, kTerms + 1, kPrec);
+  rest = B(4 * 39) * rest * inv_pow / B(38);
+  arf_t bound;
+  arf_init(bound);
+  arb_get_abs_ubound_arf(bound, rest.v, kPrec);
+  arb_add_error_arf(out.v, bound);
+  arf_clear(bound);
+  return out;
 }
 
 // ---------------------------------------------------------------- rotations
@@ -200,7 +292,7 @@ std::optional<BallPose> keyframe_pose(const MotionSegment& seg, const B& s) {
     diff[i] = q0[i] - q1[i];
     sum[i] = q0[i] + q1[i];
   }
-  const B w = B(2) * batan2(bsqrt(qdot(diff, diff)), bsqrt(qdot(sum, sum)));
+  const B w = B(2) * batan2(bsqrt_nonnegative(qdot(diff, diff)), bsqrt_nonnegative(qdot(sum, sum)));
   const B sw = bsinc(w);
   const B ca = r * bsinc(r * w) / sw, cb = s * bsinc(s * w) / sw;
   Q q;
@@ -213,17 +305,42 @@ std::optional<BallPose> keyframe_pose(const MotionSegment& seg, const B& s) {
   //   v = V(phi)^-1 t,  V(phi)^-1 = I - (phi/2) K + (1 - (phi/2) cot(phi/2)) K^2,
   //   translation of exp(s xi) = s v + (1 - cos(s phi))/phi K v + (s - sin(s phi)/phi) K^2 v,
   // with t = R0^T (p1 - p0) the relative translation; the pose's
-  // translation is p0 + R0 (that).  Needs phi provably away from 0.
+  // translation is p0 + R0 (that).  For phi away from 0 (above 2^-10).
+  // Near 0, or 0 within the balls (rotations equal up to rounding), the
+  // same with omega = phi k = 2 (d1, d2, d3) / sinc(phi/2) in forms regular
+  // at 0 (C(phi), f2, f3 by their series):
+  //   v = t - omega x t / 2 + C(phi) omega x (omega x t),
+  //   translation of exp(s xi) = s v + s^2 f2(s phi) omega x v + s^3 f3(s phi) omega x (omega x v).
   const Q conj0{q0[0], -q0[1], -q0[2], -q0[3]};
   const Q d = qmul(conj0, q1);  // d[0] = q0 . q1 >= 0
-  const B vnorm = bsqrt(d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
-  if (!certain_positive(vnorm)) return std::nullopt;
+  const B vnorm = bsqrt_nonnegative(d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
   const B phi = B(2) * batan2(vnorm, d[0]);
-  const V3 k{d[1] / vnorm, d[2] / vnorm, d[3] / vnorm};
   const M3 R0 = rotation_times_norm2(q0);  // unit q0
   V3 t;
   for (int i = 0; i < 3; ++i)
     t[i] = R0[i] * (p1[0] - p0[0]) + R0[3 + i] * (p1[1] - p0[1]) + R0[6 + i] * (p1[2] - p0[2]);
+  arf_t phi_lo;
+  arf_init(phi_lo);
+  arb_get_lbound_arf(phi_lo, phi.v, kPrec);
+  const bool away = arf_cmp_2exp_si(phi_lo, -10) > 0;
+  arf_clear(phi_lo);
+  if (!away) {
+    const B sinc_half = bsinc(phi / B(2));
+    const V3 omega{B(2) * d[1] / sinc_half, B(2) * d[2] / sinc_half, B(2) * d[3] / sinc_half};
+    const B c = screw_inverse_coefficient(phi);
+    const V3 wt = cross(omega, t), wwt = cross(omega, wt);
+    V3 v;
+    for (int i = 0; i < 3; ++i) v[i] = t[i] - wt[i] / B(2) + c * wwt[i];
+    const B x = s * phi;
+    const B a = s * s * factorial_series(x, 2), b3 = s * s * s * factorial_series(x, 3);
+    const V3 wv = cross(omega, v), wwv = cross(omega, wv);
+    V3 local;
+    for (int i = 0; i < 3; ++i) local[i] = s * v[i] + a * wv[i] + b3 * wwv[i];
+    const V3 moved = mul(R0, local);
+    for (int i = 0; i < 3; ++i) out.translation[i] = p0[i] + moved[i];
+    return out;
+  }
+  const V3 k{d[1] / vnorm, d[2] / vnorm, d[3] / vnorm};
   const B half = phi / B(2);
   const B c2 = one - half * bcos(half) / bsin(half);
   const V3 kt = cross(k, t), kkt = cross(k, kt);

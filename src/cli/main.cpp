@@ -9,12 +9,15 @@
 #include "src/cli/report.h"
 #include "src/html/report_html.h"
 #include "src/scene/parse.h"
+#include "src/verify/progress.h"
 #include "src/verify/verify.h"
 
 #include <CLI/CLI.hpp>
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -26,6 +29,8 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <string>
+#include <vector>
 
 // The scene of `verify`, kept to the end of the process (run_verify).  A
 // global with external linkage, so that the store is not optimised away and
@@ -60,29 +65,75 @@ struct VerifyArgs {
   std::vector<std::string> package_paths;  // --package-path, in order
 };
 
-// Progress on stderr for runs longer than about two seconds, only when
-// stderr is a terminal: one line, rewritten in place, erased at the end.
-class Progress {
+// Progress on stderr when it is a terminal, from about two seconds into a
+// run on: one line, rewritten in place a few times a second, erased before
+// the result is printed.  It names what the run does (reading the scene,
+// the check and its step, writing the certificate) and, while checks run,
+// the share of their work done (src/verify/progress.h: below 100% until
+// every check is done), so no phase of a long run is silent.
+class TerminalProgress {
  public:
-  Progress() : start_(std::chrono::steady_clock::now()) {}
-  ~Progress() {
-    if (shown_) std::fputs("\r\033[K", stderr);
-  }
-  void report(double fraction) {
+  static constexpr double kFirstAfter = 2.0;  // seconds
+  static constexpr double kInterval = 0.25;   // seconds
+
+  explicit TerminalProgress(tmcert::RunProgress& run)
+      : first_after_(first_after()), watcher_(run, [this](const tmcert::ProgressReport& r) { return show(r); }, kInterval) {}
+  ~TerminalProgress() {
     std::lock_guard<std::mutex> lock(mutex_);
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (elapsed < 2.0 || fraction < last_ + 0.01) return;
-    last_ = fraction;
-    shown_ = true;
-    std::fprintf(stderr, "\rtmcert: %3.0f%% done, %.0f s", 100 * fraction, elapsed);
+    stopped_ = true;
+    if (shown_) std::fputs("\r\033[K", stderr);
     std::fflush(stderr);
   }
 
+  // The line for a report (without the carriage return), at most `width` bytes.
+  static std::string line(const tmcert::ProgressReport& r, std::size_t width) {
+    std::string text = "tmcert: ";
+    char buffer[96];
+    if (r.checks > 0 && r.checks_done < r.checks) {
+      // Rounded down: never "100%" while a check is left.
+      std::snprintf(buffer, sizeof buffer, "%d%% of %zu check%s, ", static_cast<int>(std::floor(100 * r.fraction)),
+                    r.checks, r.checks == 1 ? "" : "s");
+      text += buffer;
+    } else if (r.checks > 0) {
+      if (r.checks == 1) std::snprintf(buffer, sizeof buffer, "the check is done, ");
+      else std::snprintf(buffer, sizeof buffer, "all %zu checks done, ", r.checks);
+      text += buffer;
+    }
+    std::snprintf(buffer, sizeof buffer, "%.0f s", r.seconds);
+    text += buffer;
+    if (!r.activity.empty()) text += ": " + r.activity;
+    if (width > 0 && text.size() > width) text.resize(width > 3 ? width - 3 : width), text += "...";
+    return text;
+  }
+
  private:
-  std::chrono::steady_clock::time_point start_;
+  // TMCERT_PROGRESS_AFTER=SECONDS replaces the two seconds (0: from the
+  // start; tests/regression/progress_tty.py).
+  static double first_after() {
+    const char* text = std::getenv("TMCERT_PROGRESS_AFTER");
+    if (!text || !*text) return kFirstAfter;
+    char* end = nullptr;
+    const double seconds = std::strtod(text, &end);
+    return end && *end == '\0' && std::isfinite(seconds) && seconds >= 0 ? seconds : kFirstAfter;
+  }
+
+  bool show(const tmcert::ProgressReport& r) {
+    if (r.seconds < first_after_) return true;
+    struct winsize size {};
+    const std::size_t columns = ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0 ? size.ws_col : 80;
+    const std::string text = line(r, columns - 1);  // the last column would wrap on some terminals
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopped_) return true;
+    shown_ = true;
+    std::fprintf(stderr, "\r%s\033[K", text.c_str());
+    std::fflush(stderr);
+    return true;
+  }
+
   std::mutex mutex_;
-  bool shown_ = false;
-  double last_ = -1;
+  bool shown_ = false, stopped_ = false;
+  double first_after_;
+  tmcert::ProgressWatcher watcher_;  // last: stopped first
 };
 
 // --epsilon: a positive number (decimal or p/q), exactly.
@@ -104,10 +155,28 @@ double time_limit_option(const std::string& option) {
   return seconds;
 }
 
+// The reader's warnings (an rpy angle above 2 pi read as radians, ...)
+// on stderr as soon as the scene is read; they are in the result too.
+void print_warnings(const tmcert::Scene& scene) {
+  for (const std::string& warning : scene.warnings) std::cerr << "tmcert: warning: " << warning << "\n";
+}
+
 int run_verify(const VerifyArgs& args) {
   using namespace tmcert;
+  RunProgress run;
+  std::optional<TerminalProgress> progress;
+  if (isatty(STDERR_FILENO)) progress.emplace(run);
+  run.set_activity("reading " + args.scene);
   auto owned = std::make_unique<Scene>(parse_scene_file(args.scene, ReadOptions{args.package_paths}));
   Scene& scene = *owned;
+  if (progress) {
+    // Warnings go before the progress line, which is erased and comes back.
+    progress.reset();
+    print_warnings(scene);
+    progress.emplace(run);
+  } else {
+    print_warnings(scene);
+  }
   VerifyOptions options;
   options.kernel = args.kernel == "exact" ? KernelKind::Exact
                    : args.kernel == "fast" ? KernelKind::Fast
@@ -134,27 +203,27 @@ int run_verify(const VerifyArgs& args) {
   if (!args.certificate.empty()) certificate_file.emplace("--certificate", args.certificate);
   std::optional<OutputFile> report_file;
   if (!args.report.empty()) report_file.emplace("--report", args.report);
-  std::shared_ptr<Progress> progress;
-  if (isatty(STDERR_FILENO)) {
-    progress = std::make_shared<Progress>();
-    options.progress = [progress](double f) { progress->report(f); };
-  }
+  options.run = &run;
   const SceneResult result = verify_scene(scene, options, args.threads);
-  options.progress = nullptr;
-  progress.reset();  // erases the progress line before the result is printed
   if (certificate_file) {
+    run.set_activity("writing the certificate " + args.certificate);
     // Written before the verdict is printed: a certificate that cannot be
     // written is bad input (a bad output path, exit 3), not a verdict
     // without its proof.
     certificate::WriteStats stats;
     certificate_file->write(certificate::certificate_json(scene, result, &stats));
+    if (progress) progress.reset();  // erases the progress line before anything is printed
     std::cerr << "tmcert: certificate written to " << args.certificate << " (" << stats.pieces << " pieces, "
               << stats.separations << " separations, " << stats.seconds << " s)\n";
   }
   if (report_file) {
+    if (!progress && isatty(STDERR_FILENO)) progress.emplace(run);
+    run.set_activity("writing the report " + args.report);
     report_file->write(report_html(scene, result));
+    progress.reset();
     std::cerr << "tmcert: report written to " << args.report << "\n";
   }
+  progress.reset();
   std::cout << (args.json ? result_json(scene, result) : result_summary(scene, result)) << std::flush;
   // The process ends now: freeing a scene of many bodies number by number
   // (every coordinate a GMP rational) took longer than verifying it, so the
@@ -169,6 +238,7 @@ int run_certificate_check(const std::string& certificate_file, const std::string
                           const std::vector<std::string>& package_paths) {
   using namespace tmcert;
   const Scene scene = parse_scene_file(scene_file, ReadOptions{package_paths});
+  print_warnings(scene);
   const nlohmann::json doc = certificate::read_certificate_file(certificate_file);
   const certificate::CheckOutcome outcome = certificate::check_certificate(scene, doc, certificate_file);
   if (!outcome.ok) {
@@ -200,6 +270,38 @@ int run_batch_command(BatchArgs& args) {
   if (args.max_depth >= 0) o.max_depth = args.max_depth;
   if (!args.time_limit.empty()) o.verify.time_limit = time_limit_option(args.time_limit);
   return run_batch(o);
+}
+
+// Edit distance (insertions, deletions, substitutions, transpositions of
+// neighbours) between a and b, for suggestions.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// A first argument that is neither an option nor a command: "unknown
+// command 'verfy' (did you mean 'verify'?)" (CLI11 alone would say that
+// a subcommand is required).  Empty when `word` is a command.
+std::string unknown_command(const std::string& word, const std::vector<std::string>& commands) {
+  if (std::find(commands.begin(), commands.end(), word) != commands.end()) return "";
+  std::string best;
+  std::size_t best_distance = 3;  // suggest within two edits, or a prefix
+  for (const std::string& c : commands) {
+    const std::size_t d = c.rfind(word, 0) == 0 && word.size() >= 2 ? 1 : edit_distance(word, c);
+    if (d < best_distance) best_distance = d, best = c;
+  }
+  std::string message = "unknown command '" + word + "'";
+  if (!best.empty()) message += " (did you mean '" + best + "'?)";
+  std::string list;
+  for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
+  return message + "; the commands are " + list + " (tmcert --help)";
 }
 
 }  // namespace
@@ -270,6 +372,14 @@ int main(int argc, char** argv) {
                     "address space of the process in MiB; beyond it: out of memory, exit 4, no verdict")
         ->check(CLI::Range(1ull, 1ull << 40));
 
+  if (argc >= 2 && argv[1][0] != '-') {
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
+    if (const std::string unknown = unknown_command(argv[1], commands); !unknown.empty()) {
+      std::cerr << "tmcert: " << unknown << "\n";
+      return kExitBadInput;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -1,6 +1,7 @@
 #include "src/cli/report.h"
 
 #include "kernels/decimal.h"
+#include "kernels/real_roots.h"
 #include "src/motion/segment.h"
 
 #include <Eigen/Dense>
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -65,15 +67,19 @@ class JsonWriter {
 
   // A JSON number for people beside an exact one (tmcert-result/1's
   // "<field>_approx" members): the nearest double, or beyond the double
-  // range the 17-digit decimal itself.
+  // range a string holding the 17-significant-digit decimal with exponent
+  // (a JSON number there would read back as infinity or 0).
   void approx(const Exact& q) {
-    const double x = approximate(q);
-    if (std::isfinite(x)) {
-      value(x);
-      return;
-    }
-    next_item();
-    out_ += to_decimal(q, 17).text;
+    if (const std::optional<double> x = nearest_double(q)) value(*x);
+    else value(scientific(q, 17));
+  }
+  // The same for an algebraic number, from its printed approximation
+  // (real_roots.h's approximate(): the shortest decimal of its nearest
+  // double, which reads back as that double, or the 17-digit decimal).
+  void approx_text(const std::string& text) {
+    const double x = std::strtod(text.c_str(), nullptr);
+    if (std::isfinite(x) && x != 0) value(x);
+    else value(text);
   }
 
   template <typename T>
@@ -165,7 +171,7 @@ void write_root(JsonWriter& w, const AlgebraicTime& a) {
 // The approximation of a parameter: the algebraic number's own decimal, or
 // the rational's.
 void write_time_approx(JsonWriter& w, const Exact& t, const AlgebraicTime* root) {
-  if (root) w.value(std::strtod(root->approx.c_str(), nullptr));
+  if (root) w.approx_text(root->approx);
   else w.approx(t);
 }
 
@@ -388,7 +394,7 @@ std::string rigidity_note(const Body& b) {
   std::ostringstream out;
   out.precision(4);
   out << "the motion of " << b.name << " is not rigid (an affine motion, checked as written): at t = "
-      << CGAL::to_double(worst_t) << " lengths are scaled by " << worst_lo << " to " << worst_hi;
+      << to_decimal(worst_t).text << " lengths are scaled by " << worst_lo << " to " << worst_hi;
   if (std::abs(worst_hi - 1) < 1e-12 && std::abs(worst_lo - 1) < 1e-12) out << " (within rounding of rigid)";
   return out.str();
 }
@@ -454,8 +460,13 @@ namespace {
 // number its decimal and where it is exactly (the polynomial is in --json).
 std::string readable_time(const Exact& t, const AlgebraicTime* root) {
   if (!root) return readable(t);
-  Exact approx;
-  const std::string decimal = parse_exact(root->approx, approx) ? to_decimal(approx).text : root->approx;
+  // Six digits rounded from the root itself (not from its double).
+  std::string decimal;
+  try {
+    decimal = approximate_decimal(RealRoot{root->root_of, root->lo, root->hi});
+  } catch (const ExactLimit&) {
+    decimal = "~" + root->approx;
+  }
   return decimal + " (a root of a degree-" + std::to_string(root->root_of.size() - 1) + " polynomial in (" +
          to_string(root->lo) + ", " + to_string(root->hi) + "))";
 }
@@ -484,12 +495,24 @@ std::string readable_box(const std::array<std::array<Exact, 2>, 3>& box) {
   return centre + ") ± " + half + ")";
 }
 
-// What to try when a check stops undecided for `reason`.
-std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason) {
+// The epsilon a hint suggests: a tenth of the check's, unless that is
+// still larger than the check's whole box (1000 times its default
+// epsilon, the diagonal of its two bodies' box), where no smaller epsilon
+// of that size can help: then the default (a given epsilon of 1e16 for
+// bodies of size 1 gets the suggestion 0.00173205, not 1e15).
+Exact smaller_epsilon(const Scene& scene, const CheckResult& c) {
+  const Exact tenth = c.epsilon / 10;
+  const Exact fallback = default_epsilon(scene.bodies[c.bodies[0]], scene.bodies[c.bodies[1]]);
+  return tenth > 1000 * fallback ? fallback : tenth;
+}
+
+// What to try when a check stops undecided for `reason`.  `smaller` is
+// the epsilon a hint suggests (smaller_epsilon).
+std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason, const Exact& smaller) {
   switch (reason) {
     case StopReason::Epsilon:
       return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
-             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(c.epsilon / 10).text;
+             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(smaller).text;
     case StopReason::Depth:
       if (r.max_depth < 62)
         return "the subdivision reached its depth limit (" + std::to_string(r.max_depth) + "); try --max-depth " +
@@ -500,7 +523,7 @@ std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReaso
         return "the stop budget (" + std::to_string(r.max_stops) +
                " undecided pieces) was used up, so the rest was not searched: the bodies stay within about "
                "epsilon over a long stretch; try a smaller --epsilon, e.g. --epsilon " +
-               to_decimal(c.epsilon / 10).text;
+               to_decimal(smaller).text;
       if (r.max_nodes > 0 && c.stats.nodes >= r.max_nodes)
         return "the node budget (" + std::to_string(r.max_nodes) +
                " nodes per check) was used up; try a larger --epsilon, or check shorter pieces of the motion";
@@ -556,6 +579,7 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
   else out << readable(r.epsilon);
   out << "]\n";
   for (const std::string& note : scene.notes) out << "  note: " << note << "\n";
+  for (const std::string& warning : scene.warnings) out << "  warning: " << warning << "\n";
   for (const Body& b : scene.bodies) {
     if (b.enlarged.empty()) continue;
     out << "  note: " << b.name << " is an enlarged model: its ";
@@ -600,10 +624,12 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
       out << "\n";
     }
     const std::vector<UndecidedInterval> undecided = merged_undecided(c.undecided);
+    std::optional<Exact> smaller;  // computed for the first hint that needs it
     for (std::size_t k = 0; k < undecided.size() && k < kUndecidedShown; ++k) {
       const UndecidedInterval& u = undecided[k];
+      if (!smaller && u.reason != StopReason::Depth) smaller = smaller_epsilon(scene, c);
       out << "    undecided t in [" << to_decimal(u.t0).text << ", " << to_decimal(u.t1).text << "] ("
-          << to_string(u.reason) << "): " << undecided_hint(r, c, u.reason) << "\n";
+          << to_string(u.reason) << "): " << undecided_hint(r, c, u.reason, smaller ? *smaller : c.epsilon) << "\n";
     }
     if (undecided.size() > kUndecidedShown)
       out << "    ... and " << undecided.size() - kUndecidedShown << " more undecided intervals (--json lists them all)\n";

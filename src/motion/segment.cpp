@@ -1,9 +1,14 @@
 #include "src/motion/segment.h"
 
+#include "kernels/decimal.h"
+
 #include "src/motion/bezier.h"
 #include "src/motion/chain.h"
 
 #include <CGAL/number_utils.h>
+
+#include <algorithm>
+#include <climits>
 
 namespace tmcert {
 
@@ -52,6 +57,21 @@ Interval isqrt(const Interval& x) { return CGAL::sqrt(x); }
 
 const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
+// L with |x| in (2^(L-1), 2^(L+1)), for x != 0: the bit lengths of the
+// numerator and denominator (n in [2^(a-1), 2^a), d in [2^(b-1), 2^b)).
+long log2_magnitude(const Exact& x) {
+  return static_cast<long>(mpz_sizeinbase(mpq_numref(x.mpq()), 2)) -
+         static_cast<long>(mpz_sizeinbase(mpq_denref(x.mpq()), 2));
+}
+
+// 2^e exactly.
+Exact power_of_two(long e) {
+  Exact out(1);
+  if (e >= 0) mpq_mul_2exp(out.mpq(), out.mpq(), static_cast<mp_bitcnt_t>(e));
+  else mpq_div_2exp(out.mpq(), out.mpq(), static_cast<mp_bitcnt_t>(-e));
+  return out;
+}
+
 bool all_zero(const std::array<Exact, 3>& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
 
 // Two rotations are equal, proven exactly (false also when unknown).
@@ -93,8 +113,19 @@ std::optional<std::array<Exact, 4>> exact_quaternion(const Rotation& r) {
   return std::nullopt;
 }
 
+Exact quaternion_scale(const std::array<Exact, 4>& q) {
+  long top = LONG_MIN;
+  for (const Exact& x : q)
+    if (x != 0) top = std::max(top, log2_magnitude(x));
+  return top == LONG_MIN ? Exact(1) : power_of_two(-top);
+}
+
 std::array<Interval, 4> unit_quaternion(const Rotation& r) {
-  if (const auto q = exact_quaternion(r)) {
+  if (auto q = exact_quaternion(r)) {
+    // Scaled exactly first (the same rotation), so that a quaternion of
+    // 1e-400 or 1e400 is not enclosed by [0, tiny] or [huge, inf].
+    const Exact f = quaternion_scale(*q);
+    for (Exact& x : *q) x *= f;
     const Interval n = validated::sqrt(qdot(*q, *q));
     return {to_interval((*q)[0]) / n, to_interval((*q)[1]) / n, to_interval((*q)[2]) / n, to_interval((*q)[3]) / n};
   }
@@ -143,11 +174,11 @@ std::string rotation_matrix_problem(const std::array<Exact, 9>& m) {
     for (int j = 0; j < 3; ++j) {
       const Exact d = m[3 * i] * m[3 * j] + m[3 * i + 1] * m[3 * j + 1] + m[3 * i + 2] * m[3 * j + 2];
       if (d != (i == j ? 1 : 0)) return "the rows are not exactly orthonormal (row " + std::to_string(i) + " . row " +
-                                        std::to_string(j) + " = " + to_string(d) + ")";
+                                        std::to_string(j) + " = " + decimal_text(d) + ")";
     }
   const Exact det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
                     m[2] * (m[3] * m[7] - m[4] * m[6]);
-  if (det != 1) return "the determinant is " + to_string(det) + ", not +1 (a reflection)";
+  if (det != 1) return "the determinant is " + decimal_text(det) + ", not +1 (a reflection)";
   return {};
 }
 
@@ -204,6 +235,8 @@ std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, In
                                      (w[2] * T0[r] + 2 * w[1] * T1[r]) / 3, w[2] * T1[r]};
     for (int k = 0; k < 4; ++k) m.control_points[k][4 * r + 3] = wt[k] / weights[k];
   }
+  normalise_weights(m);  // |q|^2 of a quaternion of 1e300 is 1e600
+  m.nlerp = true;
   return m;
 }
 
@@ -224,6 +257,31 @@ void require_interpolable(const Pose& a, const Pose& b, Interpolation how) {
   if (!(d.inf() > 0) && !(d.sup() < 0))
     throw InputError("cannot prove which arc between the two rotations is shorter (they are 180 degrees apart or "
                      "within rounding of it)");
+}
+
+void normalise_weights(Motion& m) {
+  if (m.weights.empty()) return;
+  auto comfortable = [](const Exact& w) {
+    const long e = log2_magnitude(w);
+    return e > -32 && e < 32;  // w in (2^-32, 2^32)
+  };
+  if (std::all_of(m.weights.begin(), m.weights.end(), comfortable)) return;
+  // Coprime integers: times the lcm of the denominators, over the gcd of
+  // the numerators (both positive; the weights are positive).
+  CGAL::Gmpz g(0), l(1);
+  for (const Exact& w : m.weights) {
+    mpz_gcd(g.mpz(), g.mpz(), mpq_numref(w.mpq()));
+    mpz_lcm(l.mpz(), l.mpz(), mpq_denref(w.mpq()));
+  }
+  const Exact factor(l, g);
+  Exact top(0);
+  for (Exact& w : m.weights) {
+    w *= factor;
+    if (w > top) top = w;
+  }
+  if (comfortable(top) || log2_magnitude(top) < 0) return;
+  const Exact shift = power_of_two(-log2_magnitude(top));
+  for (Exact& w : m.weights) w *= shift;
 }
 
 Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
@@ -250,6 +308,7 @@ Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
   Motion out;
   out.t0 = t0;
   out.t1 = t1;
+  out.nlerp = m.nlerp;
   for (const auto& p : c) {
     const Exact& w = p[12];
     Mat34E cp;
@@ -257,6 +316,7 @@ Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
     out.control_points.push_back(cp);
     out.weights.push_back(w);
   }
+  normalise_weights(out);
   return out;
 }
 
@@ -306,10 +366,24 @@ class KeyframeModel final : public SegmentModel {
     RoundingGuard guard;
     // nlerp interpolates the quaternions as written (a matrix's: the
     // rational multiple exact_quaternion gives); slerp and screw the unit ones.
-    auto nlerp_quaternion = [](const Rotation& r) {
-      if (const auto q = exact_quaternion(r))
-        return Quat<Interval>{to_interval((*q)[0]), to_interval((*q)[1]), to_interval((*q)[2]), to_interval((*q)[3])};
-      return unit_quaternion(r);
+    // Both are multiplied by one positive power of two (the same rotations
+    // at the same speed) that brings a quaternion as written into the
+    // double range (1e300 or 1e-400 would overflow or vanish in |q|^2): the
+    // largest factor that keeps the larger end below 2 (an rpy end is a
+    // unit quaternion, factor 1).
+    Exact common(1);
+    if (how == Interpolation::Nlerp)
+      for (const Rotation* r : {&a.rotation, &b.rotation})
+        if (const auto q = exact_quaternion(*r)) common = std::min(common, quaternion_scale(*q));
+    auto nlerp_quaternion = [&common](const Rotation& r) {
+      if (const auto q = exact_quaternion(r)) {
+        Quat<Interval> out;
+        for (int i = 0; i < 4; ++i) out[i] = to_interval((*q)[i] * common);
+        return out;
+      }
+      const Quat<Interval> u = unit_quaternion(r);
+      const Interval f = to_interval(common);
+      return Quat<Interval>{u[0] * f, u[1] * f, u[2] * f, u[3] * f};
     };
     p0_ = how == Interpolation::Nlerp ? nlerp_quaternion(a.rotation) : unit_quaternion(a.rotation);
     p1_ = how == Interpolation::Nlerp ? nlerp_quaternion(b.rotation) : unit_quaternion(b.rotation);
@@ -336,18 +410,35 @@ class KeyframeModel final : public SegmentModel {
     sinc_theta_ = sinc(Jet(theta_)).v;
     if (how_ == Interpolation::Screw) {
       // Relative rotation d = conj(p0) p1 (w >= 0: the shorter arc), its
-      // angle phi and unit axis k; the relative translation in the frame
-      // of the first pose; the screw's pitch part along k and the point c
-      // on its axis: c = (t_perp + cot(phi/2) k x t_perp) / 2.
+      // angle phi; the relative translation td in the frame of the first pose.
       const Quat<Interval> conj0{p0_[0], -p0_[1], -p0_[2], -p0_[3]};
       const Quat<Interval> d = qmul(conj0, p1_);
       const Interval vnorm = isqrt(d[1] * d[1] + d[2] * d[2] + d[3] * d[3]);
       phi_ = Interval(2) * validated::atan2(vnorm, d[0]);
-      for (int i = 0; i < 3; ++i) k_[i] = d[i + 1] / vnorm;
       const std::array<Interval, 9> R0 = rotation_form(p0_);
       for (int i = 0; i < 9; ++i) r0_[i] = R0[i];
       std::array<Interval, 3> td;  // R0^T (t1 - t0)
       for (int i = 0; i < 3; ++i) td[i] = R0[i] * (t1_[0] - t0_[0]) + R0[3 + i] * (t1_[1] - t0_[1]) + R0[6 + i] * (t1_[2] - t0_[2]);
+      if (!(phi_.inf() > 0x1p-10)) {
+        // A small angle, possibly 0 within rounding (rotations equal up to
+        // rounding): the twist (omega, v) = log(T0^-1 T1) in forms regular
+        // at phi = 0 (proofs/enclosures.md section 3): omega = phi k =
+        // 2 (d1, d2, d3) / sinc(phi/2), v = V^-1 td = td - omega x td / 2 +
+        // C(phi) omega x (omega x td); the translation is then
+        // s v + s^2 f2(s phi) omega x v + s^3 f3(s phi) omega x (omega x v).
+        small_screw_ = true;
+        const Interval sinc_half = validated::factorial_series(phi_ / Interval(2), 1)[0];
+        for (int i = 0; i < 3; ++i) omega_[i] = Interval(2) * d[i + 1] / sinc_half;
+        const Interval c = validated::screw_inverse_coefficient(phi_);
+        const std::array<Interval, 3> wt = cross(omega_, td), wwt = cross(omega_, wt);
+        for (int i = 0; i < 3; ++i) v_[i] = td[i] - wt[i] / Interval(2) + c * wwt[i];
+        kc_ = cross(omega_, v_);   // omega x v
+        kkc_ = cross(omega_, kc_);  // omega x (omega x v)
+        return;
+      }
+      // The unit axis k, the screw's pitch part along k and the point c
+      // on its axis: c = (t_perp + cot(phi/2) k x t_perp) / 2.
+      for (int i = 0; i < 3; ++i) k_[i] = d[i + 1] / vnorm;
       along_ = k_[0] * td[0] + k_[1] * td[1] + k_[2] * td[2];
       std::array<Interval, 3> perp;
       for (int i = 0; i < 3; ++i) perp[i] = td[i] - along_ * k_[i];
@@ -363,7 +454,7 @@ class KeyframeModel final : public SegmentModel {
   PoseJet pose(const Jet& s) const override {
     PoseJet out;
     const Jet one(Interval(1));
-    if (how_ == Interpolation::Screw && !constant_) {
+    if (how_ == Interpolation::Screw && !constant_ && !small_screw_) {
       // A(s) = R(p0 (cos(s phi/2), sin(s phi/2) k)); a(s) = t0 + R0 (-sin(s phi) k x c
       //        - (1 - cos(s phi)) k x (k x c) + s along k).
       const Jet half = (phi_ / Interval(2)) * s, full = phi_ * s;
@@ -416,6 +507,16 @@ class KeyframeModel final : public SegmentModel {
       for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
       out[4 * r + 3] = Jet(t0_[r]) + (t1_[r] - t0_[r]) * s;
     }
+    if (small_screw_) {
+      // The rotation is slerp's (above, in its sinc form); the translation
+      // t0 + R0 (s v + s^2 f2(s phi) omega x v + s^3 f3(s phi) omega x (omega x v)).
+      const Jet x = phi_ * s, s2 = s * s, s3 = s2 * s;
+      const Jet a = s2 * factorial_series(x, 2), b = s3 * factorial_series(x, 3);
+      std::array<Jet, 3> local;
+      for (int i = 0; i < 3; ++i) local[i] = v_[i] * s + a * Jet(kc_[i]) + b * Jet(kkc_[i]);
+      for (int r = 0; r < 3; ++r)
+        out[4 * r + 3] = Jet(t0_[r]) + r0_[3 * r] * local[0] + r0_[3 * r + 1] * local[1] + r0_[3 * r + 2] * local[2];
+    }
     return out;
   }
 
@@ -436,9 +537,12 @@ class KeyframeModel final : public SegmentModel {
   Quat<Interval> p0_, p1_;
   std::array<Interval, 3> t0_, t1_;
   Interval theta_, sinc_theta_;
-  // Screw only.
+  // Screw only.  Away from phi = 0: the axis k, the pitch part `along`, k x c
+  // and k x (k x c); near it (small_screw_): omega, v, omega x v and
+  // omega x (omega x v) in kc_ and kkc_.
   Interval phi_, along_;
-  std::array<Interval, 3> k_, kc_, kkc_;
+  bool small_screw_ = false;
+  std::array<Interval, 3> k_, kc_, kkc_, omega_, v_;
   std::array<Interval, 9> r0_;
 };
 

@@ -69,6 +69,21 @@ std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, In
 // degrees apart, or whose shorter arc cannot be proven (rpy).
 void require_interpolable(const Pose& a, const Pose& b, Interpolation how);
 
+// Divides a rational Bezier motion's weights by one positive factor, which
+// leaves the curve unchanged, so that they stay well inside the double
+// range: weights beyond [2^-32, 2^32] (e.g. 1e400 or 1e-400, or |q|^2 of an
+// nlerp quaternion of 1e300) become coprime integers (divided by the gcd of
+// their numerators over the lcm of their denominators), and then, when the
+// largest is still above 2^32, are divided by a power of two that brings it
+// into (1/2, 2).  Weights within that range are left as they are.
+// proofs/input-exactness.md.
+void normalise_weights(Motion& m);
+
+// A positive power of two f with max |q_i| f in (1/2, 2): the quaternion
+// scaled by it has the same rotation and stays inside the double range
+// (q nonzero).
+Exact quaternion_scale(const std::array<Exact, 4>& q);
+
 // The restriction of a rational Bezier motion to [t0, t1] inside its
 // interval, exactly (de Casteljau at rational parameters).
 Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1);

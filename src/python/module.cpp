@@ -12,6 +12,13 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -216,6 +223,124 @@ std::string point_repr(const api::Point& p) {
   return "('" + p[0].text() + "', '" + p[1].text() + "', '" + p[2].text() + "')";
 }
 
+// Runs a long call (verify, batch) on a thread of its own while the
+// calling thread, which holds the GIL between short waits, looks for
+// signals (PyErr_CheckSignals: Ctrl-C raises KeyboardInterrupt there) and
+// calls the Python progress callback with the latest report.  The call's
+// C++ progress hook (hook(), polled by the library every kPoll seconds)
+// cancels the run once a signal handler raised, the callback returned
+// False or raised; the run then ends within about one subdivision node's
+// work, and the signal's exception, the callback's, or Cancelled is raised
+// here: never a result of a cancelled run.
+template <class Report>
+class Interruptible {
+ public:
+  static constexpr double kPoll = 0.05;  // seconds
+
+  Interruptible(py::object callback, double interval) : callback_(std::move(callback)), interval_(interval) {
+    if (!std::isfinite(interval) || !(interval > 0) || interval > 3600)
+      throw api::InputError("progress_interval: must be a number of seconds, > 0 and at most 3600");
+    if (!callback_.is_none() && !PyCallable_Check(callback_.ptr()))
+      throw py::type_error("progress: expected a callable or None");
+  }
+
+  std::function<bool(const Report&)> hook() {
+    return [this](const Report& r) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      latest_ = r;
+      fresh_ = true;
+      return !cancel_;
+    };
+  }
+
+  template <class Work>
+  auto run(Work work) -> decltype(work()) {
+    using Out = decltype(work());
+    std::optional<Out> out;
+    std::exception_ptr error;
+    bool done = false;
+    std::condition_variable finished;
+    std::thread thread([&] {
+      try {
+        out.emplace(work());
+      } catch (...) {
+        error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      done = true;
+      finished.notify_all();
+    });
+    std::optional<py::error_already_set> raised;  // KeyboardInterrupt, or the callback's exception
+    bool refused = false;                          // the callback returned False
+    auto next_call = std::chrono::steady_clock::now() + std::chrono::duration<double>(interval_);
+    for (;;) {
+      bool over;
+      {
+        py::gil_scoped_release unlocked;
+        std::unique_lock<std::mutex> lock(mutex_);
+        over = finished.wait_for(lock, std::chrono::duration<double>(kPoll), [&] { return done; });
+      }
+      if (over || raised || refused) break;
+      if (PyErr_CheckSignals() != 0) {
+        raised.emplace();  // fetches the pending exception
+        cancel();
+        continue;
+      }
+      if (!callback_.is_none() && std::chrono::steady_clock::now() >= next_call) {
+        next_call += std::chrono::duration<double>(interval_);
+        if (!call_back()) refused = true;
+        if (refused) cancel();
+        raised = std::move(pending_);
+        if (raised) cancel();
+      }
+    }
+    {
+      py::gil_scoped_release unlocked;
+      thread.join();
+    }
+    if (raised) throw std::move(*raised);
+    if (refused) throw api::Cancelled("cancelled: the progress callback returned False");
+    if (error) std::rethrow_exception(error);
+    if (!callback_.is_none()) {  // the last report (fraction 1)
+      call_back();
+      if (pending_) throw std::move(*pending_);
+    }
+    return std::move(*out);
+  }
+
+ private:
+  void cancel() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancel_ = true;
+  }
+  // Calls the callback with the latest report (when there is a new one);
+  // false when it returned False; an exception it raised goes to pending_.
+  bool call_back() {
+    std::optional<Report> report;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (fresh_) report = latest_;
+      fresh_ = false;
+    }
+    if (!report) return true;
+    try {
+      const py::object answer = callback_(*report);
+      return !(answer.ptr() == Py_False);
+    } catch (py::error_already_set& e) {
+      pending_.emplace(std::move(e));
+      return true;
+    }
+  }
+
+  py::object callback_;
+  double interval_;
+  std::mutex mutex_;
+  Report latest_{};
+  bool fresh_ = false;
+  bool cancel_ = false;
+  std::optional<py::error_already_set> pending_;
+};
+
 }  // namespace
 
 PYBIND11_MODULE(_tmcert, m) {
@@ -228,6 +353,7 @@ PYBIND11_MODULE(_tmcert, m) {
   // them after "tmcert: ").  InputError is a ValueError.
   py::register_exception<api::InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<api::ResourceLimit>(m, "ResourceLimit", PyExc_RuntimeError);
+  py::register_exception<api::Cancelled>(m, "Cancelled", PyExc_RuntimeError);
 
   // ------------------------------------------------------------ motions
   py::class_<api::Rotation>(m, "Rotation", "A rotation of a rigid pose (identity, quaternion, rpy or matrix).")
@@ -352,6 +478,10 @@ PYBIND11_MODULE(_tmcert, m) {
           "everything the two bodies sweep (six significant digits), a Fraction.")
       .def_property_readonly("max_depth", &api::Scene::max_depth)
       .def_property_readonly("source", &api::Scene::source)
+      .def_property_readonly("notes", &api::Scene::notes,
+                             "What the reader did to data from real pipelines (fan splits, zero-area faces).")
+      .def_property_readonly("warnings", &api::Scene::warnings,
+                             "Input read in a way that may not be meant (an rpy angle above 2 pi as radians).")
       .def("__len__", &api::Scene::body_count)
       .def("__repr__", [](const api::Scene& s) {
         return "<tmcert.Scene " + s.source() + ": " + std::to_string(s.body_count()) + " bodies, " +
@@ -377,8 +507,8 @@ PYBIND11_MODULE(_tmcert, m) {
              return b.triangles(doubles(xyz), std::span(indices.data(), indices.size()));
            }, self)
       .def("triangles_exact",
-           [](BB& b, const std::vector<api::Point>& vertices, const Sizes& indices) -> BB& {
-             return b.triangles(std::span(vertices), std::span(indices.data(), indices.size()));
+           [](BB& b, const std::vector<api::Point>& vertices, const std::vector<std::size_t>& indices) -> BB& {
+             return b.triangles(std::span(vertices), std::span(indices));
            }, self)
       .def("segments_xyz", [](BB& b, const Flat& xyz) -> BB& { return b.segments(doubles(xyz)); }, self)
       .def("segment", &BB::segment, self)
@@ -417,6 +547,7 @@ PYBIND11_MODULE(_tmcert, m) {
   py::class_<api::Rational>(m, "_Rational")
       .def_readonly("text", &api::Rational::text)
       .def_readonly("approx", &api::Rational::approx)
+      .def_readonly("approx_text", &api::Rational::approx_text)
       .def("fraction", &to_fraction);
   py::class_<api::AlgebraicNumber>(m, "_AlgebraicNumber")
       .def_readonly("root_of", &api::AlgebraicNumber::root_of)
@@ -470,15 +601,41 @@ PYBIND11_MODULE(_tmcert, m) {
       .def("summary", &api::Result::summary)
       .def("certificate", &api::Result::certificate)
       .def("write_certificate", &api::Result::write_certificate, py::arg("path"),
-           py::call_guard<py::gil_scoped_release>());
+           py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("notes", &api::Result::notes)
+      .def_property_readonly("warnings", &api::Result::warnings)
+      .def("report_html", &api::Result::report_html, py::call_guard<py::gil_scoped_release>())
+      .def("write_report", &api::Result::write_report, py::arg("path"), py::call_guard<py::gil_scoped_release>());
 
-  // verify() and the certificate checker run without the GIL: other Python
-  // threads go on meanwhile (and several verify() calls run in parallel).
+  py::class_<api::Progress>(m, "_Progress")
+      .def_readonly("fraction", &api::Progress::fraction)
+      .def_readonly("checks_done", &api::Progress::checks_done)
+      .def_readonly("checks", &api::Progress::checks)
+      .def_readonly("activity", &api::Progress::activity)
+      .def_readonly("seconds", &api::Progress::seconds);
+  py::class_<api::BatchProgress>(m, "_BatchProgress")
+      .def_readonly("requests_read", &api::BatchProgress::requests_read)
+      .def_readonly("requests_written", &api::BatchProgress::requests_written)
+      .def_readonly("activity", &api::BatchProgress::activity)
+      .def_readonly("seconds", &api::BatchProgress::seconds);
+  py::class_<api::BatchSummary>(m, "_BatchSummary")
+      .def_readonly("requests", &api::BatchSummary::requests)
+      .def_readonly("safe", &api::BatchSummary::safe)
+      .def_readonly("collision", &api::BatchSummary::collision)
+      .def_readonly("undecided", &api::BatchSummary::undecided)
+      .def_readonly("errors", &api::BatchSummary::errors)
+      .def_readonly("exit_code", &api::BatchSummary::exit_code);
+
+  // verify() and batch() run without the GIL, on a thread of their own,
+  // while the calling thread polls for signals (Ctrl-C: KeyboardInterrupt
+  // cancels the run within about a tenth of a second plus one subdivision
+  // node's work) and calls the progress callback; other Python threads go
+  // on meanwhile (and several verify() calls run in parallel).
   m.def(
       "verify",
       [](const api::Scene& scene, const std::string& kernel_name, std::optional<api::Number> epsilon,
          std::optional<int> max_depth, int threads, std::optional<double> time_limit, bool all_pairs,
-         bool certificate) {
+         bool certificate, py::object progress, double progress_interval) {
         api::VerifyOptions options;
         options.kernel = kernel(kernel_name);
         options.epsilon = std::move(epsilon);
@@ -487,11 +644,41 @@ PYBIND11_MODULE(_tmcert, m) {
         options.time_limit = time_limit;
         options.all_pairs = all_pairs;
         options.certificate = certificate;
-        py::gil_scoped_release unlocked;
-        return api::verify(scene, options);
+        Interruptible<api::Progress> run(std::move(progress), progress_interval);
+        options.progress = run.hook();
+        options.progress_interval = Interruptible<api::Progress>::kPoll;
+        return run.run([&] { return api::verify(scene, options); });
       },
       py::arg("scene"), py::arg("kernel"), py::arg("epsilon"), py::arg("max_depth"), py::arg("threads"),
-      py::arg("time_limit"), py::arg("all_pairs"), py::arg("certificate"));
+      py::arg("time_limit"), py::arg("all_pairs"), py::arg("certificate"), py::arg("progress") = py::none(),
+      py::arg("progress_interval") = 0.5);
+
+  m.def(
+      "batch",
+      [](const std::string& requests, const std::string& scene, const std::string& output, const std::string& shard,
+         const std::string& kernel_name, std::optional<api::Number> epsilon, std::optional<int> max_depth,
+         std::optional<double> time_limit, int threads, bool stats, py::object progress, double progress_interval) {
+        api::BatchOptions options;
+        options.requests = requests;
+        options.scene = scene;
+        options.output = output;
+        options.shard = shard;
+        options.kernel = kernel(kernel_name);
+        options.epsilon = std::move(epsilon);
+        options.max_depth = max_depth;
+        options.time_limit = time_limit;
+        options.threads = threads;
+        options.stats = stats;
+        Interruptible<api::BatchProgress> run(std::move(progress), progress_interval);
+        options.progress = run.hook();
+        options.progress_interval = Interruptible<api::BatchProgress>::kPoll;
+        return run.run([&] { return api::batch(options); });
+      },
+      py::arg("requests"), py::arg("scene"), py::arg("output"), py::arg("shard"), py::arg("kernel"),
+      py::arg("epsilon"), py::arg("max_depth"), py::arg("time_limit"), py::arg("threads"), py::arg("stats"),
+      py::arg("progress") = py::none(), py::arg("progress_interval") = 0.5);
+  m.def("batch_merge", &api::batch_merge, py::arg("shards"), py::arg("output"),
+        py::call_guard<py::gil_scoped_release>());
 
   py::class_<api::CertificateCheck>(m, "_CertificateCheck")
       .def_readonly("ok", &api::CertificateCheck::ok)

@@ -1,5 +1,7 @@
 #include "src/robot/robot.h"
 
+#include "kernels/decimal.h"
+
 #include "src/scene/parse.h"
 
 #include <algorithm>
@@ -72,7 +74,7 @@ int driver(const RobotModel& model, int j) {
 
 std::string mimic_text(const RobotModel& model, const RobotJoint& joint) {
   const RobotJoint::Mimic& m = *joint.mimic;
-  return "mimic of " + quoted(model.joints[m.joint].name) + ": " + to_string(m.multiplier) + " q + " + to_string(m.offset);
+  return "mimic of " + quoted(model.joints[m.joint].name) + ": " + decimal_text(m.multiplier) + " q + " + decimal_text(m.offset);
 }
 
 }  // namespace
@@ -136,8 +138,8 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
       if (joint.type != RobotJoint::Type::Revolute && joint.type != RobotJoint::Type::Prismatic) continue;
       if (row[c] < *joint.lower || row[c] > *joint.upper)
         throw JointPathError("positions", {k, c}, "waypoint " + std::to_string(k) + ": joint " + quoted(joint.name) + " at " +
-                                                      to_string(row[c]) + " is outside its limits [" + to_string(*joint.lower) +
-                                                      ", " + to_string(*joint.upper) + "]");
+                                                      decimal_text(row[c]) + " is outside its limits [" +
+                                                      decimal_text(*joint.lower) + ", " + decimal_text(*joint.upper) + "]");
     }
     // Mimic joints: their values at the waypoint, within their limits.
     const std::vector<Exact> all = joint_values(model, index, row);
@@ -148,9 +150,9 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
       const int d = driver(model, static_cast<int>(j));
       const std::size_t c = static_cast<std::size_t>(std::find(index.begin(), index.end(), d) - index.begin());
       throw JointPathError("positions", {k, c}, "waypoint " + std::to_string(k) + ": joint " + quoted(joint.name) + " (" +
-                                                    mimic_text(model, joint) + ") at " + to_string(all[j]) +
-                                                    " is outside its limits [" + to_string(*joint.lower) + ", " +
-                                                    to_string(*joint.upper) + "]");
+                                                    mimic_text(model, joint) + ") at " + decimal_text(all[j]) +
+                                                    " is outside its limits [" + decimal_text(*joint.lower) + ", " +
+                                                    decimal_text(*joint.upper) + "]");
     }
   }
 }

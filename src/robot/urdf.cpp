@@ -5,6 +5,7 @@
 // doubles.
 #include "src/robot/robot.h"
 
+#include "kernels/decimal.h"
 #include "src/metric/metric.h"
 #include "src/motion/segment.h"
 #include "src/robot/primitives.h"
@@ -61,6 +62,16 @@ class UrdfReader {
       : source_(std::move(source)), directory_(std::move(directory)), options_(std::move(options)) {}
 
   std::shared_ptr<const RobotModel> read(const std::string& text) {
+    // xacro (URDF with macros: a .xacro file, or xacro: elements) is
+    // expanded by the xacro tool, not here.
+    if (is_xacro(text)) {
+      // robot.urdf.xacro and robot.xacro become robot.urdf; another name
+      // gets a new one beside it.
+      std::string output = std::filesystem::path(source_).replace_extension().string();
+      if (source_.ends_with(".urdf.xacro")) output = std::filesystem::path(output).replace_extension().string();
+      output += source_.ends_with(".xacro") ? ".urdf" : "-expanded.urdf";
+      fail("this is xacro (URDF macros), not plain URDF: run xacro first: xacro " + source_ + " > " + output);
+    }
     TiXmlDocument doc;
     doc.Parse(text.c_str());
     if (doc.Error())
@@ -129,6 +140,12 @@ class UrdfReader {
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(source_ + ": " + what); }
+
+  bool is_xacro(const std::string& text) const {
+    // xacro's output keeps the xmlns:xacro declaration (published robots
+    // do): only a .xacro name or a xacro element says the macros are left.
+    return source_.ends_with(".xacro") || text.find("<xacro:") != std::string::npos;
+  }
 
   static std::optional<std::string> attribute(const TiXmlElement* e, const char* name) {
     const char* v = e->Attribute(name);
@@ -244,7 +261,7 @@ class UrdfReader {
       if (!limit) fail(where + ": missing <limit>");
       j.lower = number(limit, "lower", where + ": limit", Exact(0));
       j.upper = number(limit, "upper", where + ": limit", Exact(0));
-      if (*j.lower > *j.upper) fail(where + ": limit lower " + to_string(*j.lower) + " is above upper " + to_string(*j.upper));
+      if (*j.lower > *j.upper) fail(where + ": limit lower " + decimal_text(*j.lower) + " is above upper " + decimal_text(*j.upper));
     }
     return j;
   }

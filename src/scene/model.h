@@ -45,6 +45,11 @@ struct Motion {
   Exact t0 = 0, t1 = 1;                 // t0 < t1
   std::vector<Mat34E> control_points;   // affine control points [A | a], >= 1
   std::vector<Exact> weights;           // > 0, same count
+  // The exact curve of an nlerp keyframe segment (src/motion/segment.h):
+  // its control points carry the scale of the unnormalised quaternions and
+  // can lie far from its poses, so sizes (the default epsilon) are taken
+  // from poses along it, never from them.
+  bool nlerp = false;
   int degree() const { return static_cast<int>(control_points.size()) - 1; }
 };
 

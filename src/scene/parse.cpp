@@ -10,6 +10,8 @@
 // every face goes through the same polygon checks.
 #include "src/scene/parse.h"
 
+#include "kernels/decimal.h"
+
 #include "src/motion/segment.h"
 
 #include "src/metric/metric.h"
@@ -25,6 +27,8 @@
 #include <CGAL/Triangulation_data_structure_2.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -33,6 +37,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <climits>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -832,8 +838,69 @@ class SceneReader {
       scene.checks = explicit_checks(*checks, document.member("checks"), names, scene.check_clearance);
     else
       scene.checks = default_checks_with_robots(scene, plain_bodies, placed);
-    scene.notes.insert(scene.notes.end(), notes_.begin(), notes_.end());
+    scene.notes = std::move(notes_);
+    scene.warnings = std::move(warnings_);
     return scene;
+  }
+
+  // A rational above 2 pi (2 pi < 6.283185307179587): an rpy angle beyond
+  // it is most likely in degrees.
+  static const Exact& two_pi_above() {
+    static const Exact bound = [] {
+      Exact e;
+      parse_exact("6.283185307179587", e);
+      return e;
+    }();
+    return bound;
+  }
+
+  std::string rpy_warning(const Path& path, const Exact& angle) const {
+    const double degrees = CGAL::to_double(angle);
+    char radians[64];
+    const auto r = std::to_chars(radians, radians + sizeof radians, degrees * 3.141592653589793 / 180);
+    return located(source_, path.str(), "the angle " + to_decimal(angle).text + " is more than 2 pi: it is read as " +
+                                            "radians; if it is in degrees, write " + std::string(radians, r.ptr) +
+                                            " (its radians) instead");
+  }
+
+  // "; the nearest rotation is the unit quaternion ...: write ... instead"
+  // with its components as decimals, which the reader takes exactly (a
+  // quaternion of any norm is a rotation): the rotation factor of the
+  // matrix's polar decomposition, in double precision.  When the matrix is
+  // not a rotation up to float noise (singular values off 1 by more than
+  // 1e-3: a scaling, a shear), the hint says so.  Empty when no rotation
+  // is near (a polar factor with determinant -1: a reflection) or the
+  // matrix is beyond the doubles.
+  static std::string nearest_quaternion_hint(const std::array<Exact, 9>& m) {
+    Eigen::Matrix3d a;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        a(r, c) = CGAL::to_double(m[3 * r + c]);
+        if (!std::isfinite(a(r, c))) return {};
+      }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Vector3d sigma = svd.singularValues();
+    const Eigen::Matrix3d nearest = svd.matrixU() * svd.matrixV().transpose();
+    if (!(nearest.determinant() > 0)) return {};
+    Eigen::Quaterniond q(nearest);
+    q.normalize();
+    if (q.w() < 0) q.coeffs() = -q.coeffs();
+    std::string list;
+    for (const double x : {q.w(), q.x(), q.y(), q.z()}) {
+      char buffer[64];
+      const auto r = std::to_chars(buffer, buffer + sizeof buffer, x == 0 ? 0.0 : x);
+      list += (list.empty() ? "" : ", ") + std::string(buffer, r.ptr);
+    }
+    std::string far;
+    if ((sigma.array() - 1).abs().maxCoeff() > 1e-3) {
+      std::ostringstream values;
+      values.precision(6);
+      values << sigma(0) << ", " << sigma(1) << ", " << sigma(2);
+      far = " (but the matrix is not a rotation up to rounding: it scales by " + values.str() + ")";
+    }
+    return "; the nearest rotation is the unit quaternion [w, x, y, z] = [" + list + "]" + far + ": write " +
+           "\"rotation\": {\"quaternion\": [" + list + "]} instead (its decimals are read exactly; a quaternion " +
+           "of any norm is a rotation)";
   }
 
   // "package_paths": folders relative to the scene file, searched for
@@ -1117,7 +1184,31 @@ class SceneReader {
     }
     if (const Node* m = find(obj, "motion")) motion(b, *m, path.member("motion"));
     if (const Node* t = find(obj, "tolerance")) b.tolerance = non_negative(*t, path.member("tolerance"));
+    if (!b.mass_is_default) normalise_mass_scale(b);
     return b;
+  }
+
+  // Mass weights far outside the double range (1e400, 1e-400) would
+  // overflow or vanish in every enclosure of the body's metric.  The
+  // metric's norm scales with the square root of the weights, so weights
+  // multiplied by 100^-m and the tolerance (a length in that metric) by
+  // 10^-m give the same set of admissible motions, the same distances and
+  // the same verdicts, exactly (proofs/input-exactness.md); a clearance is
+  // turned into the metric from the weights as they are then.  Weights
+  // whose largest is within (2^-32, 2^32) stay as written.
+  static void normalise_mass_scale(Body& b) {
+    long top = LONG_MIN;
+    for (const Exact& w : b.mass.weights)
+      top = std::max(top, static_cast<long>(mpz_sizeinbase(mpq_numref(w.mpq()), 2)) -
+                              static_cast<long>(mpz_sizeinbase(mpq_denref(w.mpq()), 2)));
+    if (top == LONG_MIN || (top > -32 && top < 32)) return;
+    const long m = std::lround(static_cast<double>(top) * 0.30102999566398120 / 2);  // 100^m ~ 2^top
+    CGAL::Gmpz ten;
+    mpz_ui_pow_ui(ten.mpz(), 10, static_cast<unsigned long>(m < 0 ? -m : m));
+    const Exact length = m > 0 ? Exact(CGAL::Gmpz(1), ten) : Exact(ten);  // 10^-m
+    const Exact weight = length * length;                                 // 100^-m
+    for (Exact& w : b.mass.weights) w *= weight;
+    b.tolerance *= length;
   }
 
   Exact non_negative(const Node& node, const Path& path) const {
@@ -1163,18 +1254,111 @@ class SceneReader {
       notes_.push_back(source_ + ": " + path.str() + ": mesh " + file + " (" + data.format +
                        ") is read from its single-precision floats: its coordinates are their exact values");
     std::vector<Vec3E> vertices;
+    MeshFaceCounts counts;
     for (std::size_t f = 0; f < data.faces.size(); ++f) {
       const std::vector<std::size_t>& face = data.faces[f];
       vertices.clear();
       for (std::size_t index : face) vertices.push_back(data.vertices[index]);
       try {
-        auto [clean, pieces] = split_polygon(vertices, static_cast<int>(b.polygons.size()));
-        b.polygons.push_back(std::move(clean));
-        for (ConvexPiece& piece : pieces) b.pieces.push_back(std::move(piece));
+        add_mesh_face(b, vertices, f, counts);
       } catch (const InputError& e) {
         fail(path, file + ": face " + std::to_string(f) + ": " + e.what());
       }
     }
+    const std::string where = located(source_, path.str(), file + ": ");
+    if (counts.fans > 0)
+      notes_.push_back(where + count_text(counts.fans, "face is", "faces are") + " not exactly planar (" +
+                       faces_text(counts.fan_faces, counts.fans) + "): each is split into the triangles of a fan from its " +
+                       "first vertex, " + count_text(counts.fan_triangles, "triangle", "triangles") + " in all" +
+                       (counts.fan_degenerate > 0 ? " (" + std::to_string(counts.fan_degenerate) + " of zero area, read as segments)" : "") +
+                       "; the body is these triangles");
+    if (counts.degenerate > 0)
+      notes_.push_back(where + count_text(counts.degenerate, "face has", "faces have") + " zero area (" +
+                       faces_text(counts.degenerate_faces, counts.degenerate) + "): " +
+                       (counts.degenerate == 1 ? "it is" : "each is") + " read as the segment (or point) it covers");
+  }
+
+  // What add_mesh_face did beyond plain polygons, for the body's notes.
+  struct MeshFaceCounts {
+    std::size_t fans = 0, fan_triangles = 0, fan_degenerate = 0, degenerate = 0;
+    std::vector<std::size_t> fan_faces, degenerate_faces;  // the first few face numbers
+  };
+  static constexpr std::size_t kFacesNamed = 5;
+
+  static std::string count_text(std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  }
+  static std::string faces_text(const std::vector<std::size_t>& faces, std::size_t total) {
+    std::string out = total == 1 ? "face " : "faces ";
+    for (std::size_t k = 0; k < faces.size(); ++k) out += (k ? ", " : "") + std::to_string(faces[k]);
+    if (total > faces.size()) out += ", ...";
+    return out;
+  }
+
+  // A face of a mesh file (docs/scene-format.md, "Data from real
+  // pipelines"; proofs/mesh-faces.md):
+  //  * all vertices collinear (zero area; a triangle with a repeated
+  //    vertex too): the segment between its two extreme vertices, which is
+  //    exactly the face's point set (a point when all are equal);
+  //  * not exactly planar: the triangles (v0, v_k, v_k+1) of the fan from
+  //    its first vertex, each as a polygon (or, when of zero area, as its
+  //    segment); the fan's boundary is the face's boundary loop;
+  //  * otherwise the polygon checks of inline polygons (split_polygon).
+  void add_mesh_face(Body& b, const std::vector<Vec3E>& v, std::size_t face, MeshFaceCounts& counts) const {
+    const std::size_t n = v.size();
+    std::size_t i = 1;
+    while (i < n && v[i] == v[0]) ++i;
+    Vec3E normal{0, 0, 0};
+    if (i < n) {
+      const Vec3E d = sub(v[i], v[0]);
+      for (std::size_t j = i + 1; j < n && is_zero(normal); ++j) normal = cross(d, sub(v[j], v[0]));
+    }
+    if (is_zero(normal)) {  // collinear (or a single point)
+      add_degenerate(b, v);
+      if (counts.degenerate++ < kFacesNamed) counts.degenerate_faces.push_back(face);
+      return;
+    }
+    bool planar = true;
+    for (std::size_t k = 1; k < n && planar; ++k) planar = dot(normal, sub(v[k], v[0])) == 0;
+    if (planar) {
+      auto [clean, pieces] = split_polygon(v, static_cast<int>(b.polygons.size()));
+      b.polygons.push_back(std::move(clean));
+      for (ConvexPiece& piece : pieces) b.pieces.push_back(std::move(piece));
+      return;
+    }
+    if (counts.fans++ < kFacesNamed) counts.fan_faces.push_back(face);
+    for (std::size_t k = 1; k + 1 < n; ++k) {
+      const std::vector<Vec3E> triangle = {v[0], v[k], v[k + 1]};
+      ++counts.fan_triangles;
+      if (is_zero(cross(sub(v[k], v[0]), sub(v[k + 1], v[0])))) {
+        add_degenerate(b, triangle);
+        ++counts.fan_degenerate;
+        continue;
+      }
+      auto [clean, pieces] = split_polygon(triangle, static_cast<int>(b.polygons.size()));
+      b.polygons.push_back(std::move(clean));
+      for (ConvexPiece& piece : pieces) b.pieces.push_back(std::move(piece));
+    }
+  }
+
+  // Collinear points: the segment between the two extreme ones along their
+  // line (their convex hull, exactly), or the point when all are equal.
+  static void add_degenerate(Body& b, const std::vector<Vec3E>& v) {
+    std::size_t i = 1;
+    while (i < v.size() && v[i] == v[0]) ++i;
+    if (i == v.size()) {
+      b.points.push_back(v[0]);
+      return;
+    }
+    const Vec3E d = sub(v[i], v[0]);
+    std::size_t lo = 0, hi = 0;
+    Exact s_lo = 0, s_hi = 0;
+    for (std::size_t k = 1; k < v.size(); ++k) {
+      const Exact s = dot(d, sub(v[k], v[0]));
+      if (s < s_lo) s_lo = s, lo = k;
+      if (s > s_hi) s_hi = s, hi = k;
+    }
+    b.segments.push_back({v[lo], v[hi]});
   }
 
   void require_closed(const Body& b, const Path& path) const {
@@ -1298,6 +1482,8 @@ class SceneReader {
           p.rotation.rpy[i] = number(items[i], epath.index(i));
           // Far beyond any angle: the enclosures of sin and cos would be [-1, 1].
           if (CGAL::abs(p.rotation.rpy[i]) > 1000000) fail(epath.index(i), "angle out of range (at most 10^6 radians)");
+          // Above 2 pi: likely degrees.  Read as radians, as documented, and said.
+          if (CGAL::abs(p.rotation.rpy[i]) > two_pi_above()) warnings_.push_back(rpy_warning(epath.index(i), p.rotation.rpy[i]));
         }
       } else {
         const Path mpath = rpath.member("matrix");
@@ -1311,7 +1497,7 @@ class SceneReader {
           for (std::size_t c = 0; c < 3; ++c) p.rotation.matrix[3 * r + c] = number(row[c], row_path.index(c));
         }
         if (const std::string problem = rotation_matrix_problem(p.rotation.matrix); !problem.empty())
-          fail(mpath, "not a rotation: " + problem);
+          fail(mpath, "not a rotation: " + problem + nearest_quaternion_hint(p.rotation.matrix));
       }
     }
     return p;
@@ -1439,6 +1625,7 @@ class SceneReader {
       m.weights = positive_weights(*weights, path.member("weights"), list.size(), "control point");
     else
       m.weights.assign(list.size(), Exact(1));
+    normalise_weights(m);  // the same curve; weights of 1e400 would overflow every enclosure
     return m;
   }
 
@@ -1702,9 +1889,11 @@ class SceneReader {
   ReadOptions options_;
   std::vector<std::string> scene_packages_;        // "package_paths", resolved
   mutable std::map<int, std::vector<int>> link_parts_;  // a link's first body -> all its bodies
-  mutable std::vector<std::string> notes_;          // Scene::notes
+  mutable std::vector<std::string> notes_, warnings_;  // Scene::notes, Scene::warnings
 
  public:
+  std::vector<std::string> take_notes() { return std::move(notes_); }
+  std::vector<std::string> take_warnings() { return std::move(warnings_); }
   // Where read() puts the scene's robots (none: nowhere).
   std::vector<SceneRobot>* robots_out_ = nullptr;
 };
@@ -1769,7 +1958,10 @@ Scene parse_scene_text(const std::string& text, const std::string& source, const
 void parse_request_line(const std::string& text, const std::string& source, const std::string& base,
                         RequestLine& out) {
   const Tree tree = parse_json(text, source);
-  SceneReader(source, base, tree).read_request(out);
+  SceneReader reader(source, base, tree);
+  reader.read_request(out);
+  out.notes = reader.take_notes();
+  out.warnings = reader.take_warnings();
 }
 
 namespace {

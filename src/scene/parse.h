@@ -78,6 +78,10 @@ struct RequestLine {
   std::optional<Trajectory> trajectory;
   std::vector<std::string> checks;  // bodies to check against; empty: every other body
   std::optional<Exact> clearance;
+  // As Scene::notes and Scene::warnings, for what the line itself gives
+  // (an inline body's mesh, a motion's rpy angles).
+  std::vector<std::string> notes;
+  std::vector<std::string> warnings;
 };
 
 // Reads a request line into `out` (its id first: a request rejected later

@@ -225,8 +225,13 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
       detail::merge_result(result, part);
       break;
     }
-    if (two) run_part<2>(m, o, false, pm, po, t0, t1, options, tube, e2, part);
-    else run_part<1>(m, o, swapped, pm, po, t0, t1, options, tube, e1, part);
+    // The part's share of the check's progress (src/verify/progress.h).
+    VerifyOptions part_options = options;
+    if (options.slot)
+      part_options.slot_span = static_cast<std::uint64_t>(static_cast<double>(options.slot_span) *
+                                                          CGAL::to_double((t1 - t0) / (interval.second - interval.first)));
+    if (two) run_part<2>(m, o, false, pm, po, t0, t1, part_options, tube, e2, part);
+    else run_part<1>(m, o, swapped, pm, po, t0, t1, part_options, tube, e1, part);
     if (options.record_cover)  // the part's pieces as scene intervals, for certificates
       for (CoverPiece& c : part.cleared)
         if (!c.timed) {

@@ -311,15 +311,24 @@ struct EnclosedPolicy {
     Exact u0, u1;
     HomogeneousCurve<Interval, B> controls;
     double tube = 0;
+    double remainder = 0;  // the Taylor remainders' part of the tube (no tolerance)
   };
-  using Ball = typename FilteredPolicy<B>::Ball;
+  // The filtered kernel's ball, whose stop radius also holds the Taylor
+  // remainder: a piece whose motion is known only to within more than
+  // epsilon (an enclosure blown up near a near-singular pose) is
+  // subdivided further (or stops at the depth limit), never reported as
+  // the bodies coming within epsilon.  Tolerances are not part of it.
+  struct Ball : FilteredPolicy<B>::Ball {
+    double remainder = 0;
+    double r2() const { return widen_r2(this->ball.r2, remainder); }
+  };
   using SphereFT = Interval;
   FilteredPolicy<B> base;
   const EnclosedSource<B>& source;
 
   Piece enclose_on(const Exact& u0, const Exact& u1) const {
-    Piece p{u0, u1, HomogeneousCurve<Interval, B>(2), 0};
-    Interval tube2(0);
+    Piece p{u0, u1, HomogeneousCurve<Interval, B>(2), 0, 0};
+    Interval tube2(0), remainder2(0);
     bool valid = true;
     for (int b = 0; b < B; ++b) {
       const PieceEnclosure e =
@@ -331,11 +340,13 @@ struct EnclosedPolicy {
       }
       RoundingGuard guard;
       tube2 += CGAL::square(Interval(e.tube) + Interval(source.tube[b]));
+      remainder2 += CGAL::square(Interval(e.tube));
     }
     {
       // The product metric: |(d1, d2)| = sqrt(|d1|^2 + |d2|^2).
       RoundingGuard guard;
       p.tube = valid ? CGAL::sqrt(tube2).sup() : std::numeric_limits<double>::infinity();
+      p.remainder = valid ? CGAL::sqrt(remainder2).sup() : std::numeric_limits<double>::infinity();
     }
     if (!std::isfinite(p.tube)) p.tube = std::numeric_limits<double>::infinity();
     return p;
@@ -347,12 +358,14 @@ struct EnclosedPolicy {
     r = enclose_on(mid, p.u1);
   }
   Ball ball(const Piece& p) const {
+    Ball b{};
     if (!std::isfinite(p.tube)) {
-      Ball b{};
       b.ball.valid = false;
       return b;
     }
-    return base.ball_of(p.controls, p.tube);
+    static_cast<typename FilteredPolicy<B>::Ball&>(b) = base.ball_of(p.controls, p.tube);
+    b.remainder = p.remainder;
+    return b;
   }
   SphereFrame<Interval> frame(const Ball& b) const { return base.frame(b); }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats, bool axis = false) const {

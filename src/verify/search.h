@@ -606,10 +606,18 @@ struct Check {
 
   // A piece cleared entirely (options.record_cover), for certificates.
   void cleared(const Node& n) {
+    piece_done(n);
     if (options.record_cover) result.cleared.push_back({n.index, n.depth});
   }
 
+  // A piece is finished (cleared or recorded): its share of the check's
+  // progress (src/verify/progress.h).
+  void piece_done(const Node& n) {
+    if (options.slot && n.depth < 64) options.slot->add(options.slot_span >> n.depth);
+  }
+
   void record(const Node& n, StopReason reason) {
+    piece_done(n);
     const Exact t0 = scene_t(n.u0()), t1 = scene_t(n.u1());
     if (!result.undecided.empty() && result.undecided.back().t1 == t0 && result.undecided.back().reason == reason)
       result.undecided.back().t1 = t1;
@@ -708,6 +716,7 @@ struct Check {
     }
     typename Policy::Ball& ball = get_ball();
     if (!ball.valid()) {  // an unbounded ball clears nothing; the hull test needs none
+      if (expand_all && options.hierarchy) expand_untested(alive, born);
       if (!hull_first)
         std::erase_if(alive, [&](const PairRef& p) { return !p.nodes && hull_clears(policy, controls, p, stats); });
       return;
@@ -827,6 +836,55 @@ struct Check {
       // Children pushed right first: the left one is tested first.
       const bool split_a = leaf_b || (!leaf_a && size_a >= size_b);
       if (split_a) {
+        const auto [left, right] = X.tree.children(p.i);
+        work.push_back(node_pair(right, p.j));
+        work.push_back(node_pair(left, p.j));
+      } else {
+        const auto [left, right] = Y.tree.children(p.j);
+        work.push_back(node_pair(p.i, right));
+        work.push_back(node_pair(p.i, left));
+      }
+    }
+  }
+
+  // A stop on a piece whose ball is not finite (an enclosure that
+  // overflowed or divided by a weight enclosed with 0, e.g. weights 1 and
+  // 1e400): every node pair becomes its feature pairs, untested (nothing
+  // can be cleared on that ball), so that the exact decision of a rational
+  // motion, which takes feature pairs only, can decide the piece.  Only up
+  // to kUntestedPairs feature pairs in all; beyond, the node pairs stay
+  // (and the piece stays undecided).
+  static constexpr std::uint64_t kUntestedPairs = 4096;
+  void expand_untested(std::vector<PairRef>& alive, std::uint8_t born) const {
+    const CellTree& X = moving.cells;
+    const CellTree& Y = other.cells;
+    std::uint64_t total = 0;
+    for (const PairRef& p : alive) total += p.nodes ? CellTree::pairs_below(X, p.i, Y, p.j) : 1;
+    if (total > kUntestedPairs) return;
+    std::vector<PairRef> work(alive.rbegin(), alive.rend());  // a stack that pops in list order
+    alive.clear();
+    while (!work.empty()) {
+      const PairRef p = work.back();
+      work.pop_back();
+      if (!p.nodes) {
+        alive.push_back(p);
+        continue;
+      }
+      const bool leaf_a = X.tree.leaf(p.i), leaf_b = Y.tree.leaf(p.j);
+      if (leaf_a && leaf_b) {  // the feature pairs of two cells, in prune's order
+        const std::int32_t face_a = X.face[p.i], face_b = Y.face[p.j];
+        if (face_b >= 0)
+          for (std::uint32_t k = X.vertex_begin[p.i]; k < X.vertex_begin[p.i + 1]; ++k)
+            alive.push_back(feature_pair(ContactKind::VertexFace, X.vertices[k], static_cast<std::uint32_t>(face_b), born));
+        for (std::uint32_t k = X.edge_begin[p.i]; k < X.edge_begin[p.i + 1]; ++k)
+          for (std::uint32_t l = Y.edge_begin[p.j]; l < Y.edge_begin[p.j + 1]; ++l)
+            alive.push_back(feature_pair(ContactKind::EdgeEdge, X.edges[k], Y.edges[l], born));
+        if (face_a >= 0)
+          for (std::uint32_t l = Y.vertex_begin[p.j]; l < Y.vertex_begin[p.j + 1]; ++l)
+            alive.push_back(feature_pair(ContactKind::FaceVertex, static_cast<std::uint32_t>(face_a), Y.vertices[l], born));
+        continue;
+      }
+      if (!leaf_a) {
         const auto [left, right] = X.tree.children(p.i);
         work.push_back(node_pair(right, p.j));
         work.push_back(node_pair(left, p.j));
@@ -1109,7 +1167,7 @@ struct Check {
     std::vector<std::optional<Item<Policy>>> originals(entries.size());
     std::vector<char> complete(entries.size(), 0);
     std::vector<std::exception_ptr> errors(entries.size());
-    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<std::size_t> next{0};
     std::atomic<std::size_t> first_witness{entries.size()};
     std::atomic<std::uint64_t> spent{0};
     for (std::size_t i = 0; i < entries.size(); ++i)
@@ -1130,8 +1188,6 @@ struct Check {
         } catch (...) {
           errors[i] = std::current_exception();
         }
-        const std::size_t d = ++done;
-        if (options.progress) options.progress(static_cast<double>(d) / task_count);
       }
     };
     if (task_count > 0) {

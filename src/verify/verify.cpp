@@ -78,17 +78,32 @@ namespace {
 // An axis-aligned box of exact points: its lower and upper corners.
 using ReachBox = std::array<Vec3E, 2>;
 
+// The maps of a rational curve for its box: its control points (with
+// positive weights the curve lies in their convex hull), except for an
+// nlerp keyframe segment, whose control points carry the scale of the
+// quaternions as written (a unit bar under a quaternion of 1e9 would get a
+// box of 1e9): there its exact poses at s = k/8, poses along the motion (a
+// tolerance, not a bound: the box of these poses lies inside the swept one).
+void add_curve_maps(const Motion& m, std::vector<Mat34E>& maps) {
+  if (!m.nlerp) {
+    maps.insert(maps.end(), m.control_points.begin(), m.control_points.end());
+    return;
+  }
+  for (int k = 0; k <= 8; ++k) maps.push_back(motion_pose(m, m.t0 + (m.t1 - m.t0) * Exact(k, 8)));
+}
+
 // The box of a body's vertices under every control point of its motion
-// (keyframe and link poses at their ends, approximately for enclosed
-// ones: a tolerance, not a bound); nullopt for a body without vertices.
+// (nlerp keyframes: poses along them; keyframe and link poses at their
+// ends, approximately for enclosed ones: a tolerance, not a bound);
+// nullopt for a body without vertices.
 std::optional<ReachBox> reach_box(const Body& b) {
   std::vector<Mat34E> maps;
-  if (b.motion) maps = b.motion->control_points;
+  if (b.motion) add_curve_maps(*b.motion, maps);
   else if (!b.trajectory) maps.push_back({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0});
   if (b.trajectory)
     for (const MotionSegment& seg : b.trajectory->segments) {
       if (seg.rational) {
-        maps.insert(maps.end(), seg.rational->control_points.begin(), seg.rational->control_points.end());
+        add_curve_maps(*seg.rational, maps);
         continue;
       }
       // The keyframe poses (a tolerance, not a bound: the approximate
@@ -261,7 +276,15 @@ Verifier::Verifier(const Scene& scene, const VerifyOptions& options)
 Verifier::~Verifier() = default;
 
 const PreparedBody& Verifier::prepared(int body) const {
-  std::call_once(once_[body], [&] { prepared_[body] = std::make_unique<PreparedBody>(scene_.bodies[body]); });
+  std::call_once(once_[body], [&] {
+    const Body& b = scene_.bodies[body];
+    if (options_.run)
+      options_.run->set_step("preparing body " + b.name + " (" + std::to_string(b.polygons.size()) + " polygons, " +
+                             std::to_string(b.segments.size() + b.points.size()) + " segments and points: features, " +
+                             "metric, bounding-volume hierarchy)");
+    prepared_[body] = std::make_unique<PreparedBody>(b);
+    if (options_.run) options_.run->set_step("");
+  });
   return *prepared_[body];
 }
 
@@ -417,6 +440,14 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
                      "\"]: two moving bodies must share their motion interval");
   // The time limit counts from here, per check.
   VerifyOptions options = options_;
+  // The check's share of the run's progress (src/verify/progress.h).
+  std::optional<RunProgress::Slot> slot;
+  if (options.run && options.run->checks_are_items()) {
+    slot.emplace(*options.run);
+    options.slot = &*slot;
+    options.slot_span = RunProgress::kUnit;
+    options.run->set_activity("checking " + scene_.bodies[a].name + " x " + scene_.bodies[b].name);
+  }
   if (options.time_limit > 0)
     options.deadline = std::chrono::steady_clock::now() +
                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -574,9 +605,10 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   const std::size_t checks = scene.checks.size();
   VerifyOptions per_check = options;
   per_check.threads = std::max(options.threads, static_cast<int>(threads / std::max<std::size_t>(1, checks)));
-  if (checks != 1) per_check.progress = nullptr;
-  std::atomic<std::size_t> finished{0};
-  std::mutex progress_mutex;
+  if (options.run) {
+    options.run->set_checks(checks);
+    options.run->set_activity("bounding what the bodies sweep");
+  }
   const Verifier verifier(scene, per_check);
   out.checks.resize(scene.checks.size());
   std::atomic<std::size_t> next{0};
@@ -585,13 +617,9 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   auto worker = [&] {
     try {
       for (std::size_t k = next++; k < scene.checks.size(); k = next++) {
+        if (options.run && options.run->cancelled()) break;  // no result: see below
         const auto [a, b] = scene.checks[k];
         out.checks[k] = verifier.check(a, b, scene.clearance_of(k));
-        const std::size_t f = ++finished;
-        if (options.progress && checks > 1) {
-          std::lock_guard<std::mutex> lock(progress_mutex);
-          options.progress(static_cast<double>(f) / checks);
-        }
       }
     } catch (...) {  // reported by the caller; never a verdict
       std::lock_guard<std::mutex> lock(failure_mutex);
@@ -605,6 +633,8 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   worker();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+  // A cancelled run has checks cut short or not run: no result at all.
+  if (options.run && options.run->cancelled()) throw Cancelled();
 
   // The scene's epsilon: the given one, or the largest of the checks' own.
   if (options.epsilon) out.epsilon = *options.epsilon;

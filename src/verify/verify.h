@@ -4,6 +4,7 @@
 
 #include "kernels/filtered.h"
 #include "src/scene/model.h"
+#include "src/verify/progress.h"
 
 #include <chrono>
 #include <cstdint>
@@ -60,9 +61,14 @@ struct VerifyOptions {
   bool hierarchy = true;
   // Threads for the pieces of one check (the result does not depend on it).
   int threads = 1;
-  // Called (from any thread, serialized by the caller's function if needed)
-  // with the fraction of a check's pieces done; empty: no reports.
-  std::function<void(double)> progress;
+  // Progress and cancellation (src/verify/progress.h): the run's shared
+  // state (null: none; its cancel() stops every check as a time limit
+  // does), and, set per check by Verifier::check, the check's share and
+  // how many of its units the searched curve's parameter interval is worth
+  // (a part of a keyframe check is worth its share of the check).
+  RunProgress* run = nullptr;
+  RunProgress::Slot* slot = nullptr;
+  std::uint64_t slot_span = 0;
   // Decide the feature pairs alive on a piece exactly from the roots of
   // their contact polynomials (certified kernels; proofs/exact-resolution.md):
   // at a stop, and at once when few pairs are left.  false: the ball search
@@ -82,8 +88,10 @@ struct AlgebraicTime {
   std::string approx;  // decimal, for people
 };
 
-// The check's deadline has passed (VerifyOptions::time_limit).
+// The check's deadline has passed (VerifyOptions::time_limit), or its run
+// was cancelled.
 inline bool past_deadline(const VerifyOptions& options) {
+  if (options.run && options.run->cancelled()) return true;
   return options.deadline != std::chrono::steady_clock::time_point::max() &&
          std::chrono::steady_clock::now() >= options.deadline;
 }

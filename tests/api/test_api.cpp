@@ -17,7 +17,10 @@
 #include <cmath>
 #include <stdexcept>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <memory>
 #include <sstream>
@@ -546,6 +549,141 @@ BOOST_AUTO_TEST_CASE(certificate_round_trip) {
     rejected = true;
   }
   BOOST_TEST(rejected);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(progress)
+
+// VerifyOptions::progress: reports while verify() runs, the fraction never
+// falls and stays below 1 while a check is left; the last call has
+// fraction 1 and every check done.
+BOOST_AUTO_TEST_CASE(reports_are_honest) {
+  const tmcert::Scene scene = tmcert::Scene::from_file(kExamples + "/gripper/gripper-safe.json");
+  std::vector<tmcert::Progress> reports;
+  tmcert::VerifyOptions o;
+  o.progress_interval = 0.001;
+  o.progress = [&](const tmcert::Progress& p) {
+    reports.push_back(p);
+    return true;
+  };
+  const tmcert::Result r = tmcert::verify(scene, o);
+  BOOST_TEST(tmcert::to_string(r.verdict()) == std::string("safe"));
+  BOOST_REQUIRE(!reports.empty());
+  const tmcert::Progress& last = reports.back();
+  BOOST_TEST(last.fraction == 1.0);
+  BOOST_TEST(last.checks == r.checks().size());
+  BOOST_TEST(last.checks_done == last.checks);
+  for (std::size_t k = 0; k + 1 < reports.size(); ++k) {
+    // 1 only once every check is done (verify() may still be finishing).
+    BOOST_TEST((reports[k].fraction < 1.0 || reports[k].checks_done == reports[k].checks),
+               "report " << k << ": " << reports[k].fraction << " with a check left");
+    BOOST_TEST(reports[k].fraction <= reports[k + 1].fraction, "report " << k << " goes back");
+    BOOST_TEST(reports[k].checks_done <= reports[k].checks);
+    BOOST_TEST(reports[k].seconds <= reports[k + 1].seconds);
+  }
+  // Something is named while it runs (the check, or what comes before it).
+  BOOST_TEST(std::any_of(reports.begin(), reports.end() - 1, [](const tmcert::Progress& p) { return !p.activity.empty(); }));
+}
+
+// Returning false cancels: verify() throws Cancelled, never a result.  An
+// exception of the callback cancels and comes out of verify().
+BOOST_AUTO_TEST_CASE(cancel_and_callback_errors) {
+  const tmcert::Scene scene = tmcert::Scene::from_file(kExamples + "/gripper/gripper-safe.json");
+  tmcert::VerifyOptions o;
+  o.progress_interval = 0.001;
+  int calls = 0;
+  o.progress = [&](const tmcert::Progress&) {
+    ++calls;
+    return false;
+  };
+  BOOST_CHECK_THROW(tmcert::verify(scene, o), tmcert::Cancelled);
+  BOOST_TEST(calls >= 1);
+  o.progress = [](const tmcert::Progress&) -> bool { throw std::range_error("from the callback"); };
+  BOOST_CHECK_THROW(tmcert::verify(scene, o), std::range_error);
+  o.progress_interval = 0;
+  BOOST_CHECK_THROW(tmcert::verify(scene, o), tmcert::InputError);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE(more_results)
+
+// Notes and warnings of the reader (docs/scene-format.md, "Data from real
+// pipelines") are in the scene and the result, as in the JSON document.
+BOOST_AUTO_TEST_CASE(notes_and_warnings) {
+  const tmcert::Scene plate = tmcert::Scene::from_file(std::string(TMCERT_TEST_DATA) + "/scenes/pipeline-quad-off-plane.json");
+  BOOST_REQUIRE_EQUAL(plate.notes().size(), 1u);
+  BOOST_TEST(plate.notes()[0].find("not exactly planar") != std::string::npos);
+  BOOST_TEST(plate.warnings().empty());
+  const tmcert::Result r = tmcert::verify(plate);
+  BOOST_TEST(r.notes() == plate.notes(), boost::test_tools::per_element());
+  BOOST_TEST(r.to_json().find("\"notes\": [") != std::string::npos);
+  BOOST_TEST(r.summary().find("  note: ") != std::string::npos);
+  const tmcert::Scene degrees = tmcert::Scene::from_file(std::string(TMCERT_TEST_DATA) + "/scenes/pipeline-rpy-degrees.json");
+  BOOST_REQUIRE_EQUAL(degrees.warnings().size(), 1u);
+  BOOST_TEST(degrees.warnings()[0].find("rotation.rpy[2]: the angle 90 is more than 2 pi") != std::string::npos);
+  // A clean scene has neither, and its document no such keys.
+  const tmcert::Result clean = tmcert::verify(tmcert::Scene::from_file(kExamples + "/octagons-near.json"));
+  BOOST_TEST(clean.notes().empty());
+  BOOST_TEST(clean.to_json().find("\"notes\"") == std::string::npos);
+}
+
+// The visual report from the API: the page --report writes.
+BOOST_AUTO_TEST_CASE(report_page) {
+  const tmcert::Result r = tmcert::verify(tmcert::Scene::from_file(kExamples + "/octagons-collision.json"));
+  const std::string page = r.report_html();
+  BOOST_TEST(page.rfind("<!DOCTYPE html>", 0) == 0);
+  const std::string path = std::filesystem::temp_directory_path() / "tmcert_api_test_report.html";
+  r.write_report(path);
+  BOOST_TEST(std::filesystem::file_size(path) == page.size());
+  std::filesystem::remove(path);
+  BOOST_CHECK_THROW(r.write_report("/nonexistent-dir/x.html"), tmcert::InputError);
+}
+
+// batch() and batch_merge(): the example in 2 shards merges into the bytes
+// of the unsharded run; the summary is tmcert batch's.
+BOOST_AUTO_TEST_CASE(batch_and_merge) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tmcert_api_test_batch";
+  std::filesystem::create_directories(dir);
+  tmcert::BatchOptions o;
+  o.requests = kExamples + "/batch/requests.jsonl";
+  o.scene = kExamples + "/batch/environment.json";
+  o.output = dir / "all.jsonl";
+  const tmcert::BatchSummary all = tmcert::batch(o);
+  BOOST_TEST(all.requests == 5u);
+  BOOST_TEST(all.safe == 4u);
+  BOOST_TEST(all.collision == 1u);
+  BOOST_TEST(all.exit_code == 1);
+  std::vector<std::string> shards;
+  for (int i = 0; i < 2; ++i) {
+    o.shard = std::to_string(i) + "/2";
+    o.output = dir / ("shard-" + std::to_string(i) + ".jsonl");
+    shards.push_back(o.output);
+    tmcert::batch(o);
+  }
+  BOOST_TEST(tmcert::batch_merge(shards, dir / "merged.jsonl") == 5u);
+  auto bytes = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  BOOST_TEST(bytes(dir / "merged.jsonl") == bytes(dir / "all.jsonl"));
+  o.shard = "2/2";
+  BOOST_CHECK_THROW(tmcert::batch(o), tmcert::InputError);
+  // A progress callback that says no stops the run: Cancelled.
+  o.shard.clear();
+  o.progress_interval = 0.001;
+  o.progress = [](const tmcert::BatchProgress&) { return false; };
+  o.requests = kExamples + "/batch/requests.jsonl";
+  bool cancelled_or_done = true;
+  try {
+    tmcert::batch(o);  // may end before the first report on a fast machine
+  } catch (const tmcert::Cancelled&) {
+  } catch (...) {
+    cancelled_or_done = false;
+  }
+  BOOST_TEST(cancelled_or_done);
+  std::filesystem::remove_all(dir);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

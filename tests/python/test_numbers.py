@@ -114,3 +114,25 @@ def test_non_finite_and_non_numbers_are_input_errors() -> None:
         tmcert.scene_from_dict(scene_dict(object()))
     with pytest.raises(TypeError):
         tmcert.Motion.translation((0, 0, 1), (0, 0, None))
+
+
+def test_approximations_beyond_the_float_range_are_nan_never_inf() -> None:
+    # A contact at the irrational t = 6.8232780382801933e+400 (issue 21): the
+    # exact root, its 17-digit decimal in the document (a string), and NaN
+    # as its float (no float is near it); an epsilon of 1e400 likewise.
+    from conftest import DATA
+    import math
+    result = tmcert.verify(DATA / "scenes" / "numbers-root-1e400.json", epsilon="1e400")
+    (check,) = result.checks
+    assert check.verdict == "collision"
+    assert isinstance(check.witness.t, tmcert.AlgebraicNumber)
+    assert math.isnan(check.witness.t.approx) and math.isnan(check.witness.t_float)
+    assert math.isnan(check.first_contact_float[0]) and math.isnan(result.epsilon_float)
+    assert result.epsilon == 10 ** 400
+    doc = result.to_dict()["checks"][0]
+    assert doc["witness"]["t"]["approx"] == "6.8232780382801933e+400"
+    assert doc["witness"]["t_approx"] == "6.8232780382801933e+400"
+    assert doc["epsilon_approx"] == "1.0000000000000000e+400"
+    # A tiny irrational time: its nearest double.
+    tiny = tmcert.verify(DATA / "scenes" / "numbers-root-1e-20.json").checks[0]
+    assert tiny.witness.t_float == 6.823278038280193e-21 == float(tiny.witness.t)

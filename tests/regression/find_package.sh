@@ -3,10 +3,15 @@
 # it with find_package(tmcert), once with the shared library and once with
 # the static one, and runs the examples: the scene built in code (drop_box)
 # and a bundled scene file (minimal).  Also checks that the installed
-# headers are the public ones only.
+# headers are the public ones only; with a third argument "ompl" (the tree
+# has its OMPL adapter), builds examples/ompl against the install with
+# find_package(tmcert COMPONENTS ompl); and configures tmcert as a
+# subproject without its tests' dependencies.
+#
+#   find_package.sh BUILD_DIR SOURCE_DIR [ompl]
 set -euo pipefail
 build=$1
-src=$2
+src=$(realpath "$2")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
@@ -58,6 +63,55 @@ if grep -q 'libtmcert\.so' <<<"$shared_libs" && ! grep -q 'libtmcert\.so' <<<"$s
   passed=$((passed + 1))
 else
   fail "drop_box is not linked as expected (shared: libtmcert.so; static: none)"
+fi
+# The OMPL adapter as a user gets it: find_package(tmcert COMPONENTS ompl)
+# and tmcert::ompl, for examples/ompl built on its own against the prefix;
+# the SE(3) example plans and certifies its path (exit 0).
+if [ "${3:-}" = ompl ] && [ -z "$(find "$work/prefix" -name tmcertOmplTargets.cmake)" ]; then
+  fail "tmcert was built with its OMPL adapter, but the install has no tmcertOmplTargets.cmake"
+elif [ -n "$(find "$work/prefix" -name tmcertOmplTargets.cmake)" ]; then
+  ompl_app="$work/app-ompl"
+  if cmake -S "$src/examples/ompl" -B "$ompl_app" -DCMAKE_BUILD_TYPE=Release \
+       -DCMAKE_PREFIX_PATH="$work/prefix" >"$work/ompl.log" 2>&1 &&
+     cmake --build "$ompl_app" -j 2 --target ompl_rigid_passage >>"$work/ompl.log" 2>&1 &&
+     "$ompl_app/ompl_rigid_passage" >>"$work/ompl.log" 2>&1; then
+    passed=$((passed + 1))
+  else
+    fail "examples/ompl against the installed package (find_package(tmcert COMPONENTS ompl)):"
+    tail -30 "$work/ompl.log"
+  fi
+  # An unknown component is refused by name.
+  mkdir -p "$work/bad-component"
+  printf '%s\n' 'cmake_minimum_required(VERSION 3.20)' 'project(x LANGUAGES CXX)' \
+    'find_package(tmcert REQUIRED COMPONENTS teleport)' >"$work/bad-component/CMakeLists.txt"
+  if cmake -S "$work/bad-component" -B "$work/bad-component/build" -DCMAKE_PREFIX_PATH="$work/prefix" \
+       >"$work/bad.log" 2>&1 || ! grep -q "unknown component teleport" "$work/bad.log"; then
+    fail "find_package(tmcert COMPONENTS teleport) was not refused by name:"
+    tail -10 "$work/bad.log"
+  else
+    passed=$((passed + 1))
+  fi
+else
+  echo "skipped: the OMPL adapter is not installed (built with TMCERT_WITH_OMPL=OFF)"
+fi
+
+# Added with add_subdirectory by a project that has tests of its own (its
+# BUILD_TESTING is ON): tmcert's tests are not built, so neither rapidcheck
+# nor Boost.Test is looked for, no benchmark is built, and tmcert::ompl is
+# there to link.
+mkdir -p "$work/sub"
+printf '%s\n' 'cmake_minimum_required(VERSION 3.20)' 'project(user LANGUAGES CXX)' 'include(CTest)' \
+  "add_subdirectory(\"$src\" tmcert)" \
+  'if(NOT TARGET tmcert::ompl OR NOT TARGET tmcert::tmcert)' '  message(FATAL_ERROR "no tmcert::ompl")' 'endif()' \
+  >"$work/sub/CMakeLists.txt"
+if cmake -S "$work/sub" -B "$work/sub/build" -DCMAKE_BUILD_TYPE=Release \
+     -DCMAKE_DISABLE_FIND_PACKAGE_rapidcheck=ON -DTMCERT_WITH_PYTHON=OFF >"$work/sub.log" 2>&1 &&
+   ! grep -q "unit_test_framework" "$work/sub/build/CMakeCache.txt" &&
+   ! cmake --build "$work/sub/build" --target help | grep -qE 'tmcert_(unit|ccd_bench|paper_grid|speed_error|ompl_bench)'; then
+  passed=$((passed + 1))
+else
+  fail "added with add_subdirectory, tmcert still needs the tests' dependencies or builds tests or benchmarks:"
+  tail -20 "$work/sub.log"
 fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -132,6 +132,10 @@ expect_refusal "--max-depth" verify "$good" --max-depth 0
 expect_refusal "--threads" verify "$good" --threads 0
 expect_refusal "frobnicate" verify "$good" --frobnicate
 expect_refusal "scene" verify
+# A mistyped command is named, with the command meant.
+expect_refusal "unknown command 'verfy' (did you mean 'verify'?)" verfy "$good"
+expect_refusal "unknown command 'chek' (did you mean 'check'?)" chek
+expect_refusal "unknown command 'frobnicate'; the commands are verify, check, batch, batch-merge" frobnicate
 
 # Only regular files are read: a device or a FIFO (as the scene, a mesh or
 # a certificate) is refused at once instead of being read forever or
@@ -151,6 +155,55 @@ for list in "$data/scenes/EXPECTED" "$examples/EXPECTED" "$examples/gripper/EXPE
     for_each_line "$list" expect_verdict
   fi
 done
+
+# Data from real pipelines (docs/scene-format.md): what the reader did is in
+# the result ("notes", the summary's "note:" lines), and input that may not
+# be meant is a warning on stderr (and "warnings" in the result).
+expect_in() {  # expect_in STREAM SUBSTRING DESCRIPTION
+  if grep -qF -- "$2" "$work/$1"; then pass; else fail "$3: $1 does not contain '$2'"; fi
+}
+pipeline="$data/scenes"
+run 60 "$tmcert" verify --json "$pipeline/pipeline-quad-off-plane.json"
+expect_in out '"notes": [' "verify --json pipeline-quad-off-plane.json"
+expect_in out 'pipeline-quad-off-plane.obj: 1 face is not exactly planar (face 0): each is split into the triangles of a fan from its first vertex, 2 triangles in all; the body is these triangles' \
+  "verify --json pipeline-quad-off-plane.json"
+run 60 "$tmcert" verify "$pipeline/pipeline-sliver.json"
+expect_in out '  note: ' "verify pipeline-sliver.json"
+expect_in out 'pipeline-sliver.stl: 1 face has zero area (face 1): it is read as the segment (or point) it covers' \
+  "verify pipeline-sliver.json"
+run 60 "$tmcert" verify "$pipeline/pipeline-rpy-degrees.json"
+expect_in err 'tmcert: warning: ' "verify pipeline-rpy-degrees.json"
+expect_in err 'bodies[1].motion.poses[1].rotation.rpy[2]: the angle 90 is more than 2 pi: it is read as radians; if it is in degrees, write 1.5707963267948966 (its radians) instead' \
+  "verify pipeline-rpy-degrees.json"
+expect_in out '  warning: ' "verify pipeline-rpy-degrees.json"
+run 60 "$tmcert" verify "$data/bad/kf_matrix_float_noise.json"
+expect_in err 'the nearest rotation is the unit quaternion [w, x, y, z] = [0.96592582628906' "verify kf_matrix_float_noise.json"
+expect_in err 'write "rotation": {"quaternion": [' "verify kf_matrix_float_noise.json"
+# Approximations (docs/scene-format.md "Approximations"): an irrational
+# contact time beyond the double range is the 17-digit decimal, a string
+# also where a JSON number would be (never inf); a tiny one its nearest
+# double (not a width-limited guess).
+expect_json_text() {
+  local scene=$1
+  shift
+  run 60 "$tmcert" verify "$scene" --json
+  local text
+  for text in "$@"; do
+    if ! grep -qF -- "$text" "$work/out"; then
+      fail "tmcert verify $scene --json: output does not contain '$text'"
+      return
+    fi
+  done
+  if grep -qiE '(^|[^a-z])-?inf(inity)?([^a-z]|$)' "$work/out"; then
+    fail "tmcert verify $scene --json: 'inf' in the output"
+    return
+  fi
+  pass
+}
+expect_json_text "$data/scenes/numbers-root-1e400.json" '"approx": "6.8232780382801933e+400"' \
+  '"t_approx": "6.8232780382801933e+400"'
+expect_json_text "$data/scenes/numbers-root-1e-20.json" '"approx": "6.823278038280193e-21"' \
+  '"t_approx": 6.823278038280193e-21'
 
 # 3. `tmcert check CERTIFICATE SCENE` (docs/certificate-format.md): exit 0
 #    with the proven claims on stdout, 1 for a false claim or another scene,

@@ -83,8 +83,21 @@ BOOST_AUTO_TEST_CASE(agrees_with_printf_on_doubles) {
       BOOST_TEST(got == expected, "seed " << seed << ", case " << k << ": " << std::hexfloat << x << " to "
                                           << digits << " digits: " << got << ", printf " << expected);
     }
-    BOOST_TEST(tmcert::approximate(Exact(x)) == x, "seed " << seed << ", case " << k);
+    BOOST_TEST(*tmcert::nearest_double(Exact(x)) == x, "seed " << seed << ", case " << k);
+    BOOST_TEST(tmcert::approximation(Exact(x)) == tmcert::shortest(x), "seed " << seed << ", case " << k);
   }
+}
+
+// Messages that compare values (joint limits): decimals, never a bare p/q.
+BOOST_AUTO_TEST_CASE(decimal_text_for_messages) {
+  BOOST_TEST(tmcert::decimal_text(q("7/2")) == "3.5");
+  BOOST_TEST(tmcert::decimal_text(q("-2.8973")) == "-2.8973");
+  BOOST_TEST(tmcert::decimal_text(q("0")) == "0");
+  // A double is its shortest round-trip decimal, marked as a double.
+  BOOST_TEST(tmcert::decimal_text(Exact(-44.9775)) == "-44.9775 (a double)");
+  BOOST_TEST(tmcert::decimal_text(Exact(0.1)) == "0.1 (a double)");
+  BOOST_TEST(tmcert::decimal_text(Exact(0.25)) == "0.25");  // exactly a short decimal
+  BOOST_TEST(tmcert::decimal_text(q("1/3")) == "about 0.33333333333333333");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

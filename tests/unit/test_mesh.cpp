@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cstdint>
@@ -402,18 +403,104 @@ BOOST_AUTO_TEST_CASE(mesh_field_errors) {
   const std::string bad = dir.write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
   expect_scene_error(scene_with(R"("mesh": ")" + bad + "\""), "bodies[0].mesh",
                      bad + ": line 6: face 0: vertex index 7 out of range");
-  // Degenerate faces: collinear, repeated vertex (also after STL merging), non-planar.
-  const std::string collinear = dir.write("collinear.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
-  expect_scene_error(scene_with(R"("mesh": ")" + collinear + "\""), "bodies[0].mesh",
-                     collinear + ": face 1: polygon vertices are collinear");
-  const std::string repeated = dir.write("repeated.stl", binary_stl({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
-                                                                     {{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}}}}));
+  // Faces that stay errors: a planar face that is not simple, a repeated
+  // vertex in a face of positive area (zero-area and non-planar faces are
+  // read: data_from_real_pipelines below).
+  const std::string crossed = dir.write("crossed.off", "OFF\n4 1 0\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n4 0 1 2 3\n");
+  expect_scene_error(scene_with(R"("mesh": ")" + crossed + "\""), "bodies[0].mesh",
+                     crossed + ": face 0: polygon is self-intersecting");
+  const std::string repeated = dir.write("repeated.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3 4\n");
   expect_scene_error(scene_with(R"("mesh": ")" + repeated + "\""), "bodies[0].mesh",
-                     repeated + ": face 1: vertex 1 and vertex 2 are equal");
-  const std::string bent = dir.write("bent.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 1\n0 1 0\n4 0 1 2 3\n");
-  expect_scene_error(scene_with(R"("mesh": ")" + bent + "\""), "bodies[0].mesh", bent + ": face 0: polygon is not planar");
+                     repeated + ": face 0: vertex 1 and vertex 2 are equal");
   const std::string empty = dir.write("empty.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
   expect_scene_error(scene_with(R"("mesh": ")" + empty + "\""), "bodies[0].mesh", empty + ": mesh has no faces");
+}
+
+// docs/scene-format.md, "Data from real pipelines": a mesh face that is not
+// exactly planar becomes the triangles of the fan from its first vertex; a
+// zero-area face becomes the segment (or point) it covers; the scene notes
+// both.  Inline polygons stay strict.
+BOOST_AUTO_TEST_CASE(data_from_real_pipelines) {
+  TempDir dir;
+  // A quad whose last vertex is 1e-7 off the plane of the others.
+  const std::string quad = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1e-7\nf 1 2 3 4\n");
+  const Scene s = tmcert::parse_scene_text(scene_with(R"("mesh": ")" + quad + "\""), "t.json");
+  const tmcert::Body& m = s.bodies[0];
+  BOOST_REQUIRE_EQUAL(m.polygons.size(), 2u);
+  // The fan from vertex 0: (v0, v1, v2) and (v0, v2, v3), exactly.
+  BOOST_TEST((m.polygons[0] == std::vector<Vec3E>{v("0", "0", "0"), v("1", "0", "0"), v("1", "1", "0")}));
+  BOOST_TEST((m.polygons[1] == std::vector<Vec3E>{v("0", "0", "0"), v("1", "1", "0"), v("0", "1", "1e-7")}));
+  BOOST_REQUIRE_EQUAL(s.notes.size(), 1u);
+  BOOST_TEST(s.notes[0] == "t.json: bodies[0].mesh: " + quad +
+                               ": 1 face is not exactly planar (face 0): each is split into the triangles of a fan "
+                               "from its first vertex, 2 triangles in all; the body is these triangles");
+  BOOST_TEST(s.warnings.empty());
+
+  // Zero-area faces: three collinear vertices (a segment between the
+  // extreme ones, whatever their order), a repeated vertex after STL
+  // merging, a face of one point; ordinary faces keep their polygons.
+  const std::string slivers = dir.write(
+      "slivers.stl", binary_stl({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                                 {{{2, 0, 0}, {0, 0, 0}, {1, 0, 0}}},
+                                 {{{0, 0, 0}, {0, 1, 0}, {0, 1, 0}}},
+                                 {{{3, 3, 3}, {3, 3, 3}, {3, 3, 3}}}}));
+  const Scene z = tmcert::parse_scene_text(scene_with(R"("mesh": ")" + slivers + "\""), "t.json");
+  const tmcert::Body& b = z.bodies[0];
+  BOOST_TEST(b.polygons.size() == 1u);
+  BOOST_REQUIRE_EQUAL(b.segments.size(), 2u);
+  BOOST_TEST((b.segments[0] == std::array<Vec3E, 2>{v("2", "0", "0"), v("0", "0", "0")}));
+  BOOST_TEST((b.segments[1] == std::array<Vec3E, 2>{v("0", "0", "0"), v("0", "1", "0")}));
+  BOOST_TEST((b.points == std::vector<Vec3E>{v("3", "3", "3")}));
+  BOOST_REQUIRE_EQUAL(z.notes.size(), 1u);
+  BOOST_TEST(z.notes[0] == "t.json: bodies[0].mesh: " + slivers +
+                               ": 3 faces have zero area (faces 1, 2, 3): each is read as the segment (or point) it covers");
+
+  // A fan triangle of zero area (the non-planar face passes twice through a
+  // line) is its segment; the note counts it.
+  const std::string folded = dir.write("folded.off", "OFF\n5 1 0\n0 0 0\n1 0 0\n2 0 0\n1 1 1\n0 1 0\n5 0 1 2 3 4\n");
+  const Scene f = tmcert::parse_scene_text(scene_with(R"("mesh": ")" + folded + "\""), "t.json");
+  BOOST_TEST(f.bodies[0].polygons.size() == 2u);
+  BOOST_TEST(f.bodies[0].segments.size() == 1u);
+  BOOST_REQUIRE_EQUAL(f.notes.size(), 1u);
+  BOOST_TEST(f.notes[0].find("3 triangles in all (1 of zero area, read as segments)") != std::string::npos, f.notes[0]);
+
+  // Inline polygons stay strict.
+  expect_scene_error(scene_with(R"("polygons": [[[0,0,0],[1,0,0],[1,1,0],[0,1,"1e-7"]]])"), "bodies[0].polygons[0]",
+                     "polygon is not planar");
+  expect_scene_error(scene_with(R"("polygons": [[[0,0,0],[1,0,0],[2,0,0]]])"), "bodies[0].polygons[0]",
+                     "polygon vertices are collinear");
+  // A clean mesh has no notes.
+  const std::string clean = dir.write("clean.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  BOOST_TEST(tmcert::parse_scene_text(scene_with(R"("mesh": ")" + clean + "\""), "t.json").notes.empty());
+}
+
+// A fan of a non-planar face and a zero-area face are features like any
+// other: a point crossing the fan's second triangle, and a segment crossing
+// the sliver, are collisions; one passing beside them is safe.
+BOOST_AUTO_TEST_CASE(real_pipeline_faces_are_verified) {
+  TempDir dir;
+  const std::string quad = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1e-7\nf 1 2 3 4\n");
+  auto verdict = [&](const std::string& mover) {
+    const std::string text = R"({"format": "tmcert-scene/1", "bodies": [{"name": "m", "mesh": ")" + quad + R"("}, )" +
+                             mover + "]}";
+    return tmcert::verify_scene(tmcert::parse_scene_text(text, "t.json"), tmcert::VerifyOptions{}).verdict;
+  };
+  const std::string down = R"({"name": "p", "points": [[0.25, 0.75, 1]], "motion": {"type": "rational_bezier", )"
+                           R"("control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,0],[0,1,0,0],[0,0,1,-2]]]}})";
+  BOOST_TEST(verdict(down) == tmcert::Verdict::Collision);
+  const std::string beside = R"({"name": "p", "points": [[1.5, 0.75, 1]], "motion": {"type": "rational_bezier", )"
+                             R"("control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,0],[0,1,0,0],[0,0,1,-2]]]}})";
+  BOOST_TEST(verdict(beside) == tmcert::Verdict::Safe);
+
+  const std::string sliver = dir.write("sliver.off", "OFF\n3 1 0\n0 0 0\n2 0 0\n1 0 0\n3 0 1 2\n");
+  const std::string text = R"({"format": "tmcert-scene/1", "bodies": [{"name": "m", "mesh": ")" + sliver +
+                           R"("}, {"name": "s", "segments": [[[1.5, -1, 1], [1.5, 1, 1]]], "motion": {"type": )"
+                           R"("rational_bezier", "control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], )"
+                           R"([[1,0,0,0],[0,1,0,0],[0,0,1,-2]]]}}]})";
+  const tmcert::SceneResult r = tmcert::verify_scene(tmcert::parse_scene_text(text, "t.json"), tmcert::VerifyOptions{});
+  BOOST_TEST(r.verdict == tmcert::Verdict::Collision);
+  BOOST_REQUIRE(r.checks[0].witness);
+  BOOST_TEST(r.checks[0].witness->t == Exact(1, 2));
 }
 
 BOOST_AUTO_TEST_CASE(solid_needs_a_closed_surface) {

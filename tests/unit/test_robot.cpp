@@ -782,6 +782,13 @@ BOOST_AUTO_TEST_CASE(joint_paths_are_validated_with_the_element) {
   BOOST_TEST(what.find("waypoint 1") != std::string::npos);
   BOOST_TEST(what.find("\"j1\"") != std::string::npos);
   BOOST_TEST(what.find("outside its limits") != std::string::npos);
+  // Decimals, never p/q: 2.51 as written, a double as the shortest decimal
+  // that reads back as it (from NumPy or a C++ double).
+  BOOST_TEST(what.find("at 2.51 is outside") != std::string::npos, what);
+  BOOST_TEST(what.find('/') == std::string::npos, what);
+  p.positions[1][0] = Exact(2.51);
+  BOOST_TEST(error(p).second.find("at 2.51 (a double) is outside") != std::string::npos, error(p).second);
+  BOOST_TEST(error(p).second.find('/') == std::string::npos, error(p).second);
   p = two_waypoints({0, d("-0.11"), 0, 0}, {0, 0, 0, 0});
   BOOST_TEST(error(p).first == "positions[0][1]");
   p = two_waypoints({0, 0, 0, 100}, {0, 0, 0, -100});  // continuous: no limit
@@ -825,6 +832,23 @@ BOOST_AUTO_TEST_CASE(urdf_errors_name_the_element) {
   BOOST_TEST(urdf_error("<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/></robot>").find("not a valid URDF") !=
              std::string::npos);
   BOOST_CHECK_THROW(load_urdf(kData + "/robots/does-not-exist.urdf"), InputError);
+  // xacro is expanded by the xacro tool: say so (by name, or by its namespace).
+  const std::string xacro = R"(<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="l" value="1"/><link name="a"/></robot>)";
+  try {
+    load_urdf_text(xacro, "arm.urdf.xacro", ".");
+    BOOST_FAIL("xacro accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()) == "arm.urdf.xacro: this is xacro (URDF macros), not plain URDF: run xacro first: "
+                                        "xacro arm.urdf.xacro > arm.urdf");
+  }
+  BOOST_TEST(urdf_error(xacro).find("t.urdf: this is xacro (URDF macros), not plain URDF: run xacro first: xacro t.urdf > t-expanded.urdf") !=
+             std::string::npos, urdf_error(xacro));
+  // xacro's output keeps the namespace declaration (the published Panda
+  // and UR5 of example-robot-data): without xacro elements it is plain URDF.
+  const std::string expanded = R"(<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link></robot>)";
+  BOOST_TEST(load_urdf_text(expanded, "t.urdf", ".")->links.size() == 1u);
 }
 
 BOOST_AUTO_TEST_CASE(verdicts_through_the_api) {

@@ -28,10 +28,15 @@ check ``safe`` or ``collision`` (with an exact witness), or reports it
 
 Results carry exact values (``fractions.Fraction``, or an
 :class:`AlgebraicNumber` for a contact at an irrational instant) next to a
-``*_float`` view of each for people and plots.  Bad input raises
-:class:`InputError` (a ``ValueError``) with the message the command line
-prints after ``tmcert: ``; a resource limit that leaves no honest answer
-raises :class:`ResourceLimit`.
+``*_float`` view of each for people and plots (a float64 NumPy array
+when NumPy is installed, else a tuple of floats; NumPy is optional): each
+float is the nearest to the exact value, or NaN for a value beyond the float range (|x| >= 2**1024 -
+2**970, or nonzero and at most 2**-1075), never an infinity.  Bad
+input raises :class:`InputError` (a ``ValueError``) with the message the
+command line prints after ``tmcert: ``; a resource limit that leaves no
+honest answer raises :class:`ResourceLimit`; a run cancelled by its
+progress callback raises :class:`Cancelled`, and Ctrl-C during a run
+raises KeyboardInterrupt within about a tenth of a second.
 """
 
 from __future__ import annotations
@@ -44,19 +49,23 @@ import numbers
 import os
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Iterable, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Iterable, Mapping, Optional, Sequence, Tuple, Union
 
-import numpy as np
+try:  # NumPy is optional: arrays in and out when it is there, tuples and lists otherwise
+    import numpy as np
+except ImportError:  # pragma: no cover - depends on the environment
+    np = None  # type: ignore[assignment]
 
 from . import _tmcert
 from ._tmcert import __version__
-from ._tmcert import (InputError, Keyframes, Motion, Piecewise, Pose, RationalBezier, ResourceLimit, Rotation,
-                      Scene)
+from ._tmcert import (Cancelled, InputError, Keyframes, Motion, Piecewise, Pose, RationalBezier, ResourceLimit,
+                      Rotation, Scene)
 
 __all__ = [
-    "AlgebraicNumber", "Body", "CertificateCheck", "Check", "InputError", "Keyframes", "Motion", "Piecewise",
-    "Pose", "RationalBezier", "ResourceLimit", "Result", "Robot", "Rotation", "Scene", "SceneBuilder", "Stats",
-    "UndecidedInterval", "Verdict", "Witness", "check", "load", "scene_from_dict", "verify",
+    "AlgebraicNumber", "BatchProgress", "BatchSummary", "Body", "Cancelled", "CertificateCheck", "Check",
+    "InputError", "Keyframes", "Motion", "Piecewise", "Pose", "Progress", "RationalBezier", "ResourceLimit",
+    "Result", "Robot", "Rotation", "Scene", "SceneBuilder", "Stats", "UndecidedInterval", "Verdict", "Witness",
+    "batch", "batch_merge", "check", "load", "scene_from_dict", "verify",
 ]
 
 NumberLike = Union[int, float, Fraction, decimal.Decimal, str]
@@ -102,8 +111,30 @@ def _point(p: Optional[Sequence[Any]]) -> Optional[Tuple[Fraction, Fraction, Fra
     return None if p is None else (p[0].fraction(), p[1].fraction(), p[2].fraction())
 
 
-def _point_float(p: Sequence[Any]) -> np.ndarray:
-    return np.array([c.approx for c in p], dtype=np.float64)
+_BOOLS: Tuple[type, ...] = (bool,) if np is None else (bool, np.bool_)
+
+FloatArray = Any
+"""A float64 NumPy array when NumPy is installed, else a tuple of floats (nested for 2-d)."""
+
+
+def _is_array(value: Any) -> bool:
+    return np is not None and isinstance(value, np.ndarray)
+
+
+def _floats(values: Iterable[Any]) -> FloatArray:
+    """A float64 array (NumPy), or a tuple of floats (nested tuples stay tuples)."""
+    values = list(values)
+    if np is not None:
+        return np.array(values, dtype=np.float64)
+    return tuple(tuple(v) if isinstance(v, tuple) else float(v) for v in values)
+
+
+def _point3(p: Sequence[Any]) -> Tuple[Fraction, Fraction, Fraction]:
+    return (p[0].fraction(), p[1].fraction(), p[2].fraction())
+
+
+def _point_float(p: Sequence[Any]) -> FloatArray:
+    return _floats(c.approx for c in p)
 
 
 # ----------------------------------------------------------------- results
@@ -137,21 +168,21 @@ class Witness:
     features: Tuple[str, str]
     point: Optional[Tuple[Fraction, Fraction, Fraction]]
     point_box: Optional[Tuple[Tuple[Fraction, Fraction], ...]]
-    point_float: np.ndarray
+    point_float: FloatArray
     points: Optional[Tuple[Tuple[Fraction, Fraction, Fraction], Tuple[Fraction, Fraction, Fraction]]]
-    points_float: Optional[np.ndarray]
+    points_float: Optional[FloatArray]
     displacement: Optional[Tuple[Fraction, Fraction, Fraction]]
-    displacement_float: Optional[np.ndarray]
+    displacement_float: Optional[FloatArray]
     displaced: Optional[str]
 
     @staticmethod
     def _from(w: Any) -> "Witness":
         box = None if w.point_box is None else tuple((lo.fraction(), hi.fraction()) for lo, hi in w.point_box)
-        points = None if w.points is None else (_point(w.points[0]), _point(w.points[1]))
+        points = None if w.points is None else (_point3(w.points[0]), _point3(w.points[1]))
         return Witness(
             t=_time(w.t), t_float=float(w.t.value.approx), features=(w.features[0], w.features[1]),
-            point=_point(w.point), point_box=box, point_float=np.array(w.point_approx, dtype=np.float64),
-            points=points, points_float=None if w.points is None else np.array([_point_float(p) for p in w.points]),
+            point=_point(w.point), point_box=box, point_float=_floats(w.point_approx),
+            points=points, points_float=None if w.points is None else _floats(tuple(c.approx for c in p) for p in w.points),
             displacement=_point(w.displacement),
             displacement_float=None if w.displacement is None else _point_float(w.displacement),
             displaced=w.displaced or None)
@@ -289,6 +320,27 @@ class Result:
         """Writes :meth:`certificate` to ``path`` (InputError when it cannot)."""
         self._raw.write_certificate(os.fspath(path))
 
+    @property
+    def notes(self) -> Tuple[str, ...]:
+        """What the reader did to data from real pipelines (docs/scene-format.md,
+        "Data from real pipelines"): mesh faces not exactly planar split into
+        fans, zero-area faces read as segments; the result document's "notes"."""
+        return tuple(self._raw.notes)
+
+    @property
+    def warnings(self) -> Tuple[str, ...]:
+        """Input read in a way that may not be meant (an rpy angle above 2 pi read
+        as radians); the result document's "warnings"."""
+        return tuple(self._raw.warnings)
+
+    def report_html(self) -> str:
+        """The visual report (``tmcert verify --report``): one self-contained HTML page."""
+        return str(self._raw.report_html())
+
+    def write_report(self, path: PathLike) -> None:
+        """Writes :meth:`report_html` to ``path`` (InputError when it cannot)."""
+        self._raw.write_report(os.fspath(path))
+
     def __str__(self) -> str:
         return self.summary()
 
@@ -321,7 +373,7 @@ _INT64 = 2 ** 63
 
 def _json_value(value: Any, path: str) -> Any:
     """A dict scene's value as JSON, numbers as their exact text."""
-    if value is None or isinstance(value, (bool, np.bool_)):
+    if value is None or isinstance(value, _BOOLS):
         return None if value is None else bool(value)
     if isinstance(value, str):
         return value
@@ -345,7 +397,7 @@ def _json_value(value: Any, path: str) -> Any:
                 raise InputError(f"<dict>: {path or 'document'}: key {key!r} is not a string")
             out[key] = _json_value(item, f"{path}.{key}" if path else key)
         return out
-    if isinstance(value, (list, tuple, np.ndarray)):
+    if isinstance(value, (list, tuple)) or _is_array(value):
         return [_json_value(item, f"{path}[{i}]") for i, item in enumerate(value)]
     raise InputError(f"<dict>: {path or 'document'}: cannot use a {type(value).__name__} in a scene")
 
@@ -391,25 +443,29 @@ def load(scene: "SceneLike") -> Scene:
     raise TypeError(f"expected a Scene, SceneBuilder, dict or file path, got {type(scene).__name__}")
 
 
-Scene.from_dict = staticmethod(scene_from_dict)  # type: ignore[attr-defined]
+Scene.from_dict = staticmethod(scene_from_dict)  # type: ignore[assignment]  # declared in _tmcert.pyi
 
 
-def _vertices(vertices: Any, what: str) -> Tuple[Optional[np.ndarray], Optional[list]]:
+def _vertices(vertices: Any, what: str) -> Tuple[Any, Optional[list]]:
     """(float64 (n, 3) array, None) or (None, exact points) for ``vertices``."""
-    if isinstance(vertices, np.ndarray) and vertices.dtype.kind == "f":
+    if _is_array(vertices) and vertices.dtype.kind == "f":
         array = np.ascontiguousarray(vertices, dtype=np.float64)
         if array.ndim != 2 or array.shape[1] != 3:
             raise InputError(f"{what}: expected an (n, 3) array of points, got shape {array.shape}")
         return array, None
-    array = np.empty((0, 3), dtype=object) if len(vertices) == 0 else np.array(vertices, dtype=object)
-    if array.ndim != 2 or array.shape[1] != 3:
-        raise InputError(f"{what}: expected an (n, 3) array of points, got shape {array.shape}")
-    return None, [tuple(row) for row in array]
+    rows = vertices.tolist() if _is_array(vertices) else list(vertices)
+    points = []
+    for row in rows:
+        if isinstance(row, (str, bytes)) or not hasattr(row, "__len__") or len(row) != 3:
+            shape = f"({len(rows)}, {len(row) if hasattr(row, '__len__') and not isinstance(row, (str, bytes)) else '?'})"
+            raise InputError(f"{what}: expected an (n, 3) array of points, got shape {shape}")
+        points.append(tuple(row))
+    return None, points
 
 
 def _faces(faces: Any, what: str) -> list:
     """Faces as lists of vertex indices (an (m, k) integer array, or ragged lists)."""
-    if isinstance(faces, np.ndarray):
+    if _is_array(faces):
         if faces.dtype.kind not in "iu" or faces.ndim != 2:
             raise InputError(f"{what}: expected an (m, k) integer array of vertex indices, got "
                              f"{faces.dtype} of shape {faces.shape}")
@@ -418,7 +474,7 @@ def _faces(faces: Any, what: str) -> list:
     for i, face in enumerate(faces):
         row = []
         for j, index in enumerate(face):
-            if isinstance(index, (bool, np.bool_)) or not isinstance(index, numbers.Integral):
+            if isinstance(index, _BOOLS) or not isinstance(index, numbers.Integral):
                 raise InputError(f"{what}[{i}][{j}]: a vertex index is an integer, got {index!r}")
             if index < 0:
                 raise InputError(f"{what}[{i}][{j}]: negative vertex index {int(index)}")
@@ -428,7 +484,7 @@ def _faces(faces: Any, what: str) -> list:
 
 
 def _flag(value: Any, what: str) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
+    if not isinstance(value, _BOOLS):
         raise TypeError(f"{what}: expected True or False, got {value!r}")
     return bool(value)
 
@@ -472,9 +528,9 @@ class Body:
         face_list = _faces(triangles, f"{self.name}: triangles")
         if any(len(f) != 3 for f in face_list):
             raise InputError(f"{self.name}: triangles: expected three vertex indices per triangle")
-        indices = np.array([i for f in face_list for i in f], dtype=np.uintp)
+        indices = [i for f in face_list for i in f]
         if xyz is not None:
-            self._raw.triangles_xyz(xyz.ravel(), indices)
+            self._raw.triangles_xyz(xyz.ravel(), np.array(indices, dtype=np.uintp))
         else:
             self._raw.triangles_exact(exact, indices)
         return self
@@ -483,16 +539,17 @@ class Body:
         """Segments: an (m, 2, 3) array of endpoint pairs (distinct endpoints)."""
         if len(segments) == 0:
             return self
-        if isinstance(segments, np.ndarray) and segments.dtype.kind == "f":
+        if _is_array(segments) and segments.dtype.kind == "f":
             array = np.ascontiguousarray(segments, dtype=np.float64)
             if array.ndim != 3 or array.shape[1:] != (2, 3):
                 raise InputError(f"{self.name}: segments: expected an (m, 2, 3) array, got shape {array.shape}")
             self._raw.segments_xyz(array.ravel())
             return self
-        array = np.array(segments, dtype=object)
-        if array.ndim != 3 or array.shape[1:] != (2, 3):
-            raise InputError(f"{self.name}: segments: expected an (m, 2, 3) array, got shape {array.shape}")
-        for a, b in array:
+        rows = segments.tolist() if _is_array(segments) else list(segments)
+        for row in rows:
+            if len(row) != 2 or any(isinstance(p, (str, bytes)) or len(p) != 3 for p in row):
+                raise InputError(f"{self.name}: segments: expected an (m, 2, 3) array of endpoint pairs")
+        for a, b in rows:
             self._raw.segment(tuple(a), tuple(b))
         return self
 
@@ -502,7 +559,7 @@ class Body:
         if xyz is not None:
             self._raw.points_xyz(xyz.ravel())
         else:
-            for p in exact:
+            for p in exact or []:
                 self._raw.point(p)
         return self
 
@@ -518,7 +575,7 @@ class Body:
 
     def mass(self, points: Any, weights: Iterable[NumberLike]) -> "Body":
         """The metric's mass points ((n, 3), not coplanar) and positive weights."""
-        _, exact = _vertices(np.array(points, dtype=object), f"{self.name}: mass points")
+        _, exact = _vertices(points.tolist() if _is_array(points) else points, f"{self.name}: mass points")
         self._raw.mass(exact, list(weights))
         return self
 
@@ -636,9 +693,51 @@ SceneLike = Union[Scene, SceneBuilder, Mapping[str, Any], str, "os.PathLike[str]
 
 # ----------------------------------------------------------------- verify
 
+@dataclass(frozen=True)
+class Progress:
+    """What a ``progress`` callback of :func:`verify` is given.
+
+    ``fraction``: the share of the checks' work done (each check one part;
+    within a running check, the share of its parameter interval decided),
+    below 1 while a check is left, 1 once every check is done (and in the
+    last call).  ``activity``
+    says what the run does now ("checking a x b: preparing body ..."), for
+    people; its wording is not an interface.
+    """
+
+    fraction: float
+    checks_done: int
+    checks: int
+    activity: str
+    seconds: float
+
+
+@dataclass(frozen=True)
+class BatchProgress:
+    """What a ``progress`` callback of :func:`batch` is given (the requests file is streamed)."""
+
+    requests_read: int
+    requests_written: int
+    activity: str
+    seconds: float
+
+
+ProgressCallback = Callable[[Any], Optional[bool]]
+
+
+def _progress_hook(progress: Optional[ProgressCallback], make: Callable[[Any], Any]) -> Optional[Callable[[Any], Any]]:
+    if progress is None:
+        return None
+    if not callable(progress):
+        raise TypeError(f"progress: expected a callable or None, got {progress!r}")
+    callback = progress
+    return lambda raw: callback(make(raw))
+
+
 def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str = "filtered",
            max_depth: Optional[int] = None, threads: int = 1, time_limit: Optional[float] = None,
-           all_pairs: bool = False, certificate: bool = False) -> Result:
+           all_pairs: bool = False, certificate: bool = False, progress: Optional[ProgressCallback] = None,
+           progress_interval: float = 0.5) -> Result:
     """Verifies every check of ``scene`` (as ``tmcert verify``).
 
     scene: a Scene, SceneBuilder, dict (tmcert-scene/1) or file path.
@@ -650,20 +749,136 @@ def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str =
     time_limit: seconds per check; past it the rest of a check is undecided.
     all_pairs: carry every feature pair instead of the bounding volumes.
     certificate: keep what :meth:`Result.certificate` needs.
+    progress: called with a :class:`Progress` about every
+        ``progress_interval`` seconds, in the calling thread, and once more
+        at the end (fraction 1); returning ``False`` cancels the run
+        (:class:`Cancelled` is raised), an exception it raises cancels it
+        and is raised again.
 
-    Runs without holding the GIL.  Raises InputError for bad options or a
+    Runs without holding the GIL, on a thread of its own.  Ctrl-C
+    (KeyboardInterrupt) cancels it within about a tenth of a second plus
+    one subdivision node's work, and raises KeyboardInterrupt: never a
+    result of a cancelled run.  Raises InputError for bad options or a
     scene that cannot be verified, ResourceLimit, MemoryError.
     """
+    hook = _progress_hook(progress, lambda r: Progress(r.fraction, r.checks_done, r.checks, r.activity, r.seconds))
     return Result(_tmcert.verify(load(scene), str(kernel), epsilon,
                                  None if max_depth is None else _bounded(max_depth, "max_depth", 1, 200),
                                  _bounded(threads, "threads", 1, 256),
                                  None if time_limit is None else float(time_limit), bool(all_pairs),
-                                 bool(certificate)))
+                                 bool(certificate), hook, float(progress_interval)))
+
+
+@dataclass(frozen=True)
+class BatchSummary:
+    """What :func:`batch` returns.
+
+    ``requests`` counts every request of the file (in every shard);
+    ``safe``, ``collision``, ``undecided`` and ``errors`` (bad lines) this
+    shard's; ``exit_code`` is ``tmcert batch``'s (1 a collision, else 2 an
+    undecided or bad request, else 0).  ``results`` holds the result lines
+    as dicts when no ``output`` file was given, else None.
+    """
+
+    requests: int
+    safe: int
+    collision: int
+    undecided: int
+    errors: int
+    exit_code: int
+    results: Optional[Tuple[dict, ...]]
+
+
+def batch(requests: Union[PathLike, Iterable[Union[Mapping[str, Any], str]]], scene: Optional[PathLike] = None,
+          output: Optional[PathLike] = None, shard: Optional[str] = None, epsilon: Optional[NumberLike] = None,
+          kernel: str = "filtered", max_depth: Optional[int] = None, time_limit: Optional[float] = None,
+          threads: int = 1, stats: bool = False, progress: Optional[ProgressCallback] = None,
+          progress_interval: float = 0.5) -> BatchSummary:
+    """Certifies many motions against one environment (as ``tmcert batch``).
+
+    requests: a JSON Lines file, or an iterable of requests (dicts, or JSON
+        text lines); docs/scene-format.md, "Batch runs".  Mesh files of
+        inline bodies are relative to the file's directory (for dicts: the
+        current directory; give JSON text lines absolute file names).
+    scene: the environment scene file (None: the first request line is the
+        environment document).
+    output: the results file; None: the results come back as
+        ``BatchSummary.results``.
+    shard: "i/n" for the requests whose index is i modulo n (an array job's
+        share; merge the shards' files with :func:`batch_merge`).
+    The other options are :func:`verify`'s (``threads`` runs requests in
+    parallel; ``stats`` adds each check's stats).  ``progress`` gets a
+    :class:`BatchProgress`; False cancels: no further line is written and
+    :class:`Cancelled` is raised (KeyboardInterrupt likewise).
+    """
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="tmcert-batch-") as work:
+        if isinstance(requests, (str, os.PathLike)):
+            requests_file = os.fspath(requests)
+        else:
+            requests_file = os.path.join(work, "requests.jsonl")
+            with open(requests_file, "w", encoding="utf-8") as f:
+                for i, line in enumerate(requests):
+                    text = line if isinstance(line, str) else json.dumps(_absolute_meshes(
+                        _json_value(line, f"requests[{i}]")))
+                    if "\n" in text.strip():
+                        raise InputError(f"requests[{i}]: a request is one line of JSON")
+                    f.write(text.strip() + "\n")
+        out_file = os.path.join(work, "results.jsonl") if output is None else os.fspath(output)
+        hook = _progress_hook(progress, lambda r: BatchProgress(r.requests_read, r.requests_written, r.activity,
+                                                                r.seconds))
+        raw = _tmcert.batch(requests_file, "" if scene is None else os.fspath(scene), out_file,
+                            "" if shard is None else str(shard), str(kernel), epsilon,
+                            None if max_depth is None else _bounded(max_depth, "max_depth", 1, 200),
+                            None if time_limit is None else float(time_limit), _bounded(threads, "threads", 1, 256),
+                            bool(stats), hook, float(progress_interval))
+        results = None
+        if output is None:
+            with open(out_file, encoding="utf-8") as f:
+                results = tuple(json.loads(line) for line in f if line.strip())
+    return BatchSummary(raw.requests, raw.safe, raw.collision, raw.undecided, raw.errors, raw.exit_code, results)
+
+
+def _absolute_meshes(doc: Any) -> Any:
+    """A request or environment document with its relative mesh and URDF files made absolute
+    (relative to the current directory)."""
+    if isinstance(doc, dict):
+        bodies = list(doc.get("bodies", [])) if isinstance(doc.get("bodies"), list) else []
+        if isinstance(doc.get("body"), dict):
+            bodies.append(doc["body"])
+        for body in bodies:
+            if isinstance(body, dict) and isinstance(body.get("mesh"), str) and not os.path.isabs(body["mesh"]):
+                body["mesh"] = os.path.abspath(body["mesh"])
+        for robot in doc.get("robots", []) if isinstance(doc.get("robots"), list) else []:
+            if isinstance(robot, dict) and isinstance(robot.get("urdf"), str) and not os.path.isabs(robot["urdf"]):
+                robot["urdf"] = os.path.abspath(robot["urdf"])
+    return doc
+
+
+def batch_merge(shards: Iterable[PathLike], output: Optional[PathLike] = None) -> Optional[str]:
+    """Merges the result files of a batch run's shards (as ``tmcert batch-merge``).
+
+    Writes the bytes of the unsharded run to ``output``, or returns them as
+    a str when ``output`` is None.  InputError when the files do not make up
+    one run.
+    """
+    import tempfile
+
+    files = [os.fspath(f) for f in shards]
+    if output is not None:
+        _tmcert.batch_merge(files, os.fspath(output))
+        return None
+    with tempfile.TemporaryDirectory(prefix="tmcert-merge-") as work:
+        out_file = os.path.join(work, "merged.jsonl")
+        _tmcert.batch_merge(files, out_file)
+        with open(out_file, encoding="utf-8") as f:
+            return f.read()
 
 
 def _bounded(value: Any, what: str, low: int, high: int) -> int:
     """An integer option in [low, high], with the library's message otherwise."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+    if isinstance(value, _BOOLS) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{what}: expected an integer, got {value!r}")
     if not low <= int(value) <= high:
         raise InputError(f"{what}: must be between {low} and {high}, got {int(value)}")
