@@ -8,8 +8,8 @@
 # the environment variable TMCERT_EXAMPLE_ROBOT_DATA overrides it). Without
 # it the test is skipped (exit 77) with a message saying how to fetch it.
 set -uo pipefail
-tmcert=$1
-dir=$2
+tmcert=$(realpath "$1")
+dir=$(cd "$2" && pwd)  # absolute: the scenes are linked from a temporary folder
 data=${TMCERT_EXAMPLE_ROBOT_DATA:-$3}
 if [ ! -f "$data/robots/panda_description/urdf/panda.urdf" ] || [ ! -f "$data/robots/ur_description/urdf/ur5_robot.urdf" ]; then
   echo "robot_examples: skipped: example-robot-data not found at $data" \
