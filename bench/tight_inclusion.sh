@@ -45,7 +45,7 @@ for f in ccd interval interval_root_finder avx; do
   objs+=("$out/$f.o")
 done
 g++ $flags "$here/bench/ccd_side_by_side.cpp" "${objs[@]}" "$build/libtmcert.a" -lgmpxx -lgmp -lmpfr -lflint-arb -lflint \
-  -lurdfdom_model -ltinyxml -lconsole_bridge -lpthread \
+  -lurdfdom_model -ltinyxml -lconsole_bridge -lassimp -lpthread \
   -o "$out/ccd_side_by_side"
 mapfile -t files < <(find "$queries" -name '*.csv' | sort)
 "$out/ccd_side_by_side" "$rounds" "${files[@]}"

@@ -14,6 +14,7 @@ packages=(
   libflint-arb-dev
   liburdfdom-dev        # URDF robots (src/robot/urdf.cpp; brings TinyXML and console_bridge)
   libtinyxml-dev libconsole-bridge-dev
+  libassimp-dev         # COLLADA (.dae) meshes (src/scene/mesh.cpp)
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libassimp-dev         # only for bench/omplapp_fcl.cpp (OMPL.app's COLLADA meshes, as OMPL.app reads them)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples

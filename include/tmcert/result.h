@@ -30,15 +30,19 @@ enum class Kernel {
 
 // Why an interval was left undecided.
 enum class StopReason {
-  Epsilon,        // the bodies come within about epsilon there
-  Depth,          // the subdivision depth limit was reached
-  Limit,          // a node, stop or time limit
-  AfterUndecided  // cleared only of contact beginning there, after a part not cleared,
-                  // and the bodies were not proven apart at its start
+  Epsilon,         // the bodies come within about epsilon there
+  Depth,           // the subdivision depth limit was reached
+  Limit,           // a node, stop or time limit
+  AfterUndecided,  // cleared only of contact beginning there, after a part not cleared,
+                   // and the bodies were not proven apart at its start
+  // A URDF cylinder's or sphere's circumscribed polyhedron touches there,
+  // and neither a contact of the true shape nor its absence was proven.
+  EnlargedModel
 };
 
 // "safe", "collision", "undecided"; "filtered", "exact", "fast";
-// "epsilon", "depth", "limit", "after_undecided" (as in tmcert-result/1).
+// "epsilon", "depth", "limit", "after_undecided", "enlarged_model" (as in
+// tmcert-result/1).
 TMCERT_API const char* to_string(Verdict v);
 TMCERT_API const char* to_string(Kernel k);
 TMCERT_API const char* to_string(StopReason r);

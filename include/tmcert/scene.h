@@ -20,6 +20,9 @@ class TMCERT_API Scene {
   // Reads and validates a scene file; mesh and URDF files are relative to
   // its directory.  Throws InputError naming the file and the JSON path.
   static Scene from_file(const std::string& path);
+  // The same, with folders searched for package:// URIs before the scene's
+  // "package_paths" and ROS_PACKAGE_PATH (`tmcert verify --package-path`).
+  static Scene from_file(const std::string& path, const std::vector<std::string>& package_paths);
   // The same for a document in memory.  `source` names it in messages;
   // mesh and URDF files are relative to the directory of `source` when it
   // names an existing file, otherwise to the current directory.

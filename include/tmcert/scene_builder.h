@@ -120,6 +120,9 @@ class TMCERT_API RobotBuilder {
   RobotBuilder& self_collision(bool value = true);
   // A pair of links never checked against each other.
   RobotBuilder& allow(std::string link_a, std::string link_b);
+  // Every <disable_collisions link1 link2> of a MoveIt SRDF file (relative
+  // to the current directory at the time of the call) as allowed pairs.
+  RobotBuilder& srdf(std::string file);
 
   const std::string& name() const { return name_; }
 
@@ -135,6 +138,7 @@ class TMCERT_API RobotBuilder {
   std::vector<std::vector<Number>> positions_;
   std::optional<bool> self_collision_;
   std::vector<std::pair<std::string, std::string>> allowed_;
+  std::optional<std::string> srdf_;
 };
 
 class TMCERT_API SceneBuilder {
@@ -161,6 +165,10 @@ class TMCERT_API SceneBuilder {
   SceneBuilder& max_depth(int depth);
   // Minimum separation of every check without its own (default 0).
   SceneBuilder& clearance(Number d);
+  // A folder searched for package://NAME/... mesh URIs of the robots' URDFs
+  // (relative to the current directory at the time of the call), in order,
+  // before ROS_PACKAGE_PATH; each with its subfolders up to four levels.
+  SceneBuilder& package_path(std::string folder);
 
   // Validates everything and returns the scene; the builder is unchanged
   // and can build again.  Throws InputError.
@@ -180,6 +188,7 @@ class TMCERT_API SceneBuilder {
   std::optional<Number> epsilon_;
   std::optional<int> max_depth_;
   std::optional<Number> clearance_;
+  std::vector<std::string> package_paths_;
 };
 
 }  // namespace tmcert::api

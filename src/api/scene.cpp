@@ -28,6 +28,14 @@ Scene Scene::from_file(const std::string& path) {
   });
 }
 
+Scene Scene::from_file(const std::string& path, const std::vector<std::string>& package_paths) {
+  return public_errors([&] {
+    std::vector<tmcert::SceneRobot> robots;
+    tmcert::Scene scene = tmcert::parse_scene_file(path, tmcert::ReadOptions{package_paths}, &robots);
+    return wrap(std::move(scene), std::move(robots));
+  });
+}
+
 Scene Scene::from_json(const std::string& text, const std::string& source) {
   return public_errors([&] {
     // As parse_scene_text(text, source): files relative to the directory

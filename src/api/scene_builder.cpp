@@ -299,6 +299,11 @@ RobotBuilder& RobotBuilder::allow(std::string link_a, std::string link_b) {
   return *this;
 }
 
+RobotBuilder& RobotBuilder::srdf(std::string file) {
+  srdf_ = absolute_file(file);
+  return *this;
+}
+
 // ---------------------------------------------------------------- scene
 
 BodyBuilder& SceneBuilder::add_body(std::string name) { return bodies_.emplace_back(std::move(name)); }
@@ -332,12 +337,18 @@ SceneBuilder& SceneBuilder::clearance(Number d) {
   return *this;
 }
 
+SceneBuilder& SceneBuilder::package_path(std::string folder) {
+  package_paths_.push_back(absolute_file(folder));
+  return *this;
+}
+
 std::string SceneBuilder::to_json() const {
   Json doc = Json::object();
   doc["format"] = "tmcert-scene/1";
   if (epsilon_) doc["epsilon"] = number(*epsilon_);
   if (max_depth_) doc["max_depth"] = *max_depth_;
   if (clearance_) doc["clearance"] = number(*clearance_);
+  if (!package_paths_.empty()) doc["package_paths"] = package_paths_;
   if (!bodies_.empty() || robots_.empty()) {  // none at all: the reader says a body is required
     Json bodies = Json::array();
     for (const BodyBuilder& b : bodies_) {
@@ -392,6 +403,7 @@ std::string SceneBuilder::to_json() const {
         for (const auto& [a, b] : r.allowed_) pairs.push_back(Json::array({a, b}));
         robot["allowed_pairs"] = std::move(pairs);
       }
+      if (r.srdf_) robot["srdf"] = *r.srdf_;
       robots.push_back(std::move(robot));
     }
     doc["robots"] = std::move(robots);

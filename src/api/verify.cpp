@@ -37,6 +37,7 @@ static_assert(static_cast<int>(StopReason::Epsilon) == static_cast<int>(tmcert::
               static_cast<int>(StopReason::Depth) == static_cast<int>(tmcert::StopReason::Depth) &&
               static_cast<int>(StopReason::Limit) == static_cast<int>(tmcert::StopReason::Limit) &&
               static_cast<int>(StopReason::AfterUndecided) == static_cast<int>(tmcert::StopReason::AfterUndecided));
+static_assert(static_cast<int>(StopReason::EnlargedModel) == static_cast<int>(tmcert::StopReason::EnlargedModel));
 
 template <typename To, typename From>
 To same_enum(From value) {

@@ -315,7 +315,7 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
   Scene scene;
   std::vector<SceneRobot> robots;
   if (!options.scene.empty()) {
-    scene = parse_scene_file(options.scene, robots);
+    scene = parse_scene_file(options.scene, ReadOptions{options.package_paths}, &robots);
   } else {
     bool found = false;
     while (next_line(in, line, line_number))
@@ -325,7 +325,8 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
       }
     if (!found) throw InputError(requests_name + ": no environment (the first line must be a tmcert-scene/1 document, "
                                                  "or give --scene)");
-    scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base, robots);
+    scene = parse_scene_text(line, requests_name + " line " + std::to_string(line_number), base, robots,
+                             ReadOptions{options.package_paths});
   }
   if (file_out) {
     require_distinct({&*file_out}, scene.input_files);

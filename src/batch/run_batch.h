@@ -26,6 +26,7 @@ struct BatchOptions {
   std::optional<int> max_depth;
   int threads = 1;       // requests run in parallel (output order kept)
   bool stats = false;    // each check's "stats", wall-clock seconds included
+  std::vector<std::string> package_paths;  // --package-path (ReadOptions)
   bool quiet = false;    // no summary line on stderr
   // Progress and cancellation: verify.run (src/verify/progress.h) counts
   // the shard's requests as its items (those read so far, those written);

@@ -512,6 +512,10 @@ std::vector<int> named_elements(const Body& body, const std::string& feature) {
     out.push_back(P + index);
   } else if (kind == "point") {
     out.push_back(P + S + index);
+  } else if ((kind == "cylinder" || kind == "sphere") && body.primitive) {
+    // A contact proven on a URDF cylinder or sphere (its true shape, inside
+    // the body's polyhedron): any element of the polyhedron.
+    for (int e = 0; e < P; ++e) out.push_back(e);
   }
   return out;
 }
@@ -812,7 +816,12 @@ struct CheckWriter {
       if (w.displacement && w.displaced == k)
         for (int i = 0; i < 3; ++i) m[4 * i + 3] += (*w.displacement)[i];
       const Vec3E& target = w.points ? (*w.points)[k] : w.point;
-      if (feature == body.name + " interior") {
+      // A point proven in a URDF cylinder or sphere lies in its body, the
+      // solid polyhedron around it: an interior claim.
+      const bool in_primitive = w.true_shape && body.primitive && feature.rfind(body.name + " ", 0) == 0 &&
+                                (feature.find(" cylinder", body.name.size()) != std::string::npos ||
+                                 feature.find(" sphere", body.name.size()) != std::string::npos);
+      if (feature == body.name + " interior" || in_primitive) {
         auto ray = ray_from(body, placed_pieces(body, m), target);
         if (!ray || !ray->second) fail("the interior witness could not be confirmed by a ray");
         out[keys[k]] = {{"interior", {{"ray", vec(ray->first)}}}};
@@ -1126,12 +1135,21 @@ std::string uncertifiable(const Scene& scene) {
   for (const auto& [ia, ib] : scene.checks) {
     const Body& a = scene.bodies[ia];
     const Body& b = scene.bodies[ib];
-    if (!a.solid && !b.solid) continue;
-    const Exact t0 = check_interval(a, b).first;
+    if (a.solid || b.solid) {
+      const Exact t0 = check_interval(a, b).first;
+      for (const Body* body : {&a, &b})
+        if (!exact_pose_at(*body, t0))
+          return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
+                 "\" at its start is not exact (a transcendental rotation)";
+    }
+    // A URDF cylinder or sphere: its collisions are proven on the true
+    // shape and its safe parts may rest on finer polyhedra than the
+    // scene's (proofs/robot-links.md section 6), which the format does not
+    // describe.
     for (const Body* body : {&a, &b})
-      if (!exact_pose_at(*body, t0))
-        return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
-               "\" at its start is not exact (a transcendental rotation)";
+      if (body->primitive)
+        return "check [\"" + a.name + "\", \"" + b.name + "\"] has the URDF " + body->enlarged.front() + " \"" +
+               body->name + "\" (proven on its true shape and finer polyhedra, which certificates do not describe yet)";
   }
   return {};
 }

@@ -65,6 +65,7 @@ struct VerifyArgs {
   bool all_pairs = false;
   std::string time_limit;  // seconds per check; empty: none
   std::string report;      // --report: HTML page; empty: none
+  std::vector<std::string> package_paths;  // --package-path, in order
 };
 
 // Progress on stderr when it is a terminal, from about two seconds into a
@@ -180,7 +181,7 @@ int run_verify(const VerifyArgs& args) {
   std::optional<TerminalProgress> progress;
   if (isatty(STDERR_FILENO)) progress.emplace(run);
   run.set_activity("reading " + args.scene);
-  auto owned = std::make_unique<Scene>(parse_scene_file(args.scene));
+  auto owned = std::make_unique<Scene>(parse_scene_file(args.scene, ReadOptions{args.package_paths}));
   Scene& scene = *owned;
   if (progress) {
     // Warnings go before the progress line, which is erased and comes back.
@@ -254,9 +255,10 @@ int run_verify(const VerifyArgs& args) {
 
 // `tmcert check CERTIFICATE SCENE`: 0 every claim holds, 1 rejected (one
 // line on stderr naming the claim), 3 bad input, 4 internal error.
-int run_certificate_check(const std::string& certificate_file, const std::string& scene_file) {
+int run_certificate_check(const std::string& certificate_file, const std::string& scene_file,
+                          const std::vector<std::string>& package_paths) {
   using namespace tmcert;
-  const Scene scene = parse_scene_file(scene_file);
+  const Scene scene = parse_scene_file(scene_file, ReadOptions{package_paths});
   print_warnings(scene);
   const nlohmann::json doc = certificate::read_certificate_file(certificate_file);
   const certificate::CheckOutcome outcome = certificate::check_certificate(scene, doc, certificate_file);
@@ -352,6 +354,9 @@ int main(int argc, char** argv) {
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
                      "(reason limit), never safe; refinement (no --epsilon) stops at it, else at 30 s");
+  const char* package_help = "a folder searched for package://NAME/... (repeatable; before the scene's \"package_paths\" "
+                             "and ROS_PACKAGE_PATH; each with its subfolders up to four levels)";
+  verify->add_option("--package-path", args.package_paths, package_help)->allow_extra_args(false);
   verify->add_flag("--all-pairs", args.all_pairs,
                    "carry every feature pair from the start instead of the bounding-volume hierarchies "
                    "(the reference the hierarchy is tested against; slow for large bodies)");
@@ -360,6 +365,8 @@ int main(int argc, char** argv) {
   std::string cert_file, cert_scene;
   check->add_option("certificate", cert_file, "certificate file (tmcert-certificate/1)")->required();
   check->add_option("scene", cert_scene, "the scene it certifies (tmcert-scene/1)")->required();
+  std::vector<std::string> check_packages;
+  check->add_option("--package-path", check_packages, package_help)->allow_extra_args(false);
   BatchArgs batch_args;
   CLI::App* batch = app.add_subcommand("batch", "certify many motions against one environment: JSON Lines "
                                                 "requests in, one result line per request out (in input order)");
@@ -379,6 +386,7 @@ int main(int argc, char** argv) {
   batch->add_option("--time-limit", batch_args.time_limit, "seconds per check (the rest of a check past it is undecided)");
   batch->add_option("--threads", batch_args.options.threads, "requests run in parallel (the output is the same)")
       ->check(CLI::Range(1, 256));
+  batch->add_option("--package-path", batch_args.options.package_paths, package_help)->allow_extra_args(false);
   batch->add_flag("--stats", batch_args.options.stats,
                   "give each check its stats, wall-clock seconds included (output not reproducible)");
   std::vector<std::string> merge_files;
@@ -431,7 +439,7 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   try {
-    if (check->parsed()) return run_certificate_check(cert_file, cert_scene);
+    if (check->parsed()) return run_certificate_check(cert_file, cert_scene, check_packages);
     if (batch->parsed()) return run_batch_command(batch_args);
     if (merge->parsed()) {
       const std::size_t lines = tmcert::merge_batch(merge_files, merge_output);

@@ -584,6 +584,13 @@ std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReaso
              "before it the bodies were not proven apart (a pose only enclosed, or a solid's inside left open); try a "
              "smaller --epsilon, e.g. --epsilon " +
              to_decimal(c.epsilon / 10).text;
+    case StopReason::EnlargedModel:
+      return c.verdict == Verdict::Collision
+                 ? "a URDF cylinder's or sphere's circumscribed polyhedron touches there; the contact of the true "
+                   "shape was proven only at the witness"
+                 : "a URDF cylinder's or sphere's circumscribed polyhedron touches there, and no contact of the true "
+                   "shape was proven, even on the finest polyhedron (the shapes come within about 0.01% (a cylinder) "
+                   "or 0.25% (a sphere) of the radius there, or the poses are enclosed too loosely to decide)";
   }
   return {};
 }
@@ -629,7 +636,8 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
     out << "  note: " << b.name << " is an enlarged model: its ";
     for (std::size_t i = 0; i < b.enlarged.size(); ++i) out << (i ? ", " : "") << b.enlarged[i];
     out << (b.enlarged.size() == 1 ? " is replaced by a circumscribed polyhedron" : " are replaced by circumscribed polyhedra")
-        << " (safe holds for the true shapes; a collision is one of the model)\n";
+        << (b.primitive ? " (safe holds for the true shape; a collision is proven on it)\n"
+                        : " (safe holds for the true shapes; a collision is one of the model)\n");
   }
   for (const CheckResult& c : r.checks) {
     const std::string& name_a = scene.bodies[c.bodies[0]].name;

@@ -30,23 +30,18 @@ JointMotions::JointMotions(std::shared_ptr<const PlacedRobot> robot, std::vector
     names.positions.push_back(row);
   }
   validate_joint_path(model, names);
-  for (std::size_t l = 0; l < model.links.size(); ++l) {
-    if (!model.links[l].geometry) continue;
-    links_.push_back(static_cast<int>(l));
-    std::vector<std::size_t> cols;
-    for (int j : robot_->chain_joints(static_cast<int>(l)))
-      for (std::size_t c = 0; c < joints_.size(); ++c)
-        if (joints_[c] == model.joints[j].name) cols.push_back(c);
-    columns_.push_back(cols);
-  }
-  if (links_.empty()) throw InputError(model.source + ": no link has collision geometry");
+  for (const std::string& name : joints_) column_joints_.push_back(model.joint_index(name));
+  for (std::size_t l = 0; l < model.links.size(); ++l)
+    for (std::size_t p = 0; p < model.links[l].parts.size(); ++p) movers_.emplace_back(static_cast<int>(l), p);
+  if (movers_.empty()) throw InputError(model.source + ": no link has collision geometry");
 }
 
 std::vector<Body> JointMotions::link_bodies() const {
   std::vector<Body> out;
-  for (int l : links_) {
-    Body b = *robot_->model().links[l].geometry;
-    b.name = robot_->name() + "/" + robot_->model().links[l].name;
+  for (const auto& [l, p] : movers_) {
+    const RobotLink& link = robot_->model().links[l];
+    Body b = link.parts[p].geometry;
+    b.name = robot_->name() + "/" + link.name + link.parts[p].suffix;
     out.push_back(std::move(b));
   }
   return out;
@@ -57,7 +52,10 @@ std::vector<std::pair<int, int>> JointMotions::self_pairs(
   // robot_default_checks on "bodies" numbered by mover, with no environment.
   RobotBodies bodies;
   bodies.body.assign(robot_->model().links.size(), -1);
-  for (std::size_t m = 0; m < links_.size(); ++m) bodies.body[links_[m]] = static_cast<int>(m);
+  bodies.parts.resize(robot_->model().links.size());
+  for (std::size_t m = 0; m < movers_.size(); ++m) bodies.parts[movers_[m].first].push_back(static_cast<int>(m));
+  for (std::size_t l = 0; l < bodies.parts.size(); ++l)
+    if (!bodies.parts[l].empty()) bodies.body[l] = bodies.parts[l].front();
   return robot_default_checks(*robot_, bodies, {}, self_collision, allowed_pairs);
 }
 
@@ -74,13 +72,15 @@ std::vector<Exact> JointMotions::values(const ob::State* s) const {
 std::vector<Trajectory> JointMotions::segment(const ob::State* s1, const ob::State* s2) const {
   const std::vector<Exact> a = values(s1), b = values(s2);
   validate_joint_path(robot_->model(), JointPath{joints_, {Exact(0), Exact(1)}, {a, b}});  // limits
+  const std::vector<Exact> qa = joint_values(robot_->model(), column_joints_, a);
+  const std::vector<Exact> qb = joint_values(robot_->model(), column_joints_, b);
   std::vector<Trajectory> out;
-  for (std::size_t m = 0; m < links_.size(); ++m) {
-    const std::shared_ptr<const LinkChain>& chain = robot_->chain(links_[m]);
+  for (const auto& [l, p] : movers_) {
+    const std::shared_ptr<const LinkChain>& chain = robot_->chain(l, p);
     std::vector<Exact> from, to;
-    for (std::size_t c : columns_[m]) {
-      from.push_back(a[c]);
-      to.push_back(b[c]);
+    for (int j : robot_->chain_joints(l)) {
+      from.push_back(qa[j]);
+      to.push_back(qb[j]);
     }
     MotionSegment seg;
     seg.t0 = 0;
@@ -106,11 +106,12 @@ std::vector<Trajectory> JointMotions::segment(const ob::State* s1, const ob::Sta
 std::optional<std::vector<Mat34E>> JointMotions::exact_poses(const ob::State* s) const {
   const std::vector<Exact> q = values(s);
   validate_joint_path(robot_->model(), JointPath{joints_, {Exact(0), Exact(1)}, {q, q}});  // limits
+  const std::vector<Exact> all = joint_values(robot_->model(), column_joints_, q);
   std::vector<Mat34E> out;
-  for (std::size_t m = 0; m < links_.size(); ++m) {
+  for (const auto& [l, p] : movers_) {
     std::vector<Exact> v;
-    for (std::size_t c : columns_[m]) v.push_back(q[c]);
-    const std::optional<Mat34E> pose = robot_->chain(links_[m])->exact_pose(v);
+    for (int j : robot_->chain_joints(l)) v.push_back(all[j]);
+    const std::optional<Mat34E> pose = robot_->chain(l, p)->exact_pose(v);
     if (!pose) return std::nullopt;  // a revolute joint off 0: enclosed only
     out.push_back(*pose);
   }

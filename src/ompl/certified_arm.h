@@ -18,7 +18,8 @@
 namespace tmcert {
 
 // Joint-space states of a placed robot: dimension k of a state is the
-// position of joint `joints[k]` (every moving joint, each once), read
+// position of joint `joints[k]` (every moving joint but the mimic joints,
+// each once; a mimic joint follows its joint), read
 // exactly as the double it is.  A segment's joint values are linear in the
 // segment parameter (SCENE_FORMAT.md "Robots from URDF"); values outside a
 // joint's <limit> make the segment uncertifiable (InputError: invalid).
@@ -28,9 +29,10 @@ class JointMotions final : public StateMotions {
   std::vector<Trajectory> segment(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   std::optional<std::vector<Mat34E>> exact_poses(const ompl::base::State* s) const override;
 
-  // The links with collision geometry (indices into the model's links), in
-  // the order of the movers, and their bodies "<robot>/<link>".
-  const std::vector<int>& links() const { return links_; }
+  // The movers: every part of every link with collision geometry (robot.h
+  // LinkPart), as (link index, part index), and their bodies
+  // "<robot>/<link>" (and "<robot>/<link>/collision[i]" for further parts).
+  const std::vector<std::pair<int, std::size_t>>& movers() const { return movers_; }
   std::vector<Body> link_bodies() const;
   // Pairs of movers checked against each other: with `self_collision`, the
   // robot's default self-collision pairs (not parent and child, not in
@@ -43,8 +45,8 @@ class JointMotions final : public StateMotions {
 
   std::shared_ptr<const PlacedRobot> robot_;
   std::vector<std::string> joints_;
-  std::vector<int> links_;
-  std::vector<std::vector<std::size_t>> columns_;  // per mover: the columns of its chain's joints
+  std::vector<std::pair<int, std::size_t>> movers_;
+  std::vector<int> column_joints_;  // per column: its joint (index into the model's joints)
 };
 
 // Installs the certified validity checker and motion validator for `robot`

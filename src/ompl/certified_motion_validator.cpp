@@ -84,7 +84,11 @@ EdgeCertificate CertifiedMotionValidator::certify(const ob::State* s1, const ob:
 
 EdgeCertificate CertifiedMotionValidator::certify_state(const ob::State* s) const {
   try {
-    if (const auto poses = motions_->exact_poses(s)) {
+    // (With a URDF cylinder or sphere the static test sees its polyhedron:
+    // the search below proves a collision on the true shape instead.)
+    const std::optional<std::vector<Mat34E>> poses =
+        environment_->has_primitives() ? std::nullopt : motions_->exact_poses(s);
+    if (poses) {
       EdgeCertificate out;
       if (auto w = environment_->static_contact(*poses)) {
         out.check.verdict = Verdict::Collision;

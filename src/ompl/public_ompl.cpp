@@ -62,6 +62,8 @@ tmcert::Body obstacle_body(const tmcert::Scene& scene, const std::vector<std::si
     if (b.tolerance != 0) throw InputError(field(i) + ".tolerance: tolerances are not supported by the OMPL validator");
     if (b.solid && indices.size() > 1)
       throw InputError(field(i) + ".solid: a solid obstacle must be the only obstacle of an OMPL planning scene");
+    if (b.primitive)  // its collisions must be proven on its true shape, in its own frame
+      throw InputError(field(i) + ": a robot link's URDF cylinder or sphere cannot be an obstacle of an OMPL planning scene");
     const bool posed = b.motion.has_value() || b.trajectory.has_value();
     if (b.trajectory)  // a one-pose trajectory does not occur (keyframes of one pose reduce to a motion)
       throw InputError(field(i) + ".motion: the obstacles of an OMPL planning scene must be fixed (every body but the robot)");

@@ -452,8 +452,12 @@ PYBIND11_MODULE(_tmcert, m) {
 
   // ------------------------------------------------------------ scenes
   py::class_<api::Scene>(m, "Scene", "An immutable, validated tmcert-scene/1 scene.")
-      .def_static("from_file", &api::Scene::from_file, py::arg("path"),
+      .def_static("from_file", py::overload_cast<const std::string&>(&api::Scene::from_file), py::arg("path"),
                   "Reads and validates a scene file (mesh and URDF files relative to it).")
+      .def_static("from_file",
+                  py::overload_cast<const std::string&, const std::vector<std::string>&>(&api::Scene::from_file),
+                  py::arg("path"), py::arg("package_paths"),
+                  "The same, with folders searched for package:// URIs before the scene's and ROS_PACKAGE_PATH.")
       .def_static("from_json", &api::Scene::from_json, py::arg("text"), py::arg("source") = "<json>",
                   "Reads and validates a tmcert-scene/1 document; `source` names it in messages.")
       .def_property_readonly("body_names", &api::Scene::body_names, "Body names in scene order.")
@@ -522,7 +526,8 @@ PYBIND11_MODULE(_tmcert, m) {
       .def("base", &RB::base, self)
       .def("path", &RB::path, self)
       .def("self_collision", &RB::self_collision, self)
-      .def("allow", &RB::allow, self);
+      .def("allow", &RB::allow, self)
+      .def("srdf", &RB::srdf, self);
 
   using SB = api::SceneBuilder;
   py::class_<SB>(m, "_SceneBuilder")
@@ -534,6 +539,7 @@ PYBIND11_MODULE(_tmcert, m) {
       .def("epsilon", &SB::epsilon, self)
       .def("max_depth", &SB::max_depth, self)
       .def("clearance", &SB::clearance, self)
+      .def("package_path", &SB::package_path, self)
       .def("build", &SB::build)
       .def("to_json", &SB::to_json);
 

@@ -1,6 +1,9 @@
 #include "src/robot/primitives.h"
 
+#include "src/scene/parse.h"
+
 #include <array>
+#include <cmath>
 
 namespace tmcert {
 
@@ -9,21 +12,35 @@ namespace {
 using Vec2E = std::array<Exact, 2>;
 
 // Rational points of the unit circle in the first octant from angle 0 to
-// 45 degrees: (1, 0), (12/13, 5/13) (22.62 deg), (697/985, 696/985)
-// (44.96 deg).  x^2 + y^2 = 1 exactly for each (169 = 144 + 25,
-// 985^2 = 697^2 + 696^2).
-std::vector<Vec2E> octant() {
-  return {{Exact(1), Exact(0)}, {Exact(12, 13), Exact(5, 13)}, {Exact(697, 985), Exact(696, 985)}};
+// 45 degrees.  Level 0: (1, 0), (12/13, 5/13) (22.62 deg), (697/985,
+// 696/985) (44.96 deg); x^2 + y^2 = 1 exactly for each (169 = 144 + 25,
+// 985^2 = 697^2 + 696^2).  Level k >= 1: 2 * 4^k + 1 points
+// ((1 - t^2)/(1 + t^2), 2t/(1 + t^2)) (unit for every rational t) with t
+// the multiple of 2^-20 nearest tan(theta/2) for theta from 0 to 45 degrees
+// in equal steps: consecutive ones at most 45/(2 * 4^k) + 0.001 degrees
+// apart.
+std::vector<Vec2E> octant(int level = 0) {
+  if (level <= 0) return {{Exact(1), Exact(0)}, {Exact(12, 13), Exact(5, 13)}, {Exact(697, 985), Exact(696, 985)}};
+  const int m = 2 << (2 * level);
+  std::vector<Vec2E> out;
+  for (int i = 0; i <= m; ++i) {
+    const double theta = std::atan(1.0) * i / m;  // pi/4 * i/m (any approximation will do: the points are exact)
+    const Exact t(static_cast<long>(std::llround(std::tan(theta / 2) * 1048576.0)), 1048576L);
+    const Exact d = 1 + t * t;
+    out.push_back({(1 - t * t) / d, 2 * t / d});
+  }
+  return out;
 }
 
-// 16 rational unit vectors counterclockwise around the circle: the octant
-// points and their images under the symmetries of the square (which keep
-// coordinates rational and lengths 1).  Consecutive ones are at most
-// 22.62 degrees apart.
-std::vector<Vec2E> azimuths() {
+// 16 (level 0; 16 m at level k) rational unit vectors counterclockwise
+// around the circle: the octant points, their reflections in the diagonal
+// (but the one nearest 45 degrees), and the images of these under
+// rotations by 90 degrees (which keep coordinates rational and lengths 1).
+std::vector<Vec2E> azimuths(int level = 0) {
+  const std::vector<Vec2E> oct = octant(level);
   std::vector<Vec2E> q1;  // first quadrant, from 0 to 90 degrees exclusive
-  for (const Vec2E& p : octant()) q1.push_back(p);
-  q1.push_back({Exact(5, 13), Exact(12, 13)});  // reflection of (12/13, 5/13) in the diagonal
+  for (const Vec2E& p : oct) q1.push_back(p);
+  for (std::size_t i = oct.size() - 1; i-- > 1;) q1.push_back({oct[i][1], oct[i][0]});  // reflections, counterclockwise
   std::vector<Vec2E> out;
   for (int quadrant = 0; quadrant < 4; ++quadrant)
     for (Vec2E p : q1) {
@@ -42,8 +59,8 @@ Vec2E meet(const Vec2E& m, const Vec2E& n) {
 
 // The polygon circumscribing the unit circle with tangent lines at the
 // azimuths: vertex i is where lines i and i+1 meet.
-std::vector<Vec2E> azimuth_polygon() {
-  const std::vector<Vec2E> p = azimuths();
+std::vector<Vec2E> azimuth_polygon(int level) {
+  const std::vector<Vec2E> p = azimuths(level);
   std::vector<Vec2E> out;
   for (std::size_t i = 0; i < p.size(); ++i) out.push_back(meet(p[i], p[(i + 1) % p.size()]));
   return out;
@@ -55,8 +72,8 @@ std::vector<Vec2E> azimuth_polygon() {
 // an r = 0 vertex is a pole).  Faces: one quadrilateral (a triangle at a
 // pole) per azimuth edge and profile edge, and a cap polygon at a first or
 // last vertex with r > 0.  Faces are oriented outward.
-PolygonList revolve(const std::vector<Vec2E>& profile) {
-  const std::vector<Vec2E> a = azimuth_polygon();
+PolygonList revolve(const std::vector<Vec2E>& profile, int level) {
+  const std::vector<Vec2E> a = azimuth_polygon(level);
   const std::size_t n = a.size();
   auto at = [&](const Vec2E& rz, std::size_t i) {
     return Vec3E{rz[0] * a[i % n][0], rz[0] * a[i % n][1], rz[1]};
@@ -88,11 +105,12 @@ PolygonList revolve(const std::vector<Vec2E>& profile) {
 }
 
 // Latitude normals (c, s) from -90 to 90 degrees, with c >= 0: the octant
-// points and their reflections, at most 22.62 degrees apart.
-std::vector<Vec2E> latitudes() {
+// points, their reflections and the pole, and the mirror images below.
+std::vector<Vec2E> latitudes(int level = 0) {
+  const std::vector<Vec2E> oct = octant(level);
   std::vector<Vec2E> up;  // 0 .. 90 degrees
-  for (const Vec2E& p : octant()) up.push_back(p);
-  up.push_back({Exact(5, 13), Exact(12, 13)});
+  for (const Vec2E& p : oct) up.push_back(p);
+  for (std::size_t i = oct.size() - 1; i-- > 1;) up.push_back({oct[i][1], oct[i][0]});
   up.push_back({Exact(0), Exact(1)});
   std::vector<Vec2E> out;
   for (std::size_t k = up.size(); k-- > 1;) out.push_back({up[k][0], -up[k][1]});
@@ -116,40 +134,59 @@ PolygonList box_polyhedron(const Vec3E& size) {
           {v(1, 0, 0), v(1, 1, 0), v(1, 1, 1), v(1, 0, 1)}};  // x = +x
 }
 
-PolygonList cylinder_polyhedron(const Exact& radius, const Exact& length) {
+PolygonList cylinder_polyhedron(const Exact& radius, const Exact& length, int level) {
   const Exact h = length / 2;
-  PolygonList out = revolve({{radius, -h}, {radius, h}});
+  PolygonList out = revolve({{radius, -h}, {radius, h}}, level);
   return out;
 }
 
-PolygonList sphere_polyhedron(const Exact& radius) {
-  const std::vector<Vec2E> lat = latitudes();
+PolygonList sphere_polyhedron(const Exact& radius, int level) {
+  const std::vector<Vec2E> lat = latitudes(level);
   // Profile vertices: consecutive latitude lines meet; from the bottom cap
   // line (0, -1) to the top one (0, 1).
   std::vector<Vec2E> profile;
   for (std::size_t k = 0; k + 1 < lat.size(); ++k) profile.push_back(meet(lat[k], lat[k + 1]));
-  PolygonList out = revolve(profile);
+  PolygonList out = revolve(profile, level);
   for (auto& f : out)
     for (Vec3E& v : f) v = scaled(v, radius);
   return out;
 }
 
-std::vector<Vec3E> cylinder_tangent_normals() {
+std::vector<Vec3E> cylinder_tangent_normals(int level) {
   std::vector<Vec3E> out;
-  for (const Vec2E& p : azimuths()) out.push_back({p[0], p[1], Exact(0)});
+  for (const Vec2E& p : azimuths(level)) out.push_back({p[0], p[1], Exact(0)});
   return out;
 }
 
-std::vector<Vec3E> sphere_tangent_normals() {
+std::vector<Vec3E> sphere_tangent_normals(int level) {
   std::vector<Vec3E> out;
-  for (const Vec2E& cs : latitudes()) {
+  for (const Vec2E& cs : latitudes(level)) {
     if (cs[0] == 0) {
       out.push_back({Exact(0), Exact(0), cs[1]});
       continue;
     }
-    for (const Vec2E& p : azimuths()) out.push_back({cs[0] * p[0], cs[0] * p[1], cs[1]});
+    for (const Vec2E& p : azimuths(level)) out.push_back({cs[0] * p[0], cs[0] * p[1], cs[1]});
   }
   return out;
+}
+
+bool refine_primitive(Body& body) {
+  if (!body.primitive) return false;
+  const bool sphere = body.primitive->kind == Body::Primitive::Kind::Sphere;
+  if (body.primitive->level >= (sphere ? kMaxSphereLevel : kMaxCylinderLevel)) return false;
+  Body::Primitive prim = *body.primitive;
+  ++prim.level;
+  const PolygonList polygons = prim.kind == Body::Primitive::Kind::Sphere ? sphere_polyhedron(prim.radius, prim.level)
+                                                                          : cylinder_polyhedron(prim.radius, prim.length, prim.level);
+  body.polygons.clear();
+  body.pieces.clear();
+  for (const std::vector<Vec3E>& polygon : polygons) {
+    auto [clean, pieces] = split_scene_polygon(polygon, static_cast<int>(body.polygons.size()));
+    body.polygons.push_back(std::move(clean));
+    for (ConvexPiece& p : pieces) body.pieces.push_back(std::move(p));
+  }
+  body.primitive = prim;
+  return true;
 }
 
 }  // namespace tmcert

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "kernels/number_types.h"
+#include "src/scene/model.h"
 
 #include <vector>
 
@@ -24,17 +25,34 @@ using PolygonList = std::vector<std::vector<Vec3E>>;
 // The box [-x/2, x/2] x [-y/2, y/2] x [-z/2, z/2] (sizes > 0): 6 faces.
 PolygonList box_polyhedron(const Vec3E& size);
 
-// A prism with 16 sides around the z axis containing the cylinder of this
-// radius and length (> 0), with the same flat caps at z = +-length/2.
-PolygonList cylinder_polyhedron(const Exact& radius, const Exact& length);
+// A prism around the z axis containing the cylinder of this radius and
+// length (> 0), with the same flat caps at z = +-length/2: 16 sides at
+// level 0 (reaching at most 2% beyond the cylinder's radius), 64 at level 1
+// (0.13%), 256 at level 2 (0.008%).
+PolygonList cylinder_polyhedron(const Exact& radius, const Exact& length, int level = 0);
 
-// A polyhedron containing the ball of this radius (> 0) about the origin.
-PolygonList sphere_polyhedron(const Exact& radius);
+// A polyhedron containing the ball of this radius (> 0) about the origin:
+// 114 faces at level 0 (reaching at most 4.1% beyond the ball's radius),
+// 64 azimuths x 32 latitude bands at level 1 (0.25%), 256 x 128 at level 2
+// (0.016%).
+PolygonList sphere_polyhedron(const Exact& radius, int level = 0);
 
 // The unit normals of the tangent planes (at distance `radius` from the
 // origin) whose intersection the two circumscribed solids are, for tests:
 // each face of the solid lies in one of these planes.
-std::vector<Vec3E> cylinder_tangent_normals();
-std::vector<Vec3E> sphere_tangent_normals();
+std::vector<Vec3E> cylinder_tangent_normals(int level = 0);
+std::vector<Vec3E> sphere_tangent_normals(int level = 0);
+
+// The finest level refine_primitive goes to: 2 for a cylinder (a prism of
+// 256 sides), 1 for a sphere (its level 2 has some 33 000 faces, more than
+// a search should carry for one primitive).
+inline constexpr int kMaxCylinderLevel = 2;
+inline constexpr int kMaxSphereLevel = 1;
+
+// A body that is a URDF cylinder or sphere (Body::primitive) with its
+// polyhedron at the next level (polygons and convex pieces; mass, solid
+// and the rest kept); false, unchanged, at the finest level or for another
+// body.
+bool refine_primitive(Body& body);
 
 }  // namespace tmcert

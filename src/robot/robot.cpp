@@ -49,10 +49,12 @@ PlacedRobot::PlacedRobot(std::shared_ptr<const RobotModel> model, std::string na
       joints.push_back(cj);
       constants.emplace_back();
     }
-    const RobotLink& link = m.links[l];
-    if (!link.geometry) continue;
-    for (const Pose& p : link.body_frame) constants.back().push_back(p);
-    chains_[l] = std::make_shared<const LinkChain>(std::move(constants), std::move(joints));
+    // One chain per part: the part's frame is the last constant factor.
+    for (const LinkPart& part : m.links[l].parts) {
+      std::vector<std::vector<Pose>> c = constants;
+      for (const Pose& p : part.frame) c.back().push_back(p);
+      chains_[l].push_back(std::make_shared<const LinkChain>(std::move(c), joints));
+    }
   }
 }
 
@@ -62,6 +64,45 @@ std::string quoted(const std::string& s) { return quote_text(s); }
 
 }  // namespace
 
+namespace {
+
+// The named joint whose value drives joint j (j itself unless a mimic joint).
+int driver(const RobotModel& model, int j) {
+  for (std::size_t n = 0; model.joints[j].mimic && n <= model.joints.size(); ++n) j = model.joints[j].mimic->joint;
+  return j;
+}
+
+std::string mimic_text(const RobotModel& model, const RobotJoint& joint) {
+  const RobotJoint::Mimic& m = *joint.mimic;
+  return "mimic of " + quoted(model.joints[m.joint].name) + ": " + decimal_text(m.multiplier) + " q + " + decimal_text(m.offset);
+}
+
+}  // namespace
+
+std::vector<Exact> joint_values(const RobotModel& model, const std::vector<int>& columns, const std::vector<Exact>& row) {
+  std::vector<std::optional<Exact>> value(model.joints.size());
+  for (std::size_t c = 0; c < columns.size(); ++c) value[columns[c]] = row[c];
+  // Mimic joints follow their joint, which may follow another (no cycles:
+  // the reader refuses them), so at most joints.size() rounds.
+  for (std::size_t round = 0; round <= model.joints.size(); ++round) {
+    bool open = false;
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const RobotJoint& joint = model.joints[j];
+      if (value[j] || !joint.moves() || !joint.mimic) continue;
+      if (const std::optional<Exact>& q = value[joint.mimic->joint]) value[j] = joint.mimic->multiplier * *q + joint.mimic->offset;
+      else open = true;
+    }
+    if (!open) break;
+  }
+  std::vector<Exact> out(model.joints.size(), Exact(0));
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    if (!model.joints[j].moves()) continue;
+    if (!value[j]) throw InputError(model.source + ": joint " + quoted(model.joints[j].name) + " has no value");
+    out[j] = *value[j];
+  }
+  return out;
+}
+
 void validate_joint_path(const RobotModel& model, const JointPath& path) {
   std::map<std::string, std::size_t> columns;
   for (std::size_t c = 0; c < path.joints.size(); ++c) {
@@ -69,11 +110,14 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
     const int j = model.joint_index(name);
     if (j < 0) throw JointPathError("joints", {c}, "unknown joint " + quoted(name) + " (not in " + model.source + ")");
     if (!model.joints[j].moves()) throw JointPathError("joints", {c}, "joint " + quoted(name) + " is fixed (name only moving joints)");
+    if (model.joints[j].mimic)
+      throw JointPathError("joints", {c}, "joint " + quoted(name) + " is a " + mimic_text(model, model.joints[j]) +
+                                              " (do not name it: it follows that joint)");
     if (auto [it, fresh] = columns.emplace(name, c); !fresh)
       throw JointPathError("joints", {c}, "joint " + quoted(name) + " named twice (also joints[" + std::to_string(it->second) + "])");
   }
   for (const RobotJoint& joint : model.joints)
-    if (joint.moves() && !columns.count(joint.name))
+    if (joint.moves() && !joint.mimic && !columns.count(joint.name))
       throw JointPathError("joints", {}, "the moving joint " + quoted(joint.name) + " is missing (every moving joint must be named)");
   if (path.times.size() < 2)
     throw JointPathError("times", {}, "at least 2 times are required, got " + std::to_string(path.times.size()));
@@ -82,18 +126,33 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
   if (path.positions.size() != path.times.size())
     throw JointPathError("positions", {}, "expected " + std::to_string(path.times.size()) + " waypoints (one per time), got " +
                                               std::to_string(path.positions.size()));
+  std::vector<int> index;
+  for (const std::string& name : path.joints) index.push_back(model.joint_index(name));
   for (std::size_t k = 0; k < path.positions.size(); ++k) {
     const std::vector<Exact>& row = path.positions[k];
     if (row.size() != path.joints.size())
       throw JointPathError("positions", {k}, "waypoint " + std::to_string(k) + ": expected " + std::to_string(path.joints.size()) +
                                                  " values (one per joint), got " + std::to_string(row.size()));
     for (std::size_t c = 0; c < row.size(); ++c) {
-      const RobotJoint& joint = model.joints[model.joint_index(path.joints[c])];
+      const RobotJoint& joint = model.joints[index[c]];
       if (joint.type != RobotJoint::Type::Revolute && joint.type != RobotJoint::Type::Prismatic) continue;
       if (row[c] < *joint.lower || row[c] > *joint.upper)
         throw JointPathError("positions", {k, c}, "waypoint " + std::to_string(k) + ": joint " + quoted(joint.name) + " at " +
                                                       decimal_text(row[c]) + " is outside its limits [" +
                                                       decimal_text(*joint.lower) + ", " + decimal_text(*joint.upper) + "]");
+    }
+    // Mimic joints: their values at the waypoint, within their limits.
+    const std::vector<Exact> all = joint_values(model, index, row);
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const RobotJoint& joint = model.joints[j];
+      if (!joint.mimic || (joint.type != RobotJoint::Type::Revolute && joint.type != RobotJoint::Type::Prismatic)) continue;
+      if (all[j] >= *joint.lower && all[j] <= *joint.upper) continue;
+      const int d = driver(model, static_cast<int>(j));
+      const std::size_t c = static_cast<std::size_t>(std::find(index.begin(), index.end(), d) - index.begin());
+      throw JointPathError("positions", {k, c}, "waypoint " + std::to_string(k) + ": joint " + quoted(joint.name) + " (" +
+                                                    mimic_text(model, joint) + ") at " + decimal_text(all[j]) +
+                                                    " is outside its limits [" + decimal_text(*joint.lower) + ", " +
+                                                    decimal_text(*joint.upper) + "]");
     }
   }
 }
@@ -101,66 +160,71 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
 RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& path) {
   const RobotModel& model = robot.model();
   validate_joint_path(model, path);
-  std::unordered_map<int, std::size_t> column;  // joint index -> column
-  for (std::size_t c = 0; c < path.joints.size(); ++c) column[model.joint_index(path.joints[c])] = c;
+  std::vector<int> index;
+  for (const std::string& name : path.joints) index.push_back(model.joint_index(name));
+  std::vector<std::vector<Exact>> all;  // every joint's value at every waypoint (mimic joints included)
+  for (const std::vector<Exact>& row : path.positions) all.push_back(joint_values(model, index, row));
   const Exact t_first = path.times.front(), t_last = path.times.back();
   RobotBodies out;
   out.body.assign(model.links.size(), -1);
+  out.parts.resize(model.links.size());
   for (std::size_t l = 0; l < model.links.size(); ++l) {
     const RobotLink& link = model.links[l];
-    if (!link.geometry) continue;
-    const std::shared_ptr<const LinkChain>& chain = robot.chain(static_cast<int>(l));
     const std::vector<int>& js = robot.chain_joints(static_cast<int>(l));
     auto values = [&](std::size_t k) {
       std::vector<Exact> q;
       q.reserve(js.size());
-      for (int j : js) q.push_back(path.positions[k][column.at(j)]);
+      for (int j : js) q.push_back(all[k][j]);
       return q;
     };
-    Body b = *link.geometry;
-    b.name = robot.name() + "/" + link.name;
     bool still = true;
     const std::vector<Exact> first = values(0);
     for (std::size_t k = 1; k < path.times.size() && still; ++k) still = values(k) == first;
-    if (still) {
-      if (const std::optional<Mat34E> pose = chain->exact_pose(first)) {
-        Motion m;  // one pose: motionless
-        m.t0 = t_first;
-        m.t1 = t_last;
-        m.control_points = {*pose};
-        m.weights = {1};
-        b.motion = std::move(m);
-      } else {
-        MotionSegment seg;
-        seg.t0 = t_first;
-        seg.t1 = t_last;
-        seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, first, first});
-        b.trajectory = Trajectory{{std::move(seg)}};
-      }
-    } else {
-      Trajectory traj;
-      for (std::size_t k = 0; k + 1 < path.times.size(); ++k) {
-        MotionSegment seg;
-        seg.t0 = path.times[k];
-        seg.t1 = path.times[k + 1];
-        std::vector<Exact> from = values(k), to = values(k + 1);
-        if (chain->rational_between(from, to)) {
-          Motion m;
-          m.t0 = seg.t0;
-          m.t1 = seg.t1;
-          m.control_points = {*chain->exact_pose(from), *chain->exact_pose(to)};
-          m.weights = {1, 1};
-          seg.rational = std::move(m);
+    for (std::size_t p = 0; p < link.parts.size(); ++p) {
+      const std::shared_ptr<const LinkChain>& chain = robot.chain(static_cast<int>(l), p);
+      Body b = link.parts[p].geometry;
+      b.name = robot.name() + "/" + link.name + link.parts[p].suffix;
+      if (still) {
+        if (const std::optional<Mat34E> pose = chain->exact_pose(first)) {
+          Motion m;  // one pose: motionless
+          m.t0 = t_first;
+          m.t1 = t_last;
+          m.control_points = {*pose};
+          m.weights = {1};
+          b.motion = std::move(m);
+        } else {
+          MotionSegment seg;
+          seg.t0 = t_first;
+          seg.t1 = t_last;
+          seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, first, first});
+          b.trajectory = Trajectory{{std::move(seg)}};
         }
-        // Also beside a rational curve: the segment is known as a link's.
-        seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
-        traj.segments.push_back(std::move(seg));
+      } else {
+        Trajectory traj;
+        for (std::size_t k = 0; k + 1 < path.times.size(); ++k) {
+          MotionSegment seg;
+          seg.t0 = path.times[k];
+          seg.t1 = path.times[k + 1];
+          std::vector<Exact> from = values(k), to = values(k + 1);
+          if (chain->rational_between(from, to)) {
+            Motion m;
+            m.t0 = seg.t0;
+            m.t1 = seg.t1;
+            m.control_points = {*chain->exact_pose(from), *chain->exact_pose(to)};
+            m.weights = {1, 1};
+            seg.rational = std::move(m);
+          }
+          // Also beside a rational curve: the segment is known as a link's.
+          seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
+          traj.segments.push_back(std::move(seg));
+        }
+        if (traj.segments.size() == 1 && traj.segments[0].rational) b.motion = traj.segments[0].rational;
+        else b.trajectory = std::move(traj);
       }
-      if (traj.segments.size() == 1 && traj.segments[0].rational) b.motion = traj.segments[0].rational;
-      else b.trajectory = std::move(traj);
+      out.parts[l].push_back(static_cast<int>(scene.bodies.size()));
+      scene.bodies.push_back(std::move(b));
     }
-    out.body[l] = static_cast<int>(scene.bodies.size());
-    scene.bodies.push_back(std::move(b));
+    if (!out.parts[l].empty()) out.body[l] = out.parts[l].front();
   }
   return out;
 }
@@ -176,12 +240,17 @@ std::vector<std::pair<int, int>> robot_default_checks(const PlacedRobot& robot, 
     if (lb < 0) throw InputError("allowed pair: unknown link " + quote_text(b));
     allowed.insert(std::minmax(la, lb));
   }
+  // A link's bodies: its parts, or (bodies built by hand) its one body.
+  auto of = [&](std::size_t l) -> std::vector<int> {
+    if (l < bodies.parts.size() && !bodies.parts[l].empty()) return bodies.parts[l];
+    if (l < bodies.body.size() && bodies.body[l] >= 0) return {bodies.body[l]};
+    return {};
+  };
   std::vector<std::pair<int, int>> out;
   const int n = static_cast<int>(model.links.size());
-  for (int l = 0; l < n; ++l) {
-    if (bodies.body[l] < 0) continue;
-    for (int e : environment) out.emplace_back(bodies.body[l], e);
-  }
+  for (int l = 0; l < n; ++l)
+    for (int part : of(l))
+      for (int e : environment) out.emplace_back(part, e);
   if (self_collision) {
     auto adjacent = [&](int a, int b) {
       const int pa = model.links[a].parent_joint, pb = model.links[b].parent_joint;
@@ -189,9 +258,9 @@ std::vector<std::pair<int, int>> robot_default_checks(const PlacedRobot& robot, 
     };
     for (int a = 0; a < n; ++a)
       for (int b = a + 1; b < n; ++b) {
-        if (bodies.body[a] < 0 || bodies.body[b] < 0) continue;
         if (adjacent(a, b) || allowed.count({a, b})) continue;
-        out.emplace_back(bodies.body[a], bodies.body[b]);
+        for (int x : of(a))
+          for (int y : of(b)) out.emplace_back(x, y);
       }
   }
   return out;

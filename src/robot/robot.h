@@ -30,26 +30,54 @@ namespace tmcert {
 
 struct RobotJoint {
   enum class Type { Revolute, Continuous, Prismatic, Fixed };
+  // <mimic joint="J" multiplier="m" offset="o"/> on a moving joint: its
+  // value is m q_J + o exactly (m = 1, o = 0 by default).  Mimic joints are
+  // not named in a JointPath; J is a moving joint, maybe a mimic joint
+  // itself (no cycles).  A <mimic> on a fixed joint is ignored.
+  struct Mimic {
+    int joint = -1;  // the joint followed (index into RobotModel::joints)
+    Exact multiplier = 1, offset = 0;
+  };
   std::string name;
   Type type = Type::Fixed;
   int parent = -1, child = -1;       // link indices
   Pose origin;                       // child frame in the parent frame (exact xyz; rpy as written)
   Vec3E axis{Exact(1), Exact(0), Exact(0)};  // as written (URDF default 1 0 0); nonzero when moving
   std::optional<Exact> lower, upper;  // revolute and prismatic (URDF defaults 0)
+  std::optional<Mimic> mimic;        // moving joints only
   bool moves() const { return type != Type::Fixed; }
+};
+
+// One body of a link (proofs/robot-links.md section 2): a link's collision
+// elements become one body when they can be placed exactly in one frame,
+// else several, all moving with the link:
+//  - boxes and meshes whose origins have no rotation, together, in the link
+//    frame (or, when every element of the link has the same origin, in
+//    that origin's frame); those with a rotated origin in the frame of that
+//    origin, one part per distinct origin;
+//  - of these, the closed shells (solid, their insides count) apart from
+//    the open surfaces (a part of their own, not solid);
+//  - every cylinder and sphere on its own, in its origin's frame, as its
+//    circumscribed polyhedron (Body::primitive holds the true shape).
+// The first part is the body "<robot>/<link>", the others
+// "<robot>/<link>/collision[i]" (i: the part's first collision element) with
+// "/open" after the open surfaces of a frame that also has closed shells.
+struct LinkPart {
+  std::string suffix;      // "" for the first part, else "/collision[i]" or "/collision[i]/open"
+  // Polygons in the part's frame, default mass, `solid` when closed shells,
+  // `enlarged` and `primitive` for a cylinder or sphere.  `name`, motion
+  // and trajectory are unset.
+  Body geometry;
+  // The part's frame in the link frame (empty: the link frame itself).
+  std::vector<Pose> frame;
+  std::vector<int> elements;  // the <collision> elements it holds (indices in the link)
 };
 
 struct RobotLink {
   std::string name;
   int parent_joint = -1;             // -1: the root
-  // The collision geometry, when the link has any: polygons and convex
-  // pieces in the body frame, default mass, `solid` when it forms closed
-  // shells, `enlarged` naming the cylinders and spheres replaced by
-  // circumscribed polyhedra.  `name`, motion and trajectory are unset.
-  std::optional<Body> geometry;
-  // The body frame in the link frame (empty: the link frame itself), when
-  // the collision origins could not be applied to the vertices exactly.
-  std::vector<Pose> body_frame;
+  std::vector<LinkPart> parts;       // empty: no collision geometry
+  bool has_geometry() const { return !parts.empty(); }
 };
 
 struct RobotModel {
@@ -58,24 +86,53 @@ struct RobotModel {
   std::vector<RobotLink> links;      // in file order
   std::vector<RobotJoint> joints;    // in file order
   int root = 0;                      // the link without a parent joint
+  // What the reader did that a user should know (a COLLADA mesh read from
+  // its floats), one line each naming the file and the element.
+  std::vector<std::string> notes;
 
   int link_index(const std::string& link) const;   // -1 when absent
   int joint_index(const std::string& joint) const; // -1 when absent
 };
 
+// Where `package://NAME/REL` URIs are looked up (SCENE_FORMAT.md "Real
+// robots as they ship"): the folders in this order, each with its
+// subfolders up to four levels; NAME is the first folder that holds a
+// package.xml whose <name> is NAME, or else (none does) the first folder
+// named NAME.  Relative folders are relative to the current directory.
+struct UrdfOptions {
+  std::vector<std::string> package_paths;
+};
+
+// The folders of the environment variable ROS_PACKAGE_PATH (colon
+// separated, empty entries dropped), in order; empty when unset.
+std::vector<std::string> ros_package_path();
+
+// The folder of package NAME (UrdfOptions), or nullopt.
+std::optional<std::string> find_package(const std::string& name, const std::vector<std::string>& folders);
+
 // Reads a URDF file: the structure through urdfdom, every number exactly
-// from the XML text; meshes relative to the URDF's directory.  Throws
+// from the XML text; meshes relative to the URDF's directory, package://
+// URIs through options.package_paths, file:// URIs as paths.  Throws
 // InputError "<file>: <element>: <what>" on anything unsupported or
 // malformed (joint types other than revolute, continuous, prismatic and
-// fixed; mimic joints; missing or unreadable meshes; package:// URIs; ...).
-std::shared_ptr<const RobotModel> load_urdf(const std::string& file);
+// fixed; a mimic of an unknown or fixed joint, or a cycle of mimics;
+// missing or unreadable meshes; a package not found, naming the URI and
+// the folders searched; ...).
+std::shared_ptr<const RobotModel> load_urdf(const std::string& file, const UrdfOptions& options = {});
 
 // The same for URDF text in memory; meshes relative to `directory`.
 std::shared_ptr<const RobotModel> load_urdf_text(const std::string& text, const std::string& source,
-                                                 const std::string& directory);
+                                                 const std::string& directory, const UrdfOptions& options = {});
+
+// The pairs of links an SRDF file (MoveIt) allows to touch: every
+// <disable_collisions link1="a" link2="b"/>, in file order; every other
+// element is ignored.  Throws InputError "<file>: disable_collisions[k]:
+// <what>" on malformed XML, a missing attribute, or a link `model` does not
+// have.
+std::vector<std::pair<std::string, std::string>> read_srdf(const std::string& file, const RobotModel& model);
 
 // A joint-space path: `joints` names the columns (every moving joint of the
-// robot, each once), `times` are strictly increasing (at least 2), and
+// robot but the mimic joints, each once), `times` are strictly increasing (at least 2), and
 // `positions` holds one row per time with one value per column.  The motion
 // is linear in joint space between consecutive waypoints.
 struct JointPath {
@@ -107,37 +164,50 @@ class PlacedRobot {
   // The moving joints (indices into model().joints) from the root to link
   // `link`, in chain order.
   const std::vector<int>& chain_joints(int link) const { return chain_joints_[link]; }
-  const std::shared_ptr<const LinkChain>& chain(int link) const { return chains_[link]; }
+  // The chain of part `part` of link `link` (its frame last).
+  const std::shared_ptr<const LinkChain>& chain(int link, std::size_t part = 0) const { return chains_[link][part]; }
 
  private:
   std::shared_ptr<const RobotModel> model_;
   std::string name_;
   Pose base_;
   std::vector<std::vector<int>> chain_joints_;
-  std::vector<std::shared_ptr<const LinkChain>> chains_;  // null for links without geometry
+  std::vector<std::vector<std::shared_ptr<const LinkChain>>> chains_;  // per link, per part
 };
 
 // Throws JointPathError unless `path` fits the robot: every joint named
-// exists and moves, every moving joint is named once, at least 2 strictly
-// increasing times, one row per time with one value per column, and every
-// value of a revolute or prismatic joint within its <limit>.
+// exists, moves and is not a mimic joint, every other moving joint is named
+// once, at least 2 strictly increasing times, one row per time with one
+// value per column, and every value of a revolute or prismatic joint
+// within its <limit>, mimic joints included (their values are linear in
+// the others', so on the linear path between waypoints too).
 void validate_joint_path(const RobotModel& model, const JointPath& path);
 
-// The body of every link with collision geometry, -1 for the others
-// (indexed like RobotModel::links).
+// The value of every joint of `model` (indexed like its joints; 0 for a
+// fixed joint) at one waypoint: column c of `row` is joint columns[c]'s
+// value, a mimic joint's is m q_J + o from the joint it follows.  Every
+// moving joint that is not a mimic joint must have a column.
+std::vector<Exact> joint_values(const RobotModel& model, const std::vector<int>& columns, const std::vector<Exact>& row);
+
+// The bodies of every link's parts (indexed like RobotModel::links; empty
+// for a link without collision geometry), and the first part's body, -1
+// for none.
 struct RobotBodies {
   std::vector<int> body;
+  std::vector<std::vector<int>> parts;
 };
 
-// Validates `path` and appends a body "<name>/<link>" for every link with
-// collision geometry, moving along the path over [times.front(),
-// times.back()].  Checks are not touched.
+// Validates `path` and appends a body per part of every link with
+// collision geometry ("<name>/<link>" and "<name>/<link>/collision[i]",
+// LinkPart), moving along the path over [times.front(), times.back()].
+// Checks are not touched.
 RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& path);
 
 // The default checks of SCENE_FORMAT.md: every link body against every body
-// in `environment`, and, with `self_collision`, every pair of link bodies
-// that are neither parent and child (links joined by one joint) nor listed
-// in `allowed_pairs` (link names, either order).  Throws InputError when an
+// in `environment`, and, with `self_collision`, every pair of bodies of two
+// links that are neither parent and child (links joined by one joint) nor
+// listed in `allowed_pairs` (link names, either order); the parts of one
+// link are never checked against each other.  Throws InputError when an
 // allowed pair names an unknown link.
 std::vector<std::pair<int, int>> robot_default_checks(const PlacedRobot& robot, const RobotBodies& bodies,
                                                       const std::vector<int>& environment, bool self_collision,

@@ -19,7 +19,9 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -57,12 +59,12 @@ std::string one_line(std::string s) {
 
 class UrdfReader {
  public:
-  UrdfReader(std::string source, std::filesystem::path directory)
-      : source_(std::move(source)), directory_(std::move(directory)) {}
+  UrdfReader(std::string source, std::filesystem::path directory, UrdfOptions options)
+      : source_(std::move(source)), directory_(std::move(directory)), options_(std::move(options)) {}
 
   std::shared_ptr<const RobotModel> read(const std::string& text) {
-    // xacro (URDF with macros: a .xacro file, or xacro: elements and
-    // namespace) is expanded by the xacro tool, not here.
+    // xacro (URDF with macros: a .xacro file, or xacro: elements) is
+    // expanded by the xacro tool, not here.
     if (is_xacro(text)) {
       // robot.urdf.xacro and robot.xacro become robot.urdf; another name
       // gets a new one beside it.
@@ -84,7 +86,6 @@ class UrdfReader {
       if (type != "revolute" && type != "continuous" && type != "prismatic" && type != "fixed")
         fail("joint " + quote_text(name) + ": unsupported joint type " + quote_text(type) +
              " (supported: revolute, continuous, prismatic, fixed)");
-      if (j->FirstChildElement("mimic")) fail("joint " + quote_text(name) + ": <mimic> joints are not supported");
     }
     auto model = std::make_shared<RobotModel>();
     model->name = attribute(robot, "name").value_or("");
@@ -100,6 +101,8 @@ class UrdfReader {
     for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint"))
       model->joints.push_back(joint(j, link_ids));
     require_tree(*model);
+    mimics(robot, *model);
+    for (std::size_t j = 0; j < model->joints.size(); ++j) model->links[model->joints[j].child].parent_joint = static_cast<int>(j);
     // The structure (one root, a tree, ...) through urdfdom, after our own
     // reading so that our messages (naming the element) come first.
     urdf::ModelInterfaceSharedPtr urdf;
@@ -133,6 +136,7 @@ class UrdfReader {
     int l = 0;
     for (const TiXmlElement* e = robot->FirstChildElement("link"); e; e = e->NextSiblingElement("link"), ++l)
       geometry(e, model->links[l]);
+    model->notes = std::move(notes_);
     return model;
   }
 
@@ -209,8 +213,9 @@ class UrdfReader {
   }
 
   bool is_xacro(const std::string& text) const {
-    return source_.ends_with(".xacro") || text.find("xmlns:xacro") != std::string::npos ||
-           text.find("<xacro:") != std::string::npos;
+    // xacro's output keeps the xmlns:xacro declaration (published robots
+    // do): only a .xacro name or a xacro element says the macros are left.
+    return source_.ends_with(".xacro") || text.find("<xacro:") != std::string::npos;
   }
 
   static std::optional<std::string> attribute(const TiXmlElement* e, const char* name) {
@@ -269,6 +274,35 @@ class UrdfReader {
     return p;
   }
 
+  // <mimic joint="J" multiplier="m" offset="o"/> (robot.h RobotJoint::Mimic):
+  // J must exist and move; a mimic on a fixed joint is ignored (it does
+  // not move); cycles of mimics are refused.
+  void mimics(const TiXmlElement* robot, RobotModel& model) const {
+    std::size_t j = 0;
+    for (const TiXmlElement* e = robot->FirstChildElement("joint"); e; e = e->NextSiblingElement("joint"), ++j) {
+      const TiXmlElement* m = e->FirstChildElement("mimic");
+      RobotJoint& joint = model.joints[j];
+      if (!m || !joint.moves()) continue;
+      const std::string where = "joint " + quote_text(joint.name) + ": mimic";
+      const auto followed = attribute(m, "joint");
+      if (!followed) fail(where + ": missing attribute \"joint\"");
+      const int f = model.joint_index(*followed);
+      if (f < 0) fail(where + ": unknown joint " + quote_text(*followed));
+      if (!model.joints[f].moves()) fail(where + ": joint " + quote_text(*followed) + " is fixed");
+      if (f == static_cast<int>(j)) fail(where + ": a joint cannot follow itself");
+      RobotJoint::Mimic mimic;
+      mimic.joint = f;
+      mimic.multiplier = number(m, "multiplier", where, Exact(1));
+      mimic.offset = number(m, "offset", where, Exact(0));
+      joint.mimic = mimic;
+    }
+    for (const RobotJoint& joint : model.joints) {
+      std::size_t steps = 0;
+      for (const RobotJoint* k = &joint; k->mimic; k = &model.joints[k->mimic->joint])
+        if (++steps > model.joints.size()) fail("joint " + quote_text(joint.name) + ": mimic: the mimic joints form a cycle");
+    }
+  }
+
   RobotJoint joint(const TiXmlElement* e, const std::map<std::string, int>& link_ids) const {
     RobotJoint j;
     j.name = attribute(e, "name").value_or("");
@@ -303,12 +337,29 @@ class UrdfReader {
     return j;
   }
 
-  // A mesh file name as the URDF writes it, resolved against the URDF's
-  // directory.
+  // A mesh file name as the URDF writes it: package://NAME/REL through the
+  // package folders, file://PATH as PATH, else a path relative to the
+  // URDF's directory.
   std::string mesh_file(const std::string& name, const std::string& where) const {
     std::string file = name;
-    if (file.rfind("package://", 0) == 0)
-      fail(where + ": mesh " + quote_text(name) + ": package:// URIs are not resolved; write a path relative to the URDF");
+    if (file.rfind("package://", 0) == 0) {
+      const std::string rest = file.substr(10);
+      const std::size_t slash = rest.find('/');
+      if (slash == 0 || slash == std::string::npos || slash + 1 == rest.size())
+        fail(where + ": mesh " + quote_text(name) + ": expected package://NAME/PATH");
+      const std::string package = rest.substr(0, slash);
+      auto [it, fresh] = packages_.emplace(package, std::nullopt);
+      if (fresh) it->second = find_package(package, options_.package_paths);
+      if (!it->second) {
+        std::string folders;
+        for (const std::string& f : options_.package_paths) folders += (folders.empty() ? "" : ", ") + quote_text(f);
+        fail(where + ": mesh " + quote_text(name) + ": package " + quote_text(package) +
+             (folders.empty() ? " not found: no package folders to search"
+                              : " not found in " + folders + " (each with its subfolders up to four levels)") +
+             "; give them with --package-path, the scene's \"package_paths\" or ROS_PACKAGE_PATH");
+      }
+      return (std::filesystem::path(*it->second) / rest.substr(slash + 1)).string();
+    }
     if (file.rfind("file://", 0) == 0) file = file.substr(7);
     if (file.empty()) fail(where + ": mesh: empty filename");
     const std::filesystem::path p(file);
@@ -317,8 +368,8 @@ class UrdfReader {
 
   // One <collision> element's polygons, in the link frame's axes about the
   // element's origin (not yet translated).
-  PolygonList shape(const TiXmlElement* geometry, const std::string& where, std::vector<std::string>& enlarged,
-                    std::string& kind_out, Exact& radius_out, Exact& length_out) const {
+  PolygonList shape(const TiXmlElement* geometry, const std::string& where, std::string& kind_out, Exact& radius_out,
+                    Exact& length_out) const {
     const TiXmlElement* g = geometry ? geometry->FirstChildElement() : nullptr;
     if (!g) fail(where + ": missing <geometry> shape");
     const std::string kind = g->Value();
@@ -336,16 +387,14 @@ class UrdfReader {
     if (kind == "cylinder") {
       const Exact r = positive(number(g, "radius", where + ": cylinder", std::nullopt), "cylinder radius");
       const Exact len = positive(number(g, "length", where + ": cylinder", std::nullopt), "cylinder length");
-      enlarged.push_back("cylinder");
       radius_out = r;
       length_out = len;
-      return cylinder_polyhedron(r, len);
+      return {};  // its polyhedron: LinkParts
     }
     if (kind == "sphere") {
       const Exact r = positive(number(g, "radius", where + ": sphere", std::nullopt), "sphere radius");
-      enlarged.push_back("sphere");
       radius_out = r;
-      return sphere_polyhedron(r);
+      return {};
     }
     if (kind == "mesh") {
       const auto name = attribute(g, "filename");
@@ -361,6 +410,9 @@ class UrdfReader {
         fail(where + ": mesh: " + one_line(e.what()));
       }
       if (data.faces.empty()) fail(where + ": mesh " + file + " has no faces");
+      if (data.from_floats)
+        notes_.push_back(source_ + ": " + where + ": mesh " + file + " (" + data.format +
+                         ") is read from its single-precision floats: its coordinates are their exact values");
       PolygonList out;
       for (const auto& face : data.faces) {
         std::vector<Vec3E> f;
@@ -376,155 +428,174 @@ class UrdfReader {
     fail(where + ": unsupported geometry <" + kind + "> (supported: box, cylinder, sphere, mesh)");
   }
 
+  struct Element {
+    Pose origin;
+    PolygonList polygons;      // boxes and meshes, about the origin (not moved)
+    std::string kind;          // box, cylinder, sphere, mesh
+    Exact radius, length;      // cylinder, sphere
+    std::string where;
+  };
+
+  // The link's collision elements as parts (robot.h LinkPart,
+  // proofs/robot-links.md section 2).
   void geometry(const TiXmlElement* e, RobotLink& link) const {
     const std::string where = "link " + quote_text(link.name);
-    struct Element {
-      Pose origin;
-      PolygonList polygons;
-      std::string kind;          // box, cylinder, sphere, mesh
-      Exact radius, length;      // cylinder, sphere
-      std::string where;
-    };
     std::vector<Element> elements;
-    std::vector<std::string> enlarged;
     int index = 0;
     for (const TiXmlElement* c = e->FirstChildElement("collision"); c; c = c->NextSiblingElement("collision"), ++index) {
       Element el;
       el.where = where + ": collision[" + std::to_string(index) + "]";
       el.origin = origin(c, el.where);
       mesh_files_.clear();
-      el.polygons = shape(c->FirstChildElement("geometry"), el.where, enlarged, el.kind, el.radius, el.length);
+      el.polygons = shape(c->FirstChildElement("geometry"), el.where, el.kind, el.radius, el.length);
       if (!mesh_files_.empty()) el.where += " (" + mesh_files_.back() + ")";
       elements.push_back(std::move(el));
     }
     if (elements.empty()) return;
-    // Where the body frame sits (proofs/robot-links.md section 2).  Elements
-    // with one common origin: that origin (applied exactly as a translation
-    // of the vertices when it has no rotation).  Otherwise the boxes and
-    // meshes decide: rotated ones must share one origin, which becomes the
-    // body frame, else the body frame is the link frame and their origins'
-    // translations move the vertices exactly.  Cylinders and spheres whose
-    // origin is not exact in that frame are circumscribed there with a
-    // rational rotation and centre and a radius enlarged by the proven
-    // error (section 3); a sphere needs its centre only.
     auto same = [](const Pose& a, const Pose& b) {
       return a.translation == b.translation && a.rotation.kind == b.rotation.kind && a.rotation.rpy == b.rotation.rpy;
     };
     auto rotated = [](const Pose& p) { return p.rotation.kind != Rotation::Kind::Identity; };
-    bool same_origin = true;
-    for (const Element& el : elements) same_origin = same_origin && same(el.origin, elements[0].origin);
-    std::optional<Pose> frame;  // the body frame in the link frame; none: the link frame
-    if (same_origin) {
-      if (rotated(elements[0].origin)) frame = elements[0].origin;
-    } else {
-      for (const Element& el : elements) {
-        if (el.kind != "box" && el.kind != "mesh") continue;
-        if (!rotated(el.origin)) continue;
-        if (frame && !same(*frame, el.origin))
-          fail(el.where + ": boxes and meshes with different rotated origins (rpy) cannot be placed exactly in one "
-                          "body; give them the same origin, or rpy 0 0 0");
-        frame = el.origin;
+    // Frames of the boxes and meshes: the link frame for those whose origin
+    // has no rotation (their vertices moved by its translation exactly),
+    // each rotated origin its own frame (the vertices as they are).
+    struct Group {
+      std::optional<Pose> frame;  // none: the link frame
+      std::vector<int> elements;
+    };
+    std::vector<Group> groups;
+    auto group_of = [&](const std::optional<Pose>& frame) -> Group& {
+      for (Group& g : groups)
+        if (g.frame.has_value() == frame.has_value() && (!frame || same(*g.frame, *frame))) return g;
+      groups.push_back({frame, {}});
+      return groups.back();
+    };
+    std::vector<std::pair<int, LinkPart>> parts;  // (first element, part), sorted below
+    for (std::size_t k = 0; k < elements.size(); ++k) {
+      const Element& el = elements[k];
+      if (el.kind == "box" || el.kind == "mesh") {
+        group_of(rotated(el.origin) ? std::optional<Pose>(el.origin) : std::nullopt).elements.push_back(static_cast<int>(k));
+        continue;
       }
-      if (frame)
-        for (const Element& el : elements)
-          if ((el.kind == "box" || el.kind == "mesh") && !same(*frame, el.origin))
-            fail(el.where + ": a box or mesh whose origin differs from the rotated origin of another cannot be "
-                            "placed exactly in one body; give them the same origin, or rpy 0 0 0");
+      // A cylinder or sphere: its own part, in its origin's frame (a
+      // sphere's without the rotation, which does not change it).
+      LinkPart part;
+      part.elements = {static_cast<int>(k)};
+      Pose frame = el.origin;
+      if (el.kind == "sphere") frame.rotation = Rotation{};
+      if (frame.translation != Vec3E{Exact(0), Exact(0), Exact(0)} || rotated(frame)) part.frame = {frame};
+      Body::Primitive prim;
+      prim.kind = el.kind == "sphere" ? Body::Primitive::Kind::Sphere : Body::Primitive::Kind::Cylinder;
+      prim.radius = el.radius;
+      prim.length = el.length;
+      part.geometry = primitive_body(prim, el.where);
+      parts.emplace_back(static_cast<int>(k), std::move(part));
     }
-    if (frame) link.body_frame = {*frame};
-    Body body;
-    for (Element& el : elements) {
-      // The element's placement in the body frame: exact, or circumscribed.
-      std::optional<Vec3E> offset;
-      if (frame && same(*frame, el.origin)) offset = Vec3E{Exact(0), Exact(0), Exact(0)};
-      else if (!frame && (!rotated(el.origin) || el.kind == "sphere")) offset = el.origin.translation;
-      if (!offset) el.polygons = circumscribed_in_frame(el.kind, el.radius, el.length, frame ? *frame : Pose{}, el.origin, el.where);
-      std::size_t f = 0;
-      for (const std::vector<Vec3E>& polygon : el.polygons) {
-        std::vector<Vec3E> moved;
-        for (const Vec3E& v : polygon)
-          moved.push_back(offset ? Vec3E{v[0] + (*offset)[0], v[1] + (*offset)[1], v[2] + (*offset)[2]} : v);
-        add_polygon(body, moved, el.where + ": face " + std::to_string(f++));
+    for (const Group& g : groups) {
+      // The polygons in the group's frame: exact; the element of each
+      // polygon, segment and point.
+      Body all;
+      std::vector<int> polygon_element, other_element;
+      for (int k : g.elements) {
+        const Element& el = elements[k];
+        const Vec3E offset = g.frame ? Vec3E{Exact(0), Exact(0), Exact(0)} : el.origin.translation;
+        std::size_t f = 0;
+        for (const std::vector<Vec3E>& polygon : el.polygons) {
+          std::vector<Vec3E> moved;
+          for (const Vec3E& v : polygon) moved.push_back({v[0] + offset[0], v[1] + offset[1], v[2] + offset[2]});
+          add_polygon(all, moved, el.where + ": face " + std::to_string(f++));
+          polygon_element.resize(all.polygons.size(), k);
+          other_element.resize(all.segments.size() + all.points.size(), k);
+        }
+      }
+      // Closed shells without self-intersection keep their insides; the
+      // rest (open shells, segments and points of degenerate faces) are
+      // surfaces.
+      Body closed, open;
+      std::vector<int> closed_elements, open_elements = other_element;
+      split_shells(all, polygon_element, closed, closed_elements, open, open_elements);
+      for (Body* b : {&closed, &open}) {
+        if (b->polygons.empty() && b->segments.empty() && b->points.empty()) continue;
+        std::vector<int>& els = b == &closed ? closed_elements : open_elements;
+        std::sort(els.begin(), els.end());
+        els.erase(std::unique(els.begin(), els.end()), els.end());
+        LinkPart part;
+        part.elements = els;
+        if (g.frame) part.frame = {*g.frame};
+        b->solid = b == &closed;
+        finish(*b);
+        part.geometry = std::move(*b);
+        // The open surfaces of an element that also has closed shells.
+        if (b == &open && !closed_elements.empty() && closed_elements.front() == els.front()) part.suffix = "/open";
+        parts.emplace_back(els.front(), std::move(part));
       }
     }
+    // In element order (the closed shells of an element before its open
+    // surfaces); the first is the link's body, the others are named by
+    // their first element.
+    std::stable_sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      LinkPart& part = parts[p].second;
+      part.suffix = p == 0 ? std::string() : "/collision[" + std::to_string(parts[p].first) + "]" + part.suffix;
+      link.parts.push_back(std::move(part));
+    }
+  }
+
+  // The closed shells of `all` (polygon_shells: every edge of the shell in
+  // exactly two of its polygons, and no self-intersection) into `closed`,
+  // everything else into `open` (which has `all`'s segments and points
+  // already); the elements of their polygons appended to the lists.
+  static void split_shells(const Body& all, const std::vector<int>& polygon_element, Body& closed,
+                           std::vector<int>& closed_elements, Body& open, std::vector<int>& open_elements) {
+    open.segments = all.segments;
+    open.points = all.points;
+    if (all.polygons.empty()) return;
+    const std::vector<int> shell = polygon_shells(all);
+    const int shells = *std::max_element(shell.begin(), shell.end()) + 1;
+    std::vector<Body> each(shells);
+    for (std::size_t p = 0; p < all.polygons.size(); ++p) each[shell[p]].polygons.push_back(all.polygons[p]);
+    std::vector<char> is_closed(shells, 0);
+    for (int k = 0; k < shells; ++k)
+      is_closed[k] = solid_problem(each[k]).empty() && shell_intersection_problem(each[k]).empty();
+    std::vector<int> new_index(all.polygons.size());
+    for (std::size_t p = 0; p < all.polygons.size(); ++p) {
+      const bool c = is_closed[shell[p]];
+      Body& to = c ? closed : open;
+      new_index[p] = static_cast<int>(to.polygons.size());
+      to.polygons.push_back(all.polygons[p]);
+      (c ? closed_elements : open_elements).push_back(polygon_element[p]);
+    }
+    // The convex pieces, renumbered to the new polygon indices.
+    for (const ConvexPiece& piece : all.pieces) {
+      ConvexPiece q = piece;
+      q.polygon = new_index[piece.polygon];
+      (is_closed[shell[piece.polygon]] ? closed : open).pieces.push_back(std::move(q));
+    }
+  }
+
+  // The default mass of a part's body.
+  static void finish(Body& body) {
     std::vector<Vec3E> vertices;
     for (const auto& p : body.polygons) vertices.insert(vertices.end(), p.begin(), p.end());
     for (const auto& s : body.segments) vertices.insert(vertices.end(), s.begin(), s.end());
     vertices.insert(vertices.end(), body.points.begin(), body.points.end());
     body.mass = default_mass(vertices, size_of(vertices));
     body.mass_is_default = true;
-    body.solid = solid_problem(body).empty() && shell_intersection_problem(body).empty();
-    body.enlarged = enlarged;
-    link.geometry = std::move(body);
   }
 
-  // A cylinder or sphere at `origin` (link frame), circumscribed in the body
-  // frame `frame` (link frame): the relative pose F^-1 O is enclosed; a
-  // rational rotation R~ (from a rational quaternion: exactly orthogonal)
-  // and a rational centre c~ near it, with |R - R~|_F <= eps and
-  // |c - c~| <= gamma proven in intervals, place the shape's polyhedron
-  // with radius (and half-length) enlarged by
-  // delta = eps sqrt(r^2 + h^2) + gamma: every point R x + c of the shape
-  // is R~ x + c~ + e with |e| <= delta (proofs/robot-links.md section 3).
-  PolygonList circumscribed_in_frame(const std::string& kind, const Exact& r, const Exact& length, const Pose& frame,
-                                     const Pose& origin, const std::string& where) const {
-    std::array<Exact, 9> rot;
-    Vec3E centre;
-    Exact delta;
-    {
-      RoundingGuard guard;
-      const PoseInterval f = interval_pose(frame), o = interval_pose(origin);
-      std::array<Interval, 9> rel;
-      std::array<Interval, 3> c;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) rel[3 * i + j] = f[i] * o[j] + f[4 + i] * o[4 + j] + f[8 + i] * o[8 + j];
-        c[i] = f[i] * (o[3] - f[3]) + f[4 + i] * (o[7] - f[7]) + f[8 + i] * (o[11] - f[11]);
-      }
-      // A quaternion of the midpoint matrix (any approximation will do:
-      // the error is bounded below), on a grid of 2^-20.
-      std::array<double, 9> m;
-      for (int i = 0; i < 9; ++i) m[i] = CGAL::to_double(rel[i]);
-      std::array<double, 4> q;
-      const double tr = m[0] + m[4] + m[8];
-      if (tr > 0) q = {1 + tr, m[7] - m[5], m[2] - m[6], m[3] - m[1]};
-      else if (m[0] >= m[4] && m[0] >= m[8]) q = {m[7] - m[5], 1 + m[0] - m[4] - m[8], m[1] + m[3], m[2] + m[6]};
-      else if (m[4] >= m[8]) q = {m[2] - m[6], m[1] + m[3], 1 - m[0] + m[4] - m[8], m[5] + m[7]};
-      else q = {m[3] - m[1], m[2] + m[6], m[5] + m[7], 1 - m[0] - m[4] + m[8]};
-      const double qn = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-      std::array<Exact, 4> qe;
-      for (int i = 0; i < 4; ++i) qe[i] = Exact(static_cast<long>(std::llround(q[i] / qn * 1048576.0)), 1048576L);
-      const Exact n2 = qe[0] * qe[0] + qe[1] * qe[1] + qe[2] * qe[2] + qe[3] * qe[3];
-      if (n2 == 0) fail(where + ": cannot place the shape (degenerate rotation)");
-      const Exact &w = qe[0], &x = qe[1], &y = qe[2], &z = qe[3];
-      rot = {(w * w + x * x - y * y - z * z) / n2, 2 * (x * y - w * z) / n2, 2 * (x * z + w * y) / n2,
-             2 * (x * y + w * z) / n2, (w * w - x * x + y * y - z * z) / n2, 2 * (y * z - w * x) / n2,
-             2 * (x * z - w * y) / n2, 2 * (y * z + w * x) / n2, (w * w - x * x - y * y + z * z) / n2};
-      Interval eps2(0), gamma2(0);
-      for (int i = 0; i < 9; ++i) eps2 += CGAL::square(rel[i] - to_interval(rot[i]));
-      for (int i = 0; i < 3; ++i) {
-        centre[i] = Exact(CGAL::to_double(c[i]));
-        gamma2 += CGAL::square(c[i] - to_interval(centre[i]));
-      }
-      const Interval half = to_interval(length) / Interval(2), radius = to_interval(r);
-      const Interval reach = kind == "sphere" ? Interval(0) : CGAL::sqrt(CGAL::square(radius) + CGAL::square(half));
-      const Interval d = CGAL::sqrt(eps2) * reach + CGAL::sqrt(gamma2);
-      if (!std::isfinite(d.sup())) fail(where + ": cannot place the shape (its origin is not finite)");
-      delta = Exact(d.sup());
-    }
-    if (kind == "sphere") {
-      PolygonList out = sphere_polyhedron(r + delta);
-      for (auto& poly : out)
-        for (Vec3E& v : poly) v = {v[0] + centre[0], v[1] + centre[1], v[2] + centre[2]};
-      return out;
-    }
-    PolygonList out = cylinder_polyhedron(r + delta, length + 2 * delta);
-    for (auto& poly : out)
-      for (Vec3E& v : poly) {
-        Vec3E t;
-        for (int i = 0; i < 3; ++i) t[i] = rot[3 * i] * v[0] + rot[3 * i + 1] * v[1] + rot[3 * i + 2] * v[2] + centre[i];
-        v = t;
-      }
-    return out;
+  // A cylinder or sphere as the body of its circumscribed polyhedron at
+  // refinement level prim.level, solid, with the true shape.
+  Body primitive_body(const Body::Primitive& prim, const std::string& where) const {
+    Body body;
+    const PolygonList polygons = prim.kind == Body::Primitive::Kind::Sphere ? sphere_polyhedron(prim.radius, prim.level)
+                                                                            : cylinder_polyhedron(prim.radius, prim.length, prim.level);
+    std::size_t f = 0;
+    for (const std::vector<Vec3E>& polygon : polygons) add_polygon(body, polygon, where + ": face " + std::to_string(f++));
+    body.solid = true;
+    body.enlarged = {prim.kind == Body::Primitive::Kind::Sphere ? "sphere" : "cylinder"};
+    body.primitive = prim;
+    finish(body);
+    return body;
   }
 
   static Exact size_of(const std::vector<Vec3E>& v) {
@@ -572,14 +643,17 @@ class UrdfReader {
 
   std::string source_;
   std::filesystem::path directory_;
+  UrdfOptions options_;
   mutable std::vector<std::string> mesh_files_;
+  mutable std::vector<std::string> notes_;
+  mutable std::map<std::string, std::optional<std::string>> packages_;  // package folders found
 };
 
 }  // namespace
 
 std::shared_ptr<const RobotModel> load_urdf_text(const std::string& text, const std::string& source,
-                                                 const std::string& directory) {
-  UrdfReader reader(source, directory);
+                                                 const std::string& directory, const UrdfOptions& options) {
+  UrdfReader reader(source, directory, options);
   try {
     return reader.read(text);
   } catch (const InputError&) {
@@ -593,10 +667,127 @@ std::shared_ptr<const RobotModel> load_urdf_text(const std::string& text, const 
   }
 }
 
-std::shared_ptr<const RobotModel> load_urdf(const std::string& file) {
+std::shared_ptr<const RobotModel> load_urdf(const std::string& file, const UrdfOptions& options) {
   const std::string text = read_regular_file(file, kMaxUrdfBytes);
   const std::filesystem::path dir = std::filesystem::path(file).parent_path();
-  return load_urdf_text(text, file, dir.string());
+  return load_urdf_text(text, file, dir.string(), options);
+}
+
+std::vector<std::string> ros_package_path() {
+  std::vector<std::string> out;
+  const char* value = std::getenv("ROS_PACKAGE_PATH");
+  if (!value) return out;
+  std::string item;
+  for (const char* c = value;; ++c) {
+    if (*c == ':' || *c == '\0') {
+      if (!item.empty()) out.push_back(item);
+      item.clear();
+      if (*c == '\0') break;
+    } else {
+      item += *c;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// The <name> of the package.xml at `xml` (ROS package format 1 to 3), or
+// "" when it has none or cannot be read.
+std::string package_xml_name(const std::filesystem::path& xml) {
+  std::string text;
+  try {
+    text = read_regular_file(xml.string(), 1u << 20);
+  } catch (const std::exception&) {
+    return {};
+  }
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  if (doc.Error()) return {};
+  const TiXmlElement* package = doc.FirstChildElement("package");
+  const TiXmlElement* name = package ? package->FirstChildElement("name") : nullptr;
+  const char* v = name ? name->GetText() : nullptr;
+  if (!v) return {};
+  std::string s = v;
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  s = s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
+  return s;
+}
+
+// Visits `root` and its subfolders up to four levels below it, breadth
+// first, each level's folders in name order (hidden ones skipped), until
+// `found` returns true; at most kMaxFolders folders per root.
+template <class F>
+std::optional<std::filesystem::path> search_folders(const std::filesystem::path& root, F found) {
+  constexpr int kDepth = 4;
+  constexpr std::size_t kMaxFolders = 100000;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(root, ec)) return std::nullopt;
+  std::vector<std::filesystem::path> level{root};
+  std::size_t visited = 0;
+  for (int depth = 0; depth <= kDepth && !level.empty(); ++depth) {
+    std::vector<std::filesystem::path> next;
+    for (const std::filesystem::path& dir : level) {
+      if (found(dir)) return dir;
+      if (++visited > kMaxFolders || depth == kDepth) continue;
+      std::vector<std::filesystem::path> children;
+      std::filesystem::directory_iterator it(dir, std::filesystem::directory_options::skip_permission_denied, ec);
+      if (ec) continue;
+      for (const auto& entry : it) {
+        const std::string name = entry.path().filename().string();
+        if (name.empty() || name[0] == '.') continue;
+        std::error_code e2;
+        if (entry.is_directory(e2)) children.push_back(entry.path());
+      }
+      std::sort(children.begin(), children.end());
+      next.insert(next.end(), children.begin(), children.end());
+    }
+    level = std::move(next);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> find_package(const std::string& name, const std::vector<std::string>& folders) {
+  for (const std::string& folder : folders)
+    if (auto dir = search_folders(folder, [&](const std::filesystem::path& d) {
+          std::error_code ec;
+          return std::filesystem::is_regular_file(d / "package.xml", ec) && package_xml_name(d / "package.xml") == name;
+        }))
+      return dir->string();
+  for (const std::string& folder : folders)
+    if (auto dir = search_folders(folder, [&](const std::filesystem::path& d) { return d.filename() == name; }))
+      return dir->string();
+  return std::nullopt;
+}
+
+std::vector<std::pair<std::string, std::string>> read_srdf(const std::string& file, const RobotModel& model) {
+  const std::string text = read_regular_file(file, kMaxUrdfBytes);
+  auto fail = [&](const std::string& what) -> void { throw InputError(file + ": " + what); };
+  TiXmlDocument doc;
+  doc.Parse(text.c_str());
+  if (doc.Error()) fail("XML error at line " + std::to_string(doc.ErrorRow()) + ": " + one_line(doc.ErrorDesc()));
+  const TiXmlElement* robot = doc.FirstChildElement("robot");
+  if (!robot) fail("no <robot> element (not an SRDF)");
+  std::vector<std::pair<std::string, std::string>> out;
+  int k = 0;
+  for (const TiXmlElement* e = robot->FirstChildElement("disable_collisions"); e;
+       e = e->NextSiblingElement("disable_collisions"), ++k) {
+    const std::string where = "disable_collisions[" + std::to_string(k) + "]";
+    std::string links[2];
+    for (int s = 0; s < 2; ++s) {
+      const char* key = s == 0 ? "link1" : "link2";
+      const char* v = e->Attribute(key);
+      if (!v) fail(where + ": missing attribute \"" + key + "\"");
+      links[s] = v;
+      if (model.link_index(links[s]) < 0)
+        fail(where + ": " + key + ": unknown link " + quote_text(links[s]) + " (not in " + model.source + ")");
+    }
+    out.emplace_back(links[0], links[1]);
+  }
+  return out;
 }
 
 }  // namespace tmcert

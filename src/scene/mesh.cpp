@@ -8,7 +8,13 @@
 
 #include "src/scene/model.h"
 
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cctype>
 #include <charconv>
@@ -566,18 +572,110 @@ MeshData read_stl(const std::string& data, const Reporter& r) {
          " (" + std::to_string(84 + 50 * count) + " bytes), the file has " + std::to_string(size) + " bytes");
 }
 
+// ---------------------------------------------------------------- COLLADA
+
+using Mat4E = std::array<Exact, 16>;  // row major
+
+Mat4E mat_product(const Mat4E& a, const Mat4E& b) {
+  Mat4E out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      Exact sum = 0;
+      for (int k = 0; k < 4; ++k)
+        if (a[4 * r + k] != 0 && b[4 * k + c] != 0) sum += a[4 * r + k] * b[4 * k + c];
+      out[4 * r + c] = sum;
+    }
+  return out;
+}
+
+// COLLADA through assimp (Debian libassimp-dev): the polygons as assimp
+// triangulates them (aiProcess_Triangulate, and no other processing: no
+// vertex joining by tolerance, no pre-transformed vertices), each mesh
+// instance placed by the product of the node transforms from the root
+// down, computed exactly from the floats assimp holds (the unit size of
+// <unit meter> is in the root's; the up axis is left as written, as ROS
+// tools display it), vertices merged by exact equality.  Every coordinate
+// is the exact value of assimp's floats under those exact products.
+MeshData read_collada(const std::string& data, const Reporter& r) {
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  const aiScene* scene = importer.ReadFileFromMemory(data.data(), data.size(), aiProcess_Triangulate, "dae");
+  if (!scene) r.fail(std::string("not a readable COLLADA file (assimp: ") + importer.GetErrorString() + ")");
+  if (!scene->mRootNode) r.fail("COLLADA file without a scene (no root node)");
+  MeshData mesh;
+  mesh.from_floats = true;
+  mesh.format = "COLLADA";
+  VertexMerger merger(mesh);
+  auto exact = [&](ai_real f, const std::string& what) {
+    if (!std::isfinite(f)) r.fail(what + " is not finite");
+    return Exact(static_cast<double>(f));  // exact: a finite float is a dyadic rational
+  };
+  std::size_t faces = 0;
+  // Depth first from the root, with the exact transform of each node.
+  std::vector<std::pair<const aiNode*, Mat4E>> stack;
+  const Mat4E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  stack.emplace_back(scene->mRootNode, identity);
+  std::size_t nodes = 0;
+  while (!stack.empty()) {
+    auto [node, parent] = std::move(stack.back());
+    stack.pop_back();
+    if (++nodes > kMaxMeshFaces) r.fail("too many nodes");
+    const std::string where = "node " + shown(node->mName.C_Str());
+    const aiMatrix4x4& t = node->mTransformation;
+    const ai_real entries[16] = {t.a1, t.a2, t.a3, t.a4, t.b1, t.b2, t.b3, t.b4, t.c1, t.c2, t.c3, t.c4, t.d1, t.d2, t.d3, t.d4};
+    Mat4E local;
+    for (int e = 0; e < 16; ++e) local[e] = exact(entries[e], where + ": a transform entry");
+    if (local[12] != 0 || local[13] != 0 || local[14] != 0 || local[15] != 1)
+      r.fail(where + ": a projective transform (its last row is not 0 0 0 1)");
+    const Mat4E m = mat_product(parent, local);
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const aiMesh* am = scene->mMeshes[node->mMeshes[k]];
+      const std::string mwhere = where + ": mesh " + shown(am->mName.C_Str());
+      std::vector<std::size_t> ids(am->mNumVertices);
+      std::vector<char> done(am->mNumVertices, 0);
+      for (unsigned f = 0; f < am->mNumFaces; ++f) {
+        const aiFace& face = am->mFaces[f];
+        if (face.mNumIndices < 3)
+          r.fail(mwhere + ": face " + std::to_string(f) + ": " + (face.mNumIndices == 2 ? "a line" : "a point") +
+                 " (only polygons are read; lines and points are refused rather than dropped)");
+        if (++faces > kMaxMeshFaces) r.fail("too many faces (at most " + std::to_string(kMaxMeshFaces) + ")");
+        std::vector<std::size_t> out;
+        for (unsigned i = 0; i < face.mNumIndices; ++i) {
+          const unsigned vi = face.mIndices[i];
+          if (vi >= am->mNumVertices) r.fail(mwhere + ": face " + std::to_string(f) + ": vertex index out of range");
+          if (!done[vi]) {
+            const aiVector3D& v = am->mVertices[vi];
+            const Exact x = exact(v.x, mwhere + ": vertex " + std::to_string(vi)), y = exact(v.y, mwhere + ": vertex"),
+                        z = exact(v.z, mwhere + ": vertex");
+            Vec3E p;
+            for (int c = 0; c < 3; ++c) p[c] = m[4 * c] * x + m[4 * c + 1] * y + m[4 * c + 2] * z + m[4 * c + 3];
+            if (!merger.add(std::move(p), ids[vi]))
+              r.fail("too many vertices (at most " + std::to_string(kMaxMeshVertices) + ")");
+            done[vi] = 1;
+          }
+          out.push_back(ids[vi]);
+        }
+        mesh.faces.push_back(std::move(out));
+      }
+    }
+    for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], m);  // in file order
+  }
+  return mesh;
+}
+
 }  // namespace
 
 MeshData read_mesh(const std::string& file) {
   const Reporter r(file);
   const std::string extension = lower(std::filesystem::path(file).extension().string());
-  if (extension != ".off" && extension != ".obj" && extension != ".stl")
+  if (extension != ".off" && extension != ".obj" && extension != ".stl" && extension != ".dae")
     r.fail("unknown mesh file extension " + (extension.empty() ? std::string("(none)") : shown(extension)) +
-           " (supported: .off, .obj, .stl)");
+           " (supported: .off, .obj, .stl, .dae)");
   // Only a regular file, and at most kMaxMeshFileBytes of it.
   const std::string data = read_regular_file(file, kMaxMeshFileBytes);
   if (extension == ".off") return read_off(data, r);
   if (extension == ".obj") return read_obj(data, r);
+  if (extension == ".dae") return read_collada(data, r);
   return read_stl(data, r);
 }
 

@@ -1,4 +1,4 @@
-// Reading polygon meshes (OFF, OBJ, STL) exactly, for "mesh" bodies
+// Reading polygon meshes (OFF, OBJ, STL, COLLADA) exactly, for "mesh" bodies
 // (SCENE_FORMAT.md).  Text coordinates are read as the exact decimals they
 // spell; binary STL floats are converted exactly (every finite float is a
 // rational).  Nothing is rounded.
@@ -19,6 +19,10 @@ namespace tmcert {
 struct MeshData {
   std::vector<Vec3E> vertices;
   std::vector<std::vector<std::size_t>> faces;
+  // Read from single-precision floats (COLLADA: the result says so), and
+  // the format's name for that note.
+  bool from_floats = false;
+  std::string format;
 };
 
 // Limits that turn absurd files into errors instead of exhausted memory.
@@ -39,6 +43,12 @@ inline constexpr unsigned long long kMaxMeshFileBytes = 1ull << 30;
 //        free-form elements are refused rather than dropped.
 //  .stl  ASCII or binary (binary iff the size is 84 + 50 * count, or the
 //        file holds a NUL byte); vertices are merged by exact equality.
+//  .dae  COLLADA through assimp: polygons as assimp triangulates them,
+//        every mesh instance placed by its node transforms multiplied
+//        exactly from assimp's floats (the <unit> scale included, the up
+//        axis as written), vertices merged by exact equality; lines and
+//        points are refused.  Coordinates are the exact values of those
+//        floats under those products (MeshData::from_floats).
 // Throws InputError "<file>: line N: what" (or "<file>: triangle N: what",
 // "<file>: what") on unreadable, malformed or out-of-limits input.
 MeshData read_mesh(const std::string& file);

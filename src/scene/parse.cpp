@@ -778,8 +778,8 @@ class SceneReader {
  public:
   // `base` is the directory mesh file names are relative to ("" for the
   // current directory).
-  SceneReader(std::string source, std::filesystem::path base, const Tree& tree)
-      : source_(std::move(source)), base_(std::move(base)), tree_(tree) {}
+  SceneReader(std::string source, std::filesystem::path base, const Tree& tree, ReadOptions options = {})
+      : source_(std::move(source)), base_(std::move(base)), tree_(tree), options_(std::move(options)) {}
 
   Scene read() {
     Scene scene;
@@ -791,7 +791,9 @@ class SceneReader {
     if (!format) fail(document.member("format"), std::string("missing required field (expected \"") + kFormat + "\")");
     if (format->kind != Node::Kind::String || text(*format) != kFormat)
       fail(document.member("format"), "unknown format version " + describe(*format) + ", expected \"" + kFormat + "\"");
-    reject_unknown_keys(doc, document, {"format", "epsilon", "max_depth", "bodies", "checks", "clearance", "robots"});
+    reject_unknown_keys(doc, document,
+                        {"format", "epsilon", "max_depth", "bodies", "checks", "clearance", "robots", "package_paths"});
+    if (const Node* pp = find(doc, "package_paths")) package_paths(*pp, document.member("package_paths"));
     if (const Node* c = find(doc, "clearance")) scene.clearance = non_negative(*c, document.member("clearance"));
 
     if (const Node* eps = find(doc, "epsilon")) {
@@ -826,8 +828,8 @@ class SceneReader {
     if (robots_out_)
       for (const RobotInScene& r : placed) {
         SceneRobot kept{r.robot, r.joints, {}, r.self_collision, r.allowed};
-        for (int b : r.bodies.body)
-          if (b >= 0) kept.bodies.push_back(b);
+        for (const std::vector<int>& parts : r.bodies.parts)
+          kept.bodies.insert(kept.bodies.end(), parts.begin(), parts.end());
         robots_out_->push_back(std::move(kept));
       }
     if (scene.bodies.empty()) fail(bodies_path, "at least one body is required (the robots have no collision geometry)");
@@ -899,6 +901,29 @@ class SceneReader {
     return "; the nearest rotation is the unit quaternion [w, x, y, z] = [" + list + "]" + far + ": write " +
            "\"rotation\": {\"quaternion\": [" + list + "]} instead (its decimals are read exactly; a quaternion " +
            "of any norm is a rotation)";
+  }
+
+  // "package_paths": folders relative to the scene file, searched for
+  // package:// URIs after the given ones (ReadOptions) and before
+  // ROS_PACKAGE_PATH.
+  void package_paths(const Node& node, const Path& path) {
+    const std::span<const Node> list = array(node, path);
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (list[k].kind != Node::Kind::String || text(list[k]).empty())
+        fail(path.index(k), "expected a folder name (a non-empty string)");
+      const std::string name(text(list[k]));
+      if (name.find('\0') != std::string::npos) fail(path.index(k), "folder name contains a NUL character");
+      scene_packages_.push_back((base_ / std::filesystem::path(name)).string());
+    }
+  }
+
+  // The package folders in their order: given, the scene's, ROS_PACKAGE_PATH.
+  UrdfOptions urdf_options() const {
+    UrdfOptions out;
+    out.package_paths = options_.package_paths;
+    out.package_paths.insert(out.package_paths.end(), scene_packages_.begin(), scene_packages_.end());
+    for (const std::string& f : ros_package_path()) out.package_paths.push_back(f);
+    return out;
   }
 
   // A request line of a batch run (docs/scene-format.md "Batch runs"):
@@ -1225,6 +1250,9 @@ class SceneReader {
       fail(path, one_line(e.what()));
     }
     if (data.faces.empty()) fail(path, file + ": mesh has no faces");
+    if (data.from_floats)
+      notes_.push_back(source_ + ": " + path.str() + ": mesh " + file + " (" + data.format +
+                       ") is read from its single-precision floats: its coordinates are their exact values");
     std::vector<Vec3E> vertices;
     MeshFaceCounts counts;
     for (std::size_t f = 0; f < data.faces.size(); ++f) {
@@ -1631,6 +1659,7 @@ class SceneReader {
     const std::span<const Node> list = array(node, checks_path);
     std::vector<std::pair<int, int>> out;
     std::map<std::pair<int, int>, std::size_t> seen;  // unordered pair -> where it was written
+    std::set<std::pair<int, int>> expanded;           // the pairs checked
     for (std::size_t k = 0; k < list.size(); ++k) {
       const Path item_path = checks_path.index(k);
       const Path bodies_path = item_path.member("bodies");
@@ -1664,7 +1693,20 @@ class SceneReader {
       const auto key = std::minmax(idx[0], idx[1]);
       if (auto [it, fresh] = seen.emplace(key, k); !fresh)
         fail(path, "duplicate check (same pair as " + index_path("checks", it->second) + ")");
-      out.emplace_back(idx[0], idx[1]);
+      // A robot link of several bodies (robot.h LinkPart) named by its
+      // first: every part of it, each pair once.
+      const std::optional<Exact> clearance = clearances.back();
+      clearances.pop_back();
+      auto parts = [&](int b) {
+        const auto it = link_parts_.find(b);
+        return it == link_parts_.end() ? std::vector<int>{b} : it->second;
+      };
+      for (int a : parts(idx[0]))
+        for (int b : parts(idx[1])) {
+          if (a == b || !expanded.insert(std::minmax(a, b)).second) continue;
+          out.emplace_back(a, b);
+          clearances.push_back(clearance);
+        }
     }
     return out;
   }
@@ -1709,7 +1751,7 @@ class SceneReader {
     for (std::size_t r = 0; r < list.size(); ++r) {
       const Path rpath = path.index(r);
       const Members obj = object(list[r], rpath);
-      reject_unknown_keys(obj, rpath, {"name", "urdf", "base", "joints", "path", "self_collision", "allowed_pairs"});
+      reject_unknown_keys(obj, rpath, {"name", "urdf", "base", "joints", "path", "self_collision", "allowed_pairs", "srdf"});
       auto string_field = [&](const char* key) {
         const Node* n = find(obj, key);
         if (!n) fail(rpath.member(key), "missing required field");
@@ -1727,10 +1769,11 @@ class SceneReader {
       std::shared_ptr<const RobotModel>& model = loaded[file];
       if (!model) {
         try {
-          model = load_urdf(file);
+          model = load_urdf(file, urdf_options());
         } catch (const InputError& e) {
           fail(rpath.member("urdf"), one_line(e.what()));
         }
+        notes_.insert(notes_.end(), model->notes.begin(), model->notes.end());
       }
       Pose base;
       if (const Node* b = find(obj, "base")) base = pose(*b, rpath.member("base"));
@@ -1760,11 +1803,13 @@ class SceneReader {
         if (e.index.size() == 1) fail(first, e.what());
         fail(first.index(e.index[1]), e.what());
       }
-      for (int b : placed.bodies.body) {
-        if (b < 0) continue;
-        const std::string& body_name = scene.bodies[b].name;
-        if (auto [it, fresh] = names.emplace(body_name, static_cast<std::size_t>(b)); !fresh)
-          fail(rpath.member("name"), "the link body " + quote_text(body_name) + " has the name of another body");
+      for (const std::vector<int>& parts : placed.bodies.parts) {
+        for (int b : parts) {
+          const std::string& body_name = scene.bodies[b].name;
+          if (auto [it, fresh] = names.emplace(body_name, static_cast<std::size_t>(b)); !fresh)
+            fail(rpath.member("name"), "the link body " + quote_text(body_name) + " has the name of another body");
+        }
+        if (parts.size() > 1) link_parts_[parts.front()] = parts;
       }
       if (const Node* sc = find(obj, "self_collision")) {
         if (sc->kind != Node::Kind::Boolean) fail(rpath.member("self_collision"), "expected true or false");
@@ -1787,6 +1832,18 @@ class SceneReader {
           placed.allowed.emplace_back(links[0], links[1]);
         }
       }
+      if (const Node* sr = find(obj, "srdf")) {
+        // MoveIt's allowed self-collisions: every <disable_collisions>.
+        const Path spath = rpath.member("srdf");
+        if (sr->kind != Node::Kind::String || text(*sr).empty()) fail(spath, "expected a non-empty string (an SRDF file)");
+        const std::string srdf(text(*sr));
+        if (srdf.find('\0') != std::string::npos) fail(spath, "file name contains a NUL character");
+        try {
+          for (auto& pair : read_srdf((base_ / std::filesystem::path(srdf)).string(), *model)) placed.allowed.push_back(pair);
+        } catch (const InputError& e) {
+          fail(spath, one_line(e.what()));
+        }
+      }
       out.push_back(std::move(placed));
     }
     return out;
@@ -1805,8 +1862,7 @@ class SceneReader {
     for (const auto& [a, b] : out) seen.insert(std::minmax(a, b));
     for (const RobotInScene& r : robots) {
       std::set<int> own;
-      for (int b : r.bodies.body)
-        if (b >= 0) own.insert(b);
+      for (const std::vector<int>& parts : r.bodies.parts) own.insert(parts.begin(), parts.end());
       std::vector<int> environment;
       for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
         if (!own.count(b)) environment.push_back(b);
@@ -1830,6 +1886,9 @@ class SceneReader {
   std::string source_;
   std::filesystem::path base_;
   const Tree& tree_;
+  ReadOptions options_;
+  std::vector<std::string> scene_packages_;        // "package_paths", resolved
+  mutable std::map<int, std::vector<int>> link_parts_;  // a link's first body -> all its bodies
   mutable std::vector<std::string> notes_, warnings_;  // Scene::notes, Scene::warnings
 
  public:
@@ -1888,9 +1947,14 @@ Scene parse_scene_text(const std::string& text, const std::string& source) {
 
 Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
                        std::vector<SceneRobot>& robots) {
+  return parse_scene_text(text, source, base, robots, ReadOptions{});
+}
+
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
+                       std::vector<SceneRobot>& robots, const ReadOptions& options) {
   const Tree tree = parse_json(text, source);
   const InputRecord record;
-  SceneReader reader(source, base, tree);
+  SceneReader reader(source, base, tree, options);
   reader.robots_out_ = &robots;
   Scene scene = reader.read();
   scene.input_files = record.files();
@@ -1908,7 +1972,7 @@ void parse_request_line(const std::string& text, const std::string& source, cons
 
 namespace {
 
-Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots) {
+Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots, const ReadOptions& options = {}) {
   const InputRecord record;  // the scene's files (Scene::input_files)
   // Only a regular file, and at most kMaxFileBytes of it (docs/scene-format.md).
   std::string text = read_regular_file(path, kMaxFileBytes);
@@ -1916,7 +1980,7 @@ Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots) 
   // the memory that reading the scene takes.
   const Tree tree = parse_json(text, path);
   std::string().swap(text);
-  SceneReader reader(path, std::filesystem::path(path).parent_path(), tree);
+  SceneReader reader(path, std::filesystem::path(path).parent_path(), tree, options);
   reader.robots_out_ = robots;
   Scene scene = reader.read();
   scene.input_files = record.files();
@@ -1924,6 +1988,10 @@ Scene read_scene_file(const std::string& path, std::vector<SceneRobot>* robots) 
 }
 
 }  // namespace
+
+Scene parse_scene_file(const std::string& path, const ReadOptions& options, std::vector<SceneRobot>* robots) {
+  return read_scene_file(path, robots, options);
+}
 
 Scene parse_scene_file(const std::string& path) { return read_scene_file(path, nullptr); }
 

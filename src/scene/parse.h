@@ -24,6 +24,13 @@ struct SceneRobot {
   std::vector<std::pair<std::string, std::string>> allowed_pairs;  // link names
 };
 
+// How a scene reads what it refers to (SCENE_FORMAT.md "Real robots as they
+// ship"): package folders searched for package:// URIs before the scene's
+// own "package_paths" and ROS_PACKAGE_PATH (`tmcert verify --package-path`).
+struct ReadOptions {
+  std::vector<std::string> package_paths;
+};
+
 // Reads and validates a scene file.  Every number is read exactly from its
 // JSON text.  Throws InputError with a one-line message naming the file and
 // the JSON path (e.g. "scene.json: bodies[1].motion.weights[2]: weight must
@@ -31,6 +38,8 @@ struct SceneRobot {
 Scene parse_scene_file(const std::string& path);
 // The same, and the scene's robots into `robots`.
 Scene parse_scene_file(const std::string& path, std::vector<SceneRobot>& robots);
+// The same with read options (robots may be null).
+Scene parse_scene_file(const std::string& path, const ReadOptions& options, std::vector<SceneRobot>* robots = nullptr);
 
 // A user string made safe for a one-line message: quoted, control
 // characters escaped, strings longer than 60 characters shortened.
@@ -50,6 +59,8 @@ Scene parse_scene_text(const std::string& text, const std::string& source);
 // the scene's robots into `robots`.
 Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
                        std::vector<SceneRobot>& robots);
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& base,
+                       std::vector<SceneRobot>& robots, const ReadOptions& options);
 
 // One request of a batch run (docs/scene-format.md "Batch runs"), read as
 // scenes are: exact numbers, the same motion objects and messages.

@@ -428,6 +428,7 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
           r.first_contact = std::pair{t0, t1};
         }
         out.checks.push_back(r);
+        settle_enlarged(out.checks.back(), *prepared_[a], *prepared_[b], t1);
         record(out.checks.size() - 1);
         continue;
       }
@@ -466,6 +467,10 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
                                                                 free || (w0 == t0 && start_free), std::pair{w0, w1});
                            });
     out.checks.push_back(std::move(result));
+    // A URDF cylinder's or sphere's collision only proven on its true shape
+    // (true_shape.h); no finer polyhedra here (a planner's edge is then not
+    // certified).
+    settle_enlarged(out.checks.back(), *prepared_[a], *prepared_[b], t1);
     record(out.checks.size() - 1);
   }
   for (CheckResult& r : out.checks) {

@@ -66,6 +66,15 @@ class FixedEnvironment {
   // configuration is certified free).
   std::optional<Witness> static_contact(const std::vector<Mat34E>& poses) const;
 
+  // Some body is a URDF cylinder or sphere (Body::primitive): its static
+  // contacts are the polyhedron's (static_contact says nothing about the
+  // true shape; check() proves a collision on it).
+  bool has_primitives() const {
+    for (const Body& b : bodies_)
+      if (b.primitive) return true;
+    return false;
+  }
+
   // 0: the environment, 1 + k: mover k (for CheckResult::bodies).
   const std::vector<Body>& bodies() const { return bodies_; }
   const VerifyOptions& options() const { return options_; }

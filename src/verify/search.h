@@ -8,6 +8,7 @@
 #include "kernels/distance.h"
 #include "kernels/robust_crossing.h"
 #include "src/verify/solid_contact.h"
+#include "src/verify/true_shape.h"
 
 #include <algorithm>
 #include <atomic>
@@ -369,6 +370,9 @@ struct Check {
   // enclosed poses leave open): the pieces cleared from it on are not
   // claimed until a later start is proven (secure_partition).
   bool start_unproven = false;
+  // Set by true_witness when the polyhedra of a URDF primitive touch at a
+  // candidate without a proven contact of the true shapes.
+  bool enlarged_touch = false;
 
   // The same check writing into `part`.
   Check fork(CheckResult& part) const {
@@ -438,6 +442,7 @@ struct Check {
   // of hierarchy nodes is still alive); then, with a tolerance or a
   // clearance, the distance witness.
   bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
+    if (enlarged_pair(*moving.body, *other.body)) return true_witness(u, alive);
     std::set<std::pair<int, int>> parts;
     bool all = false;
     for (const PairRef& p : alive) {
@@ -452,6 +457,84 @@ struct Check {
       return true;
     }
     return interior_witness(u) == Apartness::Contact || distance_witness(u, all ? nullptr : &parts);
+  }
+
+  // A URDF cylinder or sphere (Body::primitive) in the check: a contact of
+  // the polyhedra (a static hit, a component inside, a distance witness)
+  // is one of the enlarged model only.  The witness is a point proven in
+  // both true bodies at u (true_shape.h); when there is none but the
+  // polyhedra touch at u, the piece's stop is `enlarged_model`
+  // (proofs/robot-links.md section 6).
+  bool true_witness(const Exact& u, const std::vector<PairRef>& alive) {
+    const std::array<ShapeSide, 2> side = sides_at(u);
+    if (const std::optional<TrueContact> c = true_contact(side[0], side[1], result.stats)) {
+      result.witness = witness_of(scene_t(u), *c, swapped);
+      result.verdict = Verdict::Collision;
+      return true;
+    }
+    std::set<std::pair<int, int>> parts;
+    bool all = false;
+    for (const PairRef& p : alive) {
+      if (p.nodes) {
+        all = true;
+        break;
+      }
+      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
+    }
+    bool uncertain = false;
+    CheckResult probe;  // the enlarged model's witnesses, not reported
+    Check sub = fork(probe);
+    if (sub.static_test(u, all ? nullptr : &parts, &uncertain) || uncertain || sub.interior_witness(u) ||
+        sub.distance_witness(u, all ? nullptr : &parts))
+      enlarged_touch = true;
+    result.stats.static_tests += probe.stats.static_tests;
+    return false;
+  }
+
+  // The polyhedra of a URDF primitive touch on [u0, u1] without a contact
+  // of the true shapes proven there: the contact tests see only the onset
+  // of contact, and the true shapes meet (if they do) after the polyhedra
+  // do, so the true contact is tried at later instants u1 + (u1 - u0) 2^k up
+  // to the end.  Found at u: [u0, u] is undecided `enlarged_model` and the
+  // witness is at u (proofs/robot-links.md section 6).
+  bool true_witness_later(const Exact& u0, const Exact& u1) {
+    Exact step = u1 - u0;
+    if (!(step > 0)) step = Exact(1, 1024);
+    for (int k = 0; k < 70 && u1 < 1; ++k, step *= 2) {
+      const Exact u = std::min(Exact(1), u1 + step);
+      const std::array<ShapeSide, 2> side = sides_at(u);
+      if (const std::optional<TrueContact> c = true_contact(side[0], side[1], result.stats)) {
+        const Exact t0 = scene_t(u0), tw = scene_t(u);
+        if (!result.undecided.empty() && result.undecided.back().t1 == t0 &&
+            result.undecided.back().reason == StopReason::EnlargedModel)
+          result.undecided.back().t1 = tw;
+        else
+          result.undecided.push_back({t0, tw, StopReason::EnlargedModel});
+        result.first_contact = std::pair{result.first_contact ? result.first_contact->first : t0, tw};
+        result.witness = witness_of(tw, *c, swapped);
+        result.verdict = Verdict::Collision;
+        ++result.stats.stops;
+        return true;
+      }
+      if (u == 1) break;
+    }
+    return false;
+  }
+
+  // The two bodies at curve parameter u (moving, other), for true_contact.
+  std::array<ShapeSide, 2> sides_at(const Exact& u) const {
+    std::array<PoseInterval, B> maps;
+    std::array<std::optional<Mat34E>, B> exact;
+    if (extras.enclosed) {
+      maps = extras.enclosed->poses(u);
+      for (int b = 0; b < B; ++b) exact[b] = extras.enclosed->models[b]->exact_pose(extras.enclosed->s_of(b, u));
+    } else {
+      for (int b = 0; b < B; ++b) {
+        exact[b] = b == 0 ? evaluate<B>(curve, u, 0) : evaluate<B>(curve, u, B - 1);
+        for (int e = 0; e < 12; ++e) maps[b][e] = to_interval((*exact[b])[e]);
+      }
+    }
+    return {moving_side(moving, exact[0], maps[0]), B == 2 ? moving_side(other, exact[B - 1], maps[B - 1]) : fixed_side(other)};
   }
 
   // A solid's inside counts as contact: a vertex of one body inside a
@@ -892,8 +975,10 @@ struct Check {
   // motions (no exact curve), and not with a tube (tolerance, clearance),
   // where "the nominal motion does not touch" would not clear the piece.
   bool exact_resolution_applies() const {
+    // Not with a URDF primitive: its contacts are the polyhedron's, whose
+    // roots say nothing about the true shape.
     return options.kernel != KernelKind::Fast && options.exact_resolution && !extras.enclosed && extras.tube == 0 &&
-           !extras.distance_witness();
+           !extras.distance_witness() && !enlarged_pair(*moving.body, *other.body);
   }
   // Higher degrees (the paper's degree-8 motions: contact polynomials of
   // degree 24 with large coefficients) are decided at the stop only, on
@@ -965,6 +1050,7 @@ struct Check {
       const Exact mid = node.mid();
       const Exact end = node.u1();
       const Exact simple = curve_u(simplest_between(scene_t(node.u0()), scene_t(end)));
+      enlarged_touch = false;
       for (const Exact* u : {&simple, &mid, &end}) {
         if (u != &simple && *u == simple) continue;  // tried already
         if (try_witness(*u, node.alive)) {
@@ -976,7 +1062,8 @@ struct Check {
           return Outcome::Witness;
         }
       }
-      record(node, *stop);
+      if (enlarged_touch && true_witness_later(node.u0(), node.u1())) return Outcome::Witness;
+      record(node, enlarged_touch ? StopReason::EnlargedModel : *stop);
       ++stats.stops;
       return Outcome::Stopped;
     }
@@ -1167,6 +1254,27 @@ struct Check {
     bool uncertain = false;
     if (extras.start_proven_free) {
       // nothing to test at the start
+    } else if (enlarged_pair(*moving.body, *other.body)) {
+      // The polyhedra at the start: a contact there is proven on the true
+      // shapes or leaves the whole part undecided (the contact tests are
+      // complete only after a start free of contact of the polyhedra).
+      bool touch = false;
+      {
+        CheckResult probe;
+        Check sub = fork(probe);
+        touch = sub.static_test(Exact(0), nullptr, &uncertain).has_value();
+      }
+      if (touch || uncertain) {
+        if (true_witness(Exact(0), {})) {
+          result.first_contact = std::pair{motion.t0, motion.t0};
+          result.first_contact_exact = true;
+          return;
+        }
+        if (true_witness_later(Exact(0), Exact(1, 1 << 20))) return;
+        record(Node{0, 0, {}}, StopReason::EnlargedModel);
+        ++result.stats.stops;
+        return;
+      }
     } else if (auto hit = static_test(Exact(0), nullptr, &uncertain)) {
       set_witness(Exact(0), *hit);
       result.first_contact = std::pair{motion.t0, motion.t0};
@@ -1192,7 +1300,15 @@ struct Check {
       }
       start_unproven = inside == Apartness::Unknown;
     }
-    if (!extras.start_proven_free && distance_witness(Exact(0), nullptr)) {
+    if (!extras.start_proven_free && enlarged_pair(*moving.body, *other.body) && extras.distance_witness()) {
+      CheckResult probe;
+      Check sub = fork(probe);
+      if (sub.distance_witness(Exact(0), nullptr)) {  // within the clearance or tolerance on the polyhedra
+        record(Node{0, 0, {}}, StopReason::EnlargedModel);
+        ++result.stats.stops;
+        return;
+      }
+    } else if (!extras.start_proven_free && distance_witness(Exact(0), nullptr)) {
       result.first_contact = std::pair{motion.t0, motion.t0};
       return;
     }

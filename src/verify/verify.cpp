@@ -10,9 +10,12 @@
 #include "src/verify/refine.h"
 #include "src/verify/search.h"
 #include "src/verify/solid_contact.h"
+#include "src/verify/true_shape.h"
+#include "src/robot/primitives.h"
 
 #include <CGAL/number_utils.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -47,6 +50,7 @@ const char* to_string(StopReason r) {
     case StopReason::Depth: return "depth";
     case StopReason::Limit: return "limit";
     case StopReason::AfterUndecided: return "after_undecided";
+    case StopReason::EnlargedModel: return "enlarged_model";
   }
   return "limit";
 }
@@ -380,6 +384,32 @@ bool placed_box(const std::vector<Vec3E>& points, const PoseInterval& m, std::ar
   return true;
 }
 
+// A URDF cylinder's or sphere's polyhedron (Body::primitive, convex, about
+// the z axis of its frame: every vertex within `radial` of the axis, or of
+// the centre for a sphere, a cylinder's caps at z = +-length/2) placed by
+// the enclosed rigid pose m holds no point of the box of p placed by pm:
+// in the primitive's frame, R^T (box - c) (the true R, c of a rigid pose lie
+// in m) is farther from the axis (centre) than every vertex, or beyond a
+// cap.  Interval arithmetic, outward rounded.
+bool outside_primitive_polyhedron(const Body& primitive, const PoseInterval& m, const Vec3E& p, const PoseInterval& pm) {
+  const Body::Primitive& prim = *primitive.primitive;
+  const bool sphere = prim.kind == Body::Primitive::Kind::Sphere;
+  Exact reach2 = 0;  // the largest squared distance of a vertex from the axis (centre)
+  for (const auto& poly : primitive.polygons)
+    for (const Vec3E& v : poly) reach2 = std::max(reach2, v[0] * v[0] + v[1] * v[1] + (sphere ? v[2] * v[2] : Exact(0)));
+  RoundingGuard guard;
+  const Interval q[3] = {to_interval(p[0]), to_interval(p[1]), to_interval(p[2])};
+  std::array<Interval, 3> w, x;
+  for (int i = 0; i < 3; ++i) w[i] = pm[4 * i] * q[0] + pm[4 * i + 1] * q[1] + pm[4 * i + 2] * q[2] + pm[4 * i + 3];
+  for (int j = 0; j < 3; ++j) x[j] = m[j] * (w[0] - m[3]) + m[4 + j] * (w[1] - m[7]) + m[8 + j] * (w[2] - m[11]);
+  const Interval d2 = CGAL::square(x[0]) + CGAL::square(x[1]) + (sphere ? CGAL::square(x[2]) : Interval(0));
+  if (!std::isfinite(d2.inf())) return false;
+  if (d2.inf() > to_interval(reach2).sup()) return true;
+  if (sphere) return false;
+  const Interval h = to_interval(prim.length) / Interval(2);
+  return x[2].inf() > h.sup() || x[2].sup() < -h.sup();
+}
+
 // With an enclosed start pose: every solid body of the pair provably holds
 // no connected component of the other at the start, because one vertex of
 // each component lies outside the solid's box there (a component with one
@@ -387,7 +417,9 @@ bool placed_box(const std::vector<Vec3E>& points, const PoseInterval& m, std::ar
 // which the start check of the surfaces sees: proofs/containment.md).
 // Finer than start_boxes_disjoint: a robot link's box may overlap a table
 // while its one component's vertex is far from the table's box.
-bool start_components_outside(const Body& x, const Body& y) {
+// `primitive_in_doubt` (when given) is set when it is a URDF cylinder's or
+// sphere's polyhedron that may hold a component (a finer one may not).
+bool start_components_outside(const Body& x, const Body& y, bool* primitive_in_doubt = nullptr) {
   const Body* pair[2] = {&x, &y};
   for (int s = 0; s < 2; ++s) {
     const Body& solid = *pair[s];
@@ -404,7 +436,11 @@ bool start_components_outside(const Body& x, const Body& y) {
       if (!placed_box({rep.second}, po, rlo, rhi)) return false;
       bool apart = false;
       for (int i = 0; i < 3; ++i) apart = apart || rhi[i] < lo[i] || hi[i] < rlo[i];
-      if (!apart) return false;
+      if (!apart && solid.primitive) apart = outside_primitive_polyhedron(solid, start_pose_enclosed(solid), rep.second, po);
+      if (!apart) {
+        if (primitive_in_doubt) *primitive_in_doubt = solid.primitive.has_value();
+        return false;
+      }
     }
   }
   return true;
@@ -438,6 +474,42 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   // bodies (default_epsilon(a, b)), not of the whole scene.
   if (!options.epsilon) options.epsilon = thousandth_of_diagonal(merged(reach_[a], reach_[b]));
   CheckResult result = check_with(a, b, clearance, options);
+  const Body& x = scene_.bodies[a];
+  const Body& y = scene_.bodies[b];
+  if (enlarged_pair(x, y)) {
+    // A URDF cylinder or sphere: a collision only with a contact proven on
+    // the true shapes; parts left undecided because the polyhedra touch are
+    // searched again with finer polyhedra (src/robot/primitives.h), up to
+    // the finest, on the same deadline (not for certificates, whose pieces
+    // are the scene's polyhedra).  proofs/robot-links.md section 6.
+    const Exact t_end = x.moves() ? x.interval()->second : y.moves() ? y.interval()->second
+                        : x.interval() ? x.interval()->second : y.interval() ? y.interval()->second : Exact(0);
+    settle_enlarged(result, prepared(a), prepared(b), t_end);
+    auto enlarged_parts = [](const CheckResult& r) {
+      return std::any_of(r.undecided.begin(), r.undecided.end(),
+                         [](const UndecidedInterval& u) { return u.reason == StopReason::EnlargedModel; });
+    };
+    Scene finer;
+    finer.source = scene_.source;
+    finer.bodies = {x, y};
+    finer.checks = {{0, 1}};
+    CheckStats spent = result.stats;
+    while (!options.record_cover && result.verdict != Verdict::Collision && enlarged_parts(result) &&
+           !past_deadline(options)) {
+      const bool ra = refine_primitive(finer.bodies[0]), rb = refine_primitive(finer.bodies[1]);
+      if (!ra && !rb) break;
+      const Verifier again(finer, options);
+      CheckResult r = again.check_with(0, 1, clearance, options);
+      settle_enlarged(r, again.prepared(0), again.prepared(1), t_end);
+      r.bodies = {a, b};
+      r.stats.nodes += spent.nodes;
+      r.stats.stops += spent.stops;
+      r.stats.static_tests += spent.static_tests;
+      r.stats.seconds += spent.seconds;
+      spent = r.stats;
+      result = std::move(r);
+    }
+  }
   if (!result.refined) result.epsilon = *options.epsilon;
   result.interval = parameter_interval(scene_.bodies[a], scene_.bodies[b]);
   return result;
@@ -474,13 +546,27 @@ CheckResult Verifier::check_with(int a, int b, const Exact& clearance, const Ver
     // at the start are disjoint (then neither holds a point of the other),
     // else it is left open, and with it the whole check.
     const bool exact_start = start_pose(x) && start_pose(y);
-    if (!exact_start && !start_boxes_disjoint(x, y) && !start_components_outside(x, y)) {
+    bool primitive_in_doubt = false;
+    if (!exact_start && !start_boxes_disjoint(x, y) && !start_components_outside(x, y, &primitive_in_doubt)) {
       CheckResult result;
       result.bodies = {a, b};
       result.clearance = clearance;
+      if (enlarged_pair(x, y)) {  // a contact of the true shapes at the start decides it
+        const std::optional<TrueContact> c =
+            true_contact(side_at(prepared(a), t0), side_at(prepared(b), t0), result.stats);
+        if (c) {
+          result.verdict = Verdict::Collision;
+          result.witness = witness_of(t0, *c);
+          result.first_contact = std::pair{t0, t0};
+          return result;
+        }
+      }
       result.verdict = Verdict::Undecided;
       const auto range = mx ? *x.interval() : my ? *y.interval() : std::pair{t0, t0};
-      result.undecided.push_back({range.first, range.second, StopReason::Epsilon});
+      // A component maybe inside a primitive's polyhedron: finer
+      // polyhedra may settle it (Verifier::check).
+      result.undecided.push_back(
+          {range.first, range.second, primitive_in_doubt ? StopReason::EnlargedModel : StopReason::Epsilon});
       result.first_contact = range;
       return result;
     }

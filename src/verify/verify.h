@@ -26,8 +26,10 @@ enum class KernelKind { Filtered, Exact, Fast };
 // budget ended the search (limit), or the part was cleared by contact tests
 // that detect only the onset of contact, after a part that was not cleared,
 // and the bodies could not be proven apart at its start (after_undecided;
-// proofs/partition.md).
-enum class StopReason { Epsilon, Depth, Limit, AfterUndecided };
+// proofs/partition.md); enlarged_model: a URDF cylinder's or sphere's circumscribed polyhedron
+// touches there, and neither a contact of the true shape nor its absence
+// was proven (proofs/robot-links.md section 6).
+enum class StopReason { Epsilon, Depth, Limit, AfterUndecided, EnlargedModel };
 
 const char* to_string(Verdict v);
 const char* to_string(KernelKind k);
@@ -124,6 +126,9 @@ struct Witness {
   // Clearance: a point of each body (in the check's order) no farther apart
   // than the clearance; `point` is the first of them.
   std::optional<std::array<Vec3E, 2>> points;
+  // Proven on the true shape of a URDF cylinder or sphere (a body of the
+  // check has Body::primitive; src/verify/true_shape.h).
+  bool true_shape = false;
 };
 
 struct UndecidedInterval {

@@ -14,8 +14,11 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 
 using namespace tmcert;
@@ -82,8 +85,10 @@ Exact d(const char* s) {
   return v;
 }
 
-// The pose of link `link`'s body (in the world, base pose `base`) at
-// joint values q = (j1, j2, j3, j4).
+// The pose of link `link`'s first body (in the world, base pose `base`) at
+// joint values q = (j1, j2, j3, j4): the link frame, then the body's frame
+// in it (robot.h LinkPart: a rotated box's origin, a sphere's centre, a
+// cylinder's origin).
 MpPose mp_link_body(const MpPose& base, const std::string& link, const std::array<Exact, 4>& q) {
   MpPose m = base;
   auto then = [&](const MpPose& x) { m = mp_compose(m, x); };
@@ -98,10 +103,16 @@ MpPose mp_link_body(const MpPose& base, const std::string& link, const std::arra
     return m;
   }
   then(mp_origin({d("0.2"), 0, 0}, {0, 0, d("0.5")}));
-  if (link == "l3") return m;
+  if (link == "l3") {
+    then(mp_origin({0, 0, d("0.05")}, kZero));  // the sphere's centre
+    return m;
+  }
   then(mp_origin({0, 0, d("0.1")}, kZero));
   then(mp_revolute({1, 1, 0}, q[2]));
-  if (link == "l4") return m;
+  if (link == "l4") {
+    then(mp_origin({0, 0, d("0.1")}, kZero));  // the cylinder's origin
+    return m;
+  }
   then(mp_origin({0, 0, d("0.2")}, {d("-0.3"), 0, 0}));
   then(mp_revolute({0, 1, 0}, q[3]));
   return m;
@@ -222,21 +233,32 @@ BOOST_AUTO_TEST_CASE(urdf_numbers_are_exact_and_structure_is_read) {
   BOOST_TEST((j2.axis == Vec3E{1, 2, 2}));
   BOOST_TEST((model->joints[model->joint_index("f")].type == RobotJoint::Type::Fixed));
   BOOST_TEST((model->joints[model->joint_index("j4")].type == RobotJoint::Type::Continuous));
-  // l1: a box and a sphere, both with rpy 0: one body in the link frame,
-  // vertices moved by the origins exactly; the sphere enlarged.
+  // l1: a box and a sphere, both with rpy 0: the box in the link frame,
+  // vertices moved by the origin exactly; the sphere a part of its own at
+  // its centre, its polyhedron with the true shape.
   const RobotLink& l1 = model->links[model->link_index("l1")];
-  BOOST_REQUIRE(l1.geometry);
-  BOOST_TEST(l1.body_frame.empty());
-  BOOST_TEST((l1.geometry->enlarged == std::vector<std::string>{"sphere"}));
-  BOOST_TEST(l1.geometry->solid);
+  BOOST_REQUIRE(l1.parts.size() == 2u);
+  BOOST_TEST(l1.parts[0].frame.empty());
+  BOOST_TEST(l1.parts[0].suffix == "");
+  BOOST_TEST(l1.parts[0].geometry.enlarged.empty());
+  BOOST_TEST(l1.parts[0].geometry.solid);
+  BOOST_TEST(!l1.parts[0].geometry.primitive);
+  BOOST_TEST(l1.parts[1].suffix == "/collision[1]");
+  BOOST_TEST((l1.parts[1].geometry.enlarged == std::vector<std::string>{"sphere"}));
+  BOOST_REQUIRE(l1.parts[1].geometry.primitive);
+  BOOST_TEST(l1.parts[1].geometry.primitive->radius == Exact(6, 100));
+  BOOST_REQUIRE(l1.parts[1].frame.size() == 1u);
+  BOOST_TEST((l1.parts[1].frame[0].translation == Vec3E{Exact(0), Exact(0), Exact(45, 100)}));
+  BOOST_TEST((l1.parts[1].frame[0].rotation.kind == Rotation::Kind::Identity));
   // l2: one rotated collision origin becomes the body frame.
   const RobotLink& l2 = model->links[model->link_index("l2")];
-  BOOST_TEST(l2.body_frame.size() == 1u);
-  BOOST_TEST(l2.geometry->enlarged.empty());
-  BOOST_TEST(l2.geometry->polygons.size() == 6u);
+  BOOST_REQUIRE(l2.parts.size() == 1u);
+  BOOST_TEST(l2.parts[0].frame.size() == 1u);
+  BOOST_TEST(l2.parts[0].geometry.enlarged.empty());
+  BOOST_TEST(l2.parts[0].geometry.polygons.size() == 6u);
   // The box vertices are exactly +-size/2 (0.05 / 2 = 1/40).
   bool found = false;
-  for (const auto& poly : l2.geometry->polygons)
+  for (const auto& poly : l2.parts[0].geometry.polygons)
     for (const Vec3E& v : poly) found = found || v == Vec3E{Exact(1, 10), Exact(1, 40), Exact(1, 40)};
   BOOST_TEST(found);
 }
@@ -335,25 +357,46 @@ BOOST_AUTO_TEST_CASE(link_piece_enclosures_hold_dense_mpfr_samples) {
 }
 
 BOOST_AUTO_TEST_CASE(circumscribed_primitives_contain_their_shapes_exactly) {
-  // Every tangent normal is a unit vector exactly; every face lies in a
-  // tangent plane at distance r (a cap of the cylinder at z = +-length/2);
-  // every vertex is inside every tangent half-space: so the solid is the
-  // intersection of the half-spaces and contains the shape.  Closed shells.
+  // At every refinement level: every tangent normal is a unit vector
+  // exactly; every face lies in a tangent plane at distance r (a cap of the
+  // cylinder at z = +-length/2); every vertex is inside every tangent
+  // half-space: so the solid is the intersection of the half-spaces and
+  // contains the shape.  Closed shells.  The enlargement shrinks with the
+  // level as primitives.h says.
   const Exact r(3, 100), len(1, 5);
+  // A face's plane normal scaled to its largest coordinate 1 (a key).
+  auto key = [](Vec3E n) {
+    Exact big = 0;
+    for (const Exact& c : n) big = std::max(big, CGAL::abs(c));
+    for (Exact& c : n) c /= big;
+    return n;
+  };
   auto check = [&](const PolygonList& faces, const std::vector<Vec3E>& normals, bool cylinder) {
-    for (const Vec3E& n : normals) BOOST_TEST(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] == Exact(1));
+    std::map<Vec3E, Vec3E> by_key;
+    for (const Vec3E& n : normals) {
+      BOOST_TEST(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] == Exact(1));
+      by_key[key(n)] = n;
+    }
     std::vector<Vec3E> all;
     for (const auto& f : faces) all.insert(all.end(), f.begin(), f.end());
     for (const Vec3E& v : all) {
-      for (const Vec3E& n : normals) BOOST_TEST(n[0] * v[0] + n[1] * v[1] + n[2] * v[2] <= r);
+      for (const Vec3E& n : normals) {
+        const double approx = CGAL::to_double(n[0]) * CGAL::to_double(v[0]) + CGAL::to_double(n[1]) * CGAL::to_double(v[1]) +
+                              CGAL::to_double(n[2]) * CGAL::to_double(v[2]) - CGAL::to_double(r);
+        if (approx < -1e-9) continue;  // far inside: the exact test below only near the plane
+        BOOST_TEST(n[0] * v[0] + n[1] * v[1] + n[2] * v[2] <= r);
+      }
       if (cylinder) BOOST_TEST(CGAL::abs(v[2]) <= len / 2);
     }
     for (const auto& f : faces) {
+      const Vec3E e1 = {f[1][0] - f[0][0], f[1][1] - f[0][1], f[1][2] - f[0][2]};
+      const Vec3E e2 = {f[2][0] - f[0][0], f[2][1] - f[0][1], f[2][2] - f[0][2]};
+      const Vec3E c = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
       bool on_plane = false;
-      for (const Vec3E& n : normals) {
-        bool all_on = true;
-        for (const Vec3E& v : f) all_on = all_on && n[0] * v[0] + n[1] * v[1] + n[2] * v[2] == r;
-        on_plane = on_plane || all_on;
+      if (const auto it = by_key.find(key(c)); it != by_key.end()) {
+        const Vec3E& n = it->second;
+        on_plane = true;
+        for (const Vec3E& v : f) on_plane = on_plane && n[0] * v[0] + n[1] * v[1] + n[2] * v[2] == r;
       }
       if (cylinder && !on_plane) {
         bool cap = true;
@@ -372,12 +415,38 @@ BOOST_AUTO_TEST_CASE(circumscribed_primitives_contain_their_shapes_exactly) {
     BOOST_TEST(shell_intersection_problem(b).empty());
     return all;
   };
-  const std::vector<Vec3E> cyl = check(cylinder_polyhedron(r, len), cylinder_tangent_normals(), true);
-  BOOST_TEST(cylinder_tangent_normals().size() >= 8u);
-  const std::vector<Vec3E> sph = check(sphere_polyhedron(r), sphere_tangent_normals(), false);
-  // Enlarged, but not by much: every vertex within 1.05 r of the axis / centre.
-  for (const Vec3E& v : cyl) BOOST_TEST(v[0] * v[0] + v[1] * v[1] <= r * r * Exact(105 * 105, 100 * 100));
-  for (const Vec3E& v : sph) BOOST_TEST(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] <= r * r * Exact(105 * 105, 100 * 100));
+  // Every vertex within (1 + bound) r of the axis / centre (squared).
+  const Exact cylinder_bound[3] = {Exact(102, 100), Exact(10013, 10000), Exact(100008, 100000)};
+  const Exact sphere_bound[2] = {Exact(1041, 1000), Exact(10025, 10000)};
+  for (int level = 0; level <= 2; ++level) {
+    BOOST_TEST_CONTEXT("level " << level) {
+      const std::vector<Vec3E> cyl = check(cylinder_polyhedron(r, len, level), cylinder_tangent_normals(level), true);
+      BOOST_TEST(cylinder_tangent_normals(level).size() == (16u << (2 * level)));
+      for (const Vec3E& v : cyl)
+        BOOST_TEST(v[0] * v[0] + v[1] * v[1] <= r * r * cylinder_bound[level] * cylinder_bound[level]);
+      if (level > 1) continue;  // the sphere's finest level: 32k faces, too slow for this exact test
+      const std::vector<Vec3E> sph = check(sphere_polyhedron(r, level), sphere_tangent_normals(level), false);
+      for (const Vec3E& v : sph)
+        BOOST_TEST(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] <= r * r * sphere_bound[level] * sphere_bound[level]);
+    }
+  }
+  // Level 0 is the historical construction: 16 azimuths, 114 sphere faces.
+  BOOST_TEST(cylinder_polyhedron(r, len).size() == 18u);
+  BOOST_TEST(sphere_polyhedron(r).size() == 114u);
+  // refine_primitive: the next level, up to the finest, on a primitive only.
+  Body b;
+  b.primitive = Body::Primitive{Body::Primitive::Kind::Cylinder, r, len, 0};
+  BOOST_TEST(refine_primitive(b));
+  BOOST_TEST(b.primitive->level == 1);
+  BOOST_TEST(b.polygons.size() == 66u);
+  BOOST_TEST(refine_primitive(b));
+  BOOST_TEST(!refine_primitive(b));  // a cylinder's finest: level 2
+  Body ball;
+  ball.primitive = Body::Primitive{Body::Primitive::Kind::Sphere, r, 0, 0};
+  BOOST_TEST(refine_primitive(ball));
+  BOOST_TEST(!refine_primitive(ball));  // a sphere's finest: level 1
+  Body plain;
+  BOOST_TEST(!refine_primitive(plain));
   // The box is exact.
   const PolygonList box = box_polyhedron({Exact(1), Exact(2), Exact(3)});
   BOOST_TEST(box.size() == 6u);
@@ -385,12 +454,12 @@ BOOST_AUTO_TEST_CASE(circumscribed_primitives_contain_their_shapes_exactly) {
     for (const Vec3E& v : f) BOOST_TEST((CGAL::abs(v[0]) == Exact(1, 2) && CGAL::abs(v[1]) == 1 && CGAL::abs(v[2]) == Exact(3, 2)));
 }
 
-BOOST_AUTO_TEST_CASE(rotated_cylinders_beside_other_elements_are_circumscribed) {
-  // A box at the link origin and a cylinder with a rotated origin elsewhere
-  // in one link: the box stays exact in the link frame, the cylinder is
-  // circumscribed with a rational rotation.  Points of the true cylinder
-  // (its rims, in MPFR) lie inside every face of the prism (outward faces,
-  // checked with the exact face planes); a rotated sphere elsewhere too.
+BOOST_AUTO_TEST_CASE(collision_elements_become_parts) {
+  // A box at the link origin, a cylinder with a rotated origin and a
+  // rotated sphere: three bodies moving with the link.  The box stays exact
+  // in the link frame; the cylinder is the exact prism in its origin's
+  // frame (no approximation of the rotation); the sphere's frame is its
+  // centre.
   const char* urdf = R"(<robot name="m">
     <link name="a"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
       <collision><origin xyz="0.3 0.1 -0.2" rpy="0.4 -1.1 2.3"/><geometry><cylinder radius="0.05" length="0.4"/></geometry></collision>
@@ -398,50 +467,266 @@ BOOST_AUTO_TEST_CASE(rotated_cylinders_beside_other_elements_are_circumscribed) 
   </robot>)";
   const auto model = load_urdf_text(urdf, "m.urdf", ".");
   const RobotLink& link = model->links[0];
-  BOOST_REQUIRE(link.geometry);
-  BOOST_TEST(link.body_frame.empty());
-  const Body& b = *link.geometry;
-  BOOST_TEST((b.enlarged == std::vector<std::string>{"cylinder", "sphere"}));
-  BOOST_REQUIRE(b.polygons.size() == 6u + 18u + 114u);
-  for (const Vec3E& v : b.polygons[0]) BOOST_TEST((CGAL::abs(v[0]) == Exact(1, 20) && CGAL::abs(v[2]) == Exact(1, 20)));
-  auto inside_faces = [&](std::size_t first, std::size_t count, const std::array<Mp, 3>& p) {
-    for (std::size_t f = first; f < first + count; ++f) {
-      const auto& poly = b.polygons[f];
-      const Vec3E e1 = {poly[1][0] - poly[0][0], poly[1][1] - poly[0][1], poly[1][2] - poly[0][2]};
-      const Vec3E e2 = {poly[2][0] - poly[0][0], poly[2][1] - poly[0][1], poly[2][2] - poly[0][2]};
-      const Vec3E n = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-      Mp side(0);
-      for (int i = 0; i < 3; ++i) side = side + Mp(n[i]) * (p[i] - Mp(poly[0][i]));
-      if (Mp(kMpSlack) < side) {  // touching (a tangent point) is inside; MPFR's own error is far below the slack
-        BOOST_TEST_MESSAGE("outside face " << f << " by " << side.to_double() << " at " << p[0].to_double() << " "
-                                           << p[1].to_double() << " " << p[2].to_double());
-        return false;
-      }
+  BOOST_REQUIRE(link.parts.size() == 3u);
+  const Body& box = link.parts[0].geometry;
+  BOOST_TEST(link.parts[0].frame.empty());
+  BOOST_TEST(box.polygons.size() == 6u);
+  BOOST_TEST(box.solid);
+  for (const Vec3E& v : box.polygons[0]) BOOST_TEST((CGAL::abs(v[0]) == Exact(1, 20) && CGAL::abs(v[2]) == Exact(1, 20)));
+  const LinkPart& cyl = link.parts[1];
+  BOOST_TEST(cyl.suffix == "/collision[1]");
+  BOOST_REQUIRE(cyl.frame.size() == 1u);
+  BOOST_TEST((cyl.frame[0].rotation.kind == Rotation::Kind::Rpy));
+  BOOST_TEST((cyl.frame[0].rotation.rpy == std::array<Exact, 3>{d("0.4"), d("-1.1"), d("2.3")}));
+  BOOST_TEST((cyl.geometry.polygons == cylinder_polyhedron(Exact(1, 20), Exact(2, 5))));
+  BOOST_REQUIRE(cyl.geometry.primitive);
+  BOOST_TEST((cyl.geometry.primitive->kind == Body::Primitive::Kind::Cylinder));
+  BOOST_TEST(cyl.geometry.solid);
+  const LinkPart& sph = link.parts[2];
+  BOOST_TEST(sph.suffix == "/collision[2]");
+  BOOST_REQUIRE(sph.frame.size() == 1u);
+  BOOST_TEST((sph.frame[0].rotation.kind == Rotation::Kind::Identity));
+  BOOST_TEST((sph.frame[0].translation == Vec3E{d("-0.3"), Exact(0), d("0.1")}));
+  BOOST_TEST((sph.geometry.polygons == sphere_polyhedron(Exact(7, 100))));
+  // Boxes with different origins, one rotated (the Panda's fingers): a part
+  // per frame, named by its first element.
+  const std::string fingers = R"(<robot name="m"><link name="a">
+    <collision><origin xyz="0 0.1 0"/><geometry><box size="1 1 1"/></geometry></collision>
+    <collision><origin xyz="0 0 2" rpy="0.5 0 0"/><geometry><box size="1 1 1"/></geometry></collision>
+    <collision><origin xyz="0 0 4"/><geometry><box size="1 1 1"/></geometry></collision>
+    <collision><origin xyz="0 0 6" rpy="0.5 0 0"/><geometry><box size="1 1 1"/></geometry></collision>
+    <collision><origin xyz="0 0 2" rpy="0.5 0 0"/><geometry><box size="1 2 1"/></geometry></collision></link></robot>)";
+  const auto f = load_urdf_text(fingers, "f.urdf", ".");
+  const std::vector<LinkPart>& parts = f->links[0].parts;
+  BOOST_REQUIRE(parts.size() == 3u);
+  BOOST_TEST(parts[0].suffix == "");
+  BOOST_TEST((parts[0].elements == std::vector<int>{0, 2}));
+  BOOST_TEST(parts[0].frame.empty());
+  BOOST_TEST(parts[1].suffix == "/collision[1]");
+  BOOST_TEST((parts[1].elements == std::vector<int>{1, 4}));  // the same origin: one frame
+  BOOST_TEST(parts[1].frame.size() == 1u);
+  BOOST_TEST(parts[2].suffix == "/collision[3]");
+  // Every element as one body with the same origin (rotated): one part in
+  // that frame.
+  const std::string one = R"(<robot name="m"><link name="a">
+    <collision><origin xyz="1 0 0" rpy="0 0 1"/><geometry><box size="1 1 1"/></geometry></collision>
+    <collision><origin xyz="1 0 0" rpy="0 0 1"/><geometry><box size="1 1 3"/></geometry></collision></link></robot>)";
+  BOOST_TEST(load_urdf_text(one, "o.urdf", ".")->links[0].parts.size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(closed_shells_keep_their_insides_beside_open_surfaces) {
+  // A link of a box (closed) and an open surface (one triangle): the box is
+  // a solid part of its own, the triangle a surface; a mesh holding both a
+  // closed tetrahedron and an open flap splits the same way, the flap
+  // named ".../open".
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tmcert_robot_shells";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "flap.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "both.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 0 0\nv 6 0 0\nv 5 1 0\n"
+                                     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 5 6 7\n";
+  const std::string urdf = R"(<robot name="m"><link name="a">
+    <collision><geometry><box size="1 1 1"/></geometry></collision>
+    <collision><origin xyz="3 0 0"/><geometry><mesh filename="flap.obj"/></geometry></collision></link>
+    <link name="b"><collision><geometry><mesh filename="both.obj"/></geometry></collision></link>
+    <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>)";
+  const auto model = load_urdf_text(urdf, "m.urdf", dir.string());
+  const std::vector<LinkPart>& a = model->links[0].parts;
+  BOOST_REQUIRE(a.size() == 2u);
+  BOOST_TEST(a[0].geometry.solid);
+  BOOST_TEST(a[0].geometry.polygons.size() == 6u);
+  BOOST_TEST(!a[1].geometry.solid);
+  BOOST_TEST(a[1].suffix == "/collision[1]");
+  BOOST_TEST(a[1].geometry.polygons.size() == 1u);
+  const std::vector<LinkPart>& b = model->links[1].parts;
+  BOOST_REQUIRE(b.size() == 2u);
+  BOOST_TEST(b[0].geometry.solid);
+  BOOST_TEST(b[0].geometry.polygons.size() == 4u);
+  BOOST_TEST(b[1].suffix == "/collision[0]/open");
+  BOOST_TEST(!b[1].geometry.solid);
+  // The verdict the issue found wrong: a speck inside the box of a link that
+  // also has an open mesh is a collision (the box keeps its inside).
+  const std::string scene = R"({"format": "tmcert-scene/1",
+    "robots": [{"name": "r", "urdf": ")" + (dir / "m.urdf").string() + R"(", "joints": [], "path": {"times": [0, 1], "positions": [[], []]}}],
+    "bodies": [{"name": "speck", "points": [["0.1", "0.1", "0.1"]],
+                "motion": {"type": "rational_bezier", "control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,"0.01"],[0,1,0,0],[0,0,1,0]]], "weights": [1, 1]}}]})";
+  std::ofstream(dir / "m.urdf") << urdf;
+  const Scene s = scene_of(scene, "speck.json");
+  VerifyOptions options;
+  const SceneResult result = verify_scene(s, options);
+  BOOST_TEST(result.verdict == Verdict::Collision);
+}
+
+BOOST_AUTO_TEST_CASE(package_uris_resolve_through_package_folders) {
+  // package://NAME/...: the folder whose package.xml names NAME (here
+  // gripper_pkg/ holds tiny_gripper), searched below the given folders up
+  // to four levels, in order; else a folder named NAME; file:// as a path.
+  const std::string pkgs = kData + "/robots/pkgs";
+  BOOST_TEST(find_package("tiny_gripper", {pkgs}).value_or("") == pkgs + "/gripper_pkg");
+  BOOST_TEST(find_package("tiny_gripper", {kData}).value_or("") == kData + "/robots/pkgs/gripper_pkg");  // two levels down
+  BOOST_TEST(!find_package("tiny_gripper", {kData + "/scenes"}));
+  BOOST_TEST(!find_package("gripper_pkg_missing", {pkgs}));
+  // Without a package.xml naming it, a folder of that name.
+  BOOST_TEST(find_package("gripper_pkg", {pkgs}).value_or("") == pkgs + "/gripper_pkg");
+  // Five levels down is too deep.
+  const std::filesystem::path deep = std::filesystem::temp_directory_path() / "tmcert_deep_pkg";
+  std::filesystem::remove_all(deep);
+  std::filesystem::create_directories(deep / "a/b/c/d/e/far_pkg");
+  std::filesystem::create_directories(deep / "a/b/c/near_pkg");
+  BOOST_TEST(!find_package("far_pkg", {deep.string()}));
+  BOOST_TEST(find_package("near_pkg", {deep.string()}).value_or("") == (deep / "a/b/c/near_pkg").string());
+  // The first folder that has it wins.
+  BOOST_TEST(find_package("near_pkg", {pkgs, deep.string()}).value_or("") == (deep / "a/b/c/near_pkg").string());
+
+  const std::string urdf = pkgs + "/gripper_pkg/urdf/gripper.urdf";
+  UrdfOptions options;
+  options.package_paths = {pkgs};
+  const auto model = load_urdf(urdf, options);
+  BOOST_TEST(model->links[model->link_index("palm")].parts.size() == 2u);
+  // COLLADA: the node's floats, exactly (0.1 and 0.05 as floats: the
+  // cube's bottom is at 0 exactly, its top at 0.05f + 0.05f).
+  const Body& palm = model->links[model->link_index("palm")].parts[0].geometry;
+  BOOST_TEST(palm.solid);
+  Exact top = 0, bottom = 1, side = 0;
+  for (const auto& poly : palm.polygons)
+    for (const Vec3E& v : poly) {
+      top = std::max(top, v[2]);
+      bottom = std::min(bottom, v[2]);
+      side = std::max(side, v[0]);
     }
-    return true;
-  };
-  const MpPose cyl = mp_origin({d("0.3"), d("0.1"), d("-0.2")}, {d("0.4"), d("-1.1"), d("2.3")});
-  const MpPose sph = mp_origin({d("-0.3"), 0, d("0.1")}, {1, 2, 3});
-  const Mp two_pi = mp_pi() * Mp(2);
-  for (int k = 0; k < 64; ++k) {
-    const Mp a = two_pi * Mp(k) / Mp(64);
-    for (const Mp z : {Mp(Exact(-1, 5)), Mp(Exact(1, 5))}) {
-      const std::array<Mp, 3> local = {Mp(Exact(1, 20)) * cos(a), Mp(Exact(1, 20)) * sin(a), z};
-      std::array<Mp, 3> p;
-      for (int i = 0; i < 3; ++i) p[i] = cyl[4 * i] * local[0] + cyl[4 * i + 1] * local[1] + cyl[4 * i + 2] * local[2] + cyl[4 * i + 3];
-      BOOST_TEST(inside_faces(6, 18, p));
-    }
-    for (const Mp c : {Mp(Exact(-3, 5)), Mp(0), Mp(Exact(3, 5))}) {  // points of the sphere at three latitudes
-      const Mp r = Mp(Exact(7, 100)) * sqrt(Mp(1) - c * c);
-      std::array<Mp, 3> p = {r * cos(a) + sph[3], r * sin(a) + sph[7], Mp(Exact(7, 100)) * c + sph[11]};
-      BOOST_TEST(inside_faces(24, 114, p));
-    }
+  BOOST_TEST(bottom == Exact(0));
+  BOOST_TEST(top == Exact(double(0.05f)) + Exact(double(0.1f)) * Exact(1, 2));
+  BOOST_TEST(side == Exact(double(0.1f)) * Exact(1, 2));
+  BOOST_TEST(model->notes.size() == 1u);
+  BOOST_TEST(model->notes[0].find("palm.dae (COLLADA) is read from its single-precision floats") != std::string::npos);
+  // Not found: the message names the URI and the folders searched.
+  options.package_paths = {kData + "/scenes", kData + "/bad"};
+  std::string message;
+  try {
+    load_urdf(urdf, options);
+  } catch (const InputError& e) {
+    message = e.what();
   }
-  // The rotated-origin rules: differing rotated boxes are refused.
-  const std::string two_boxes = R"(<robot name="m"><link name="a">
-    <collision><origin rpy="0 0 1"/><geometry><box size="1 1 1"/></geometry></collision>
-    <collision><origin xyz="1 0 0"/><geometry><box size="1 1 1"/></geometry></collision></link></robot>)";
-  BOOST_TEST(urdf_error(two_boxes).find("link \"a\": collision[1]: a box or mesh whose origin differs") != std::string::npos);
+  BOOST_TEST(message.find("link \"palm\": collision[0]: mesh \"package://tiny_gripper/meshes/palm.dae\": package "
+                          "\"tiny_gripper\" not found in \"" + kData + "/scenes\", \"" + kData + "/bad\"") != std::string::npos);
+  options.package_paths.clear();
+  if (!std::getenv("ROS_PACKAGE_PATH")) {
+    try {
+      load_urdf(urdf, options);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    BOOST_TEST(message.find("no package folders to search") != std::string::npos);
+  }
+  // file:// URIs are paths.
+  const std::string file_uri = two_links("fixed", "<mesh filename=\"file://" + pkgs + "/gripper_pkg/meshes/flap.obj\"/>");
+  BOOST_TEST(load_urdf_text(file_uri, "f.urdf", "/nonexistent")->links[1].parts.size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(mimic_joints_follow_exactly) {
+  UrdfOptions options;
+  options.package_paths = {kData + "/robots/pkgs"};
+  const auto model = load_urdf(kData + "/robots/pkgs/gripper_pkg/urdf/gripper.urdf", options);
+  const RobotJoint& f2 = model->joints[model->joint_index("finger2")];
+  BOOST_REQUIRE(f2.mimic);
+  BOOST_TEST(model->joints[f2.mimic->joint].name == "finger1");
+  BOOST_TEST(f2.mimic->multiplier == Exact(1));
+  BOOST_TEST(f2.mimic->offset == Exact(0));
+  // joint_values: the follower at m q + o; fixed joints 0.
+  const std::vector<int> columns = {model->joint_index("lift"), model->joint_index("wrist"), model->joint_index("finger1")};
+  const std::vector<Exact> all = joint_values(*model, columns, {Exact(1, 10), Exact(1, 2), Exact(3, 100)});
+  BOOST_TEST(all[model->joint_index("finger2")] == Exact(3, 100));
+  BOOST_TEST(all[model->joint_index("wrist")] == Exact(1, 2));
+  // Along a path the follower's link moves exactly as its own joint says:
+  // the right finger's body at finger1 = 0.02 sits 0.02 further along -y.
+  const PlacedRobot robot(model, "g", Pose{});
+  Scene scene;
+  const RobotBodies bodies =
+      add_robot(scene, robot, JointPath{{"lift", "wrist", "finger1"}, {0, 1}, {{0, 0, 0}, {0, 0, Exact(1, 50)}}});
+  const Body& right = scene.bodies.at(bodies.body[model->link_index("finger_r")]);
+  BOOST_REQUIRE(right.motion);  // prismatic only: exact
+  BOOST_TEST(right.motion->control_points[1][7] - right.motion->control_points[0][7] == Exact(-1, 50));
+  // A chain of mimics, multiplier and offset; a cycle is refused.
+  const std::string chain = R"(<robot name="c"><link name="a"/><link name="b"/><link name="c"/><link name="d"/>
+    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="j2" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 0 1"/><limit lower="-9" upper="9" effort="1" velocity="1"/>
+      <mimic joint="j1" multiplier="-2" offset="0.5"/></joint>
+    <joint name="j3" type="continuous"><parent link="c"/><child link="d"/><axis xyz="0 0 1"/><mimic joint="j2" multiplier="3"/></joint>
+    <joint name="f" type="fixed"><parent link="a"/><child link="x"/><mimic joint="j1"/></joint><link name="x"/></robot>)";
+  const auto c = load_urdf_text(chain, "c.urdf", ".");
+  const std::vector<Exact> v = joint_values(*c, {c->joint_index("j1")}, {Exact(1, 4)});
+  BOOST_TEST(v[c->joint_index("j2")] == Exact(0));        // -2/4 + 1/2
+  BOOST_TEST(v[c->joint_index("j3")] == Exact(0));
+  BOOST_TEST(!c->joints[c->joint_index("f")].mimic);      // on a fixed joint: ignored
+  std::string cycle = chain;
+  cycle.replace(cycle.find("joint=\"j1\" multiplier=\"-2\""), 10, "joint=\"j3\"");  // j2 follows j3, j3 follows j2
+  BOOST_TEST(urdf_error(cycle).find("the mimic joints form a cycle") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(srdf_disable_collisions_are_allowed_pairs) {
+  UrdfOptions options;
+  options.package_paths = {kData + "/robots/pkgs"};
+  const auto model = load_urdf(kData + "/robots/pkgs/gripper_pkg/urdf/gripper.urdf", options);
+  const auto pairs = read_srdf(kData + "/robots/pkgs/gripper_pkg/srdf/gripper.srdf", *model);
+  BOOST_TEST(pairs.size() == 2u);
+  BOOST_TEST((pairs[0] == std::pair<std::string, std::string>{"finger_l", "finger_r"}));
+  std::string message;
+  try {
+    read_srdf(kData + "/bad/robots/unknown-link.srdf", *model);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  BOOST_TEST(message.find("unknown-link.srdf: disable_collisions[1]: link2: unknown link \"thumb\"") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(collisions_of_cylinders_and_spheres_are_proven_on_the_true_shape) {
+  // A sphere (radius 1 about the origin) against a point moving along x:
+  // through the ball, a collision whose witness lies in the true ball; past
+  // it by 3% of the radius where its polyhedron reaches (1.039 r), safe
+  // (finer polyhedra); past it by 3% where the level-0 polyhedron is
+  // tangent, safe at once.
+  const char* urdf = R"(<robot name="s"><link name="ball"><collision><geometry><sphere radius="1"/></geometry></collision></link></robot>)";
+  const auto model = load_urdf_text(urdf, "s.urdf", ".");
+  const PlacedRobot robot(model, "s", Pose{});
+  auto run = [&](const Vec3E& from, const Vec3E& to) {
+    Scene scene;
+    Body speck;
+    speck.name = "speck";
+    speck.points = {{Exact(0), Exact(0), Exact(0)}};
+    speck.mass.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    speck.mass.weights = {1, 1, 1, 1};
+    Motion m;
+    m.t0 = 0;
+    m.t1 = 1;
+    m.control_points = {{1, 0, 0, from[0], 0, 1, 0, from[1], 0, 0, 1, from[2]}, {1, 0, 0, to[0], 0, 1, 0, to[1], 0, 0, 1, to[2]}};
+    m.weights = {1, 1};
+    speck.motion = m;
+    scene.bodies.push_back(speck);
+    const RobotBodies bodies = add_robot(scene, robot, JointPath{{}, {0, 1}, {{}, {}}});
+    scene.checks = {{0, bodies.body[0]}};
+    VerifyOptions options;
+    options.epsilon = Exact(1, 10000);
+    return verify_scene(scene, options);
+  };
+  // Through the centre: a collision, the witness inside the unit ball.
+  SceneResult r = run({Exact(-2), Exact(0), Exact(0)}, {Exact(2), Exact(0), Exact(0)});
+  BOOST_TEST(r.verdict == Verdict::Collision);
+  BOOST_REQUIRE(r.checks[0].witness);
+  const Witness& w = *r.checks[0].witness;
+  BOOST_TEST(w.true_shape);
+  BOOST_TEST(w.point[0] * w.point[0] + w.point[1] * w.point[1] + w.point[2] * w.point[2] <= Exact(1));
+  BOOST_TEST(w.features[1] == "s/ball sphere");
+  // The bulge of the level-0 polyhedron is at (1, 0.2, 0.2)/|.| (1.039 r):
+  // a speck passing at 1.02 r there, across that direction.
+  const double n = std::sqrt(1.08);
+  const Exact px(1.02 / n), py(0.2 * 1.02 / n), pz(0.2 * 1.02 / n);
+  r = run({px, py - Exact(1, 10), pz + Exact(1, 10)}, {px, py + Exact(1, 10), pz - Exact(1, 10)});
+  BOOST_TEST(r.verdict == Verdict::Safe);
+  // Before refinement this was a collision "of the enlarged model": the
+  // polyhedron does contain that path's middle point.
+  bool inside_polyhedron = true;
+  for (const Vec3E& normal : sphere_tangent_normals())
+    inside_polyhedron = inside_polyhedron && normal[0] * px + normal[1] * py + normal[2] * pz <= Exact(1);
+  BOOST_TEST(inside_polyhedron);
 }
 
 BOOST_AUTO_TEST_CASE(default_checks_follow_the_contract) {
@@ -460,11 +745,20 @@ BOOST_AUTO_TEST_CASE(default_checks_follow_the_contract) {
     return false;
   };
   const auto without = robot_default_checks(robot, bodies, {0}, false, {});
-  BOOST_TEST(without.size() == 6u);  // every link against the wall, nothing inside the robot
+  // Every body of every link against the wall (l1 has two: its box and its
+  // sphere), nothing inside the robot.
+  BOOST_TEST(without.size() == 7u);
   for (int l = 0; l < 6; ++l) BOOST_TEST(has(without, bodies.body[l], 0));
+  BOOST_REQUIRE(bodies.parts[m.link_index("l1")].size() == 2u);
+  const int l1_sphere = bodies.parts[m.link_index("l1")][1];
+  BOOST_TEST(has(without, l1_sphere, 0));
   const auto with = robot_default_checks(robot, bodies, {0}, true, {{"l4", "base"}});
-  // 15 link pairs, 5 parent-child pairs (l2-l3 are joined by the fixed joint), 1 allowed.
-  BOOST_TEST(with.size() == 6u + 15u - 5u - 1u);
+  // 15 link pairs, 5 parent-child pairs (l2-l3 are joined by the fixed
+  // joint), 1 allowed: 9 pairs of links, of which 3 with l1 (l3, l4, l5)
+  // count twice (two bodies); the parts of l1 are not checked together.
+  BOOST_TEST(with.size() == 7u + 9u + 3u);
+  BOOST_TEST(has(with, l1_sphere, body_of("l5")));
+  BOOST_TEST(!has(with, l1_sphere, body_of("l1")));
   BOOST_TEST(!has(with, body_of("base"), body_of("l1")));
   BOOST_TEST(!has(with, body_of("l2"), body_of("l3")));
   BOOST_TEST(!has(with, body_of("base"), body_of("l4")));
@@ -555,6 +849,11 @@ BOOST_AUTO_TEST_CASE(urdf_errors_name_the_element) {
   }
   BOOST_TEST(urdf_error(xacro).find("t.urdf: this is xacro (URDF macros), not plain URDF: run xacro first: xacro t.urdf > t-expanded.urdf") !=
              std::string::npos, urdf_error(xacro));
+  // xacro's output keeps the namespace declaration (the published Panda
+  // and UR5 of example-robot-data): without xacro elements it is plain URDF.
+  const std::string expanded = R"(<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link></robot>)";
+  BOOST_TEST(load_urdf_text(expanded, "t.urdf", ".")->links.size() == 1u);
 }
 
 // The links and joints must form a tree: every way they can fail to is

@@ -190,9 +190,11 @@ class Witness:
 
 @dataclass(frozen=True)
 class UndecidedInterval:
-    """A parameter interval not cleared, and why: "epsilon", "depth", "limit" or
+    """A parameter interval not cleared, and why: "epsilon", "depth", "limit",
     "after_undecided" (cleared only of contact beginning there, after a part
-    not cleared, with the bodies not proven apart at its start)."""
+    not cleared, with the bodies not proven apart at its start) or
+    "enlarged_model" (a URDF cylinder's or sphere's polyhedron touches there,
+    and no contact of the true shape was proven)."""
 
     t: Tuple[Fraction, Fraction]
     t_float: Tuple[float, float]
@@ -432,14 +434,19 @@ def scene_from_dict(document: Mapping[str, Any], base_dir: Optional[PathLike] = 
 
     Numbers may be int, Fraction, Decimal, str or float (a float is its
     exact binary value; see the module's docstring); arrays may be lists,
-    tuples or NumPy arrays.  Relative ``mesh`` and ``urdf`` files are taken
-    relative to ``base_dir`` (default: the current directory).  Messages
+    tuples or NumPy arrays.  Relative ``mesh``, ``urdf`` and ``srdf`` files
+    and ``package_paths`` folders are taken relative to ``base_dir``
+    (default: the current directory).  Messages
     name ``source`` and the field, as for a file.
     """
     doc = _json_value(document, "")
     if base_dir is not None and isinstance(doc, dict):
         base = os.fspath(base_dir)
-        for key, field in (("bodies", "mesh"), ("robots", "urdf")):
+        paths = doc.get("package_paths")
+        if isinstance(paths, list):
+            doc["package_paths"] = [os.path.join(base, p) if isinstance(p, str) and not os.path.isabs(p) else p
+                                    for p in paths]
+        for key, field in (("bodies", "mesh"), ("robots", "urdf"), ("robots", "srdf")):
             items = doc.get(key)
             if isinstance(items, list):
                 for item in items:
@@ -640,6 +647,11 @@ class Robot:
         self._raw.allow(link_a, link_b)
         return self
 
+    def srdf(self, file: PathLike) -> "Robot":
+        """Every ``<disable_collisions link1 link2>`` of a MoveIt SRDF file as allowed pairs."""
+        self._raw.srdf(os.fspath(file))
+        return self
+
 
 class SceneBuilder:
     """Builds a scene in code: bodies from NumPy arrays, motions, robots, checks.
@@ -686,6 +698,11 @@ class SceneBuilder:
     def clearance(self, d: NumberLike) -> "SceneBuilder":
         """Minimum separation of every check without its own (default 0)."""
         self._raw.clearance(d)
+        return self
+
+    def package_path(self, folder: PathLike) -> "SceneBuilder":
+        """A folder searched for ``package://NAME/...`` mesh URIs (before ROS_PACKAGE_PATH)."""
+        self._raw.package_path(os.fspath(folder))
         return self
 
     def build(self) -> Scene:
