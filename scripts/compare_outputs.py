@@ -9,24 +9,29 @@ restructuring must not change any of it).
 
 For each scene (examples/**/*.json and tests/data/scenes/*.json that are
 tmcert-scene/1 documents) it stores, under OUT/<scene path>/:
-  verify.json     stdout of `tmcert verify --json SCENE`, then its exit code
-  certificate     the bytes `tmcert verify --certificate FILE SCENE` writes
-                  (and its exit code and stderr in certificate.rc)
-  check           stdout, stderr and exit code of `tmcert check` on it
-  report.html     the page `tmcert verify --report FILE SCENE` writes
+  verify.json     stdout, stderr and exit code of
+                  `tmcert verify --json --report PAGE --certificate CERT SCENE`
+  verify.json.report.html   the page it wrote
+  certificate     the certificate it wrote, and `check` the stdout, stderr
+                  and exit code of `tmcert check CERT SCENE`
+  verify-without-certificate.json (and .report.html)   where no certificate
+                  was written, the same run without --certificate
 Wall-clock fields are masked: every JSON "seconds" value (the only stats
-field that is not deterministic) becomes "seconds": "*".  Scenes run in
+field that is not deterministic) becomes "seconds": "*", and the writer's
+time on stderr ("..., 0.0123 s)") becomes "* s)".  Scenes run in
 parallel (--jobs, default 2); each run has a time limit (--timeout, default
-120 s) after which its record says "timeout".
+300 s) after which its record says "timeout".
 """
 import argparse, concurrent.futures, json, os, re, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SECONDS = re.compile(rb'("seconds"\s*:\s*)(-?[0-9][0-9.eE+-]*)')
+# The writer's time on stderr: "(2 pieces, 2 separations, 0.0123 s)".
+STDERR_SECONDS = re.compile(rb'(, )[0-9][0-9.eE+-]* s\)')
 
 
 def mask(data: bytes) -> bytes:
-    return SECONDS.sub(rb'\1"*"', data)
+    return STDERR_SECONDS.sub(rb'\1* s)', SECONDS.sub(rb'\1"*"', data))
 
 
 def scenes():
@@ -55,33 +60,38 @@ def run(cmd, timeout):
         return b"", b"", b"timeout"
 
 
+def save(path, data):
+    with open(path, "wb") as fh:
+        fh.write(data)
+
+
 def record(tmcert, scene, out, timeout):
     d = os.path.join(out, scene)
     os.makedirs(d, exist_ok=True)
-    o, e, rc = run([tmcert, "verify", "--json", scene], timeout)
-    with open(os.path.join(d, "verify.json"), "wb") as fh:
-        fh.write(mask(o) + b"\n--- stderr\n" + mask(e) + b"\n--- exit " + rc + b"\n")
     with tempfile.TemporaryDirectory() as tmp:
         cert = os.path.join(tmp, "certificate.json")
-        o, e, rc = run([tmcert, "verify", "--certificate", cert, scene], timeout)
-        with open(os.path.join(d, "certificate.rc"), "wb") as fh:
-            fh.write(mask(o) + b"\n--- stderr\n" + e.replace(tmp.encode(), b"TMP") + b"\n--- exit " + rc + b"\n")
+        page = os.path.join(tmp, "report.html")
+
+        def verify(name, extra):
+            o, e, rc = run([tmcert, "verify", "--json", "--report", page] + extra + [scene], timeout)
+            save(os.path.join(d, name), mask(o) + b"\n--- stderr\n" + mask(e).replace(tmp.encode(), b"TMP") +
+                 b"\n--- exit " + rc + b"\n")
+            if os.path.exists(page):
+                with open(page, "rb") as fh:
+                    save(os.path.join(d, name + ".report.html"), mask(fh.read()))
+                os.remove(page)
+
+        # One run for the result, the page and the certificate; where no
+        # certificate is written (a scene certificates do not cover, a fast
+        # result), the result and page again without asking for one.
+        verify("verify.json", ["--certificate", cert])
         if os.path.exists(cert):
             with open(cert, "rb") as fh:
-                data = fh.read()
-            with open(os.path.join(d, "certificate"), "wb") as fh:
-                fh.write(data)
-            o, e, rc = run([tmcert, "check", cert], timeout)
-            with open(os.path.join(d, "check"), "wb") as fh:
-                fh.write((o + b"\n--- stderr\n" + e + b"\n--- exit " + rc + b"\n").replace(tmp.encode(), b"TMP"))
-        page = os.path.join(tmp, "report.html")
-        o, e, rc = run([tmcert, "verify", "--report", page, scene], timeout)
-        data = b""
-        if os.path.exists(page):
-            with open(page, "rb") as fh:
-                data = fh.read()
-        with open(os.path.join(d, "report.html"), "wb") as fh:
-            fh.write(mask(data) + b"\n--- exit " + rc + b"\n")
+                save(os.path.join(d, "certificate"), fh.read())
+            o, e, rc = run([tmcert, "check", cert, scene], timeout)
+            save(os.path.join(d, "check"), (o + b"\n--- stderr\n" + e + b"\n--- exit " + rc + b"\n").replace(tmp.encode(), b"TMP"))
+        else:
+            verify("verify-without-certificate.json", [])
     return scene
 
 
@@ -90,10 +100,11 @@ def main():
     ap.add_argument("--tmcert", required=True, help="the tmcert binary to record")
     ap.add_argument("--out", required=True, help="directory for the records (created)")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=float, default=120)
+    ap.add_argument("--timeout", type=float, default=300)
+    ap.add_argument("only", nargs="*", help="record only the scenes whose path contains one of these")
     a = ap.parse_args()
     tmcert = os.path.abspath(a.tmcert)
-    todo = scenes()
+    todo = [s for s in scenes() if not a.only or any(o in s for o in a.only)]
     with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
         for s in pool.map(lambda s: record(tmcert, s, os.path.abspath(a.out), a.timeout), todo):
             pass
