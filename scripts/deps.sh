@@ -12,7 +12,7 @@ packages=(
   libboost-test-dev librapidcheck-dev
   nlohmann-json3-dev libcli11-dev
   libflint-arb-dev
-  liburdfdom-dev        # URDF robots (src/robot/urdf.cpp; brings TinyXML and console_bridge)
+  liburdfdom-dev        # URDF robots (src/io/urdf.cpp; brings TinyXML and console_bridge)
   libtinyxml-dev libconsole-bridge-dev
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libassimp-dev         # only for bench/omplapp_fcl.cpp (OMPL.app's COLLADA meshes, as OMPL.app reads them)

@@ -4,9 +4,9 @@
 #include "kernels/decimal.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/cli/report.h"
+#include "src/report/report.h"
 #include "src/html/report_html.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include "src/api/internal.h"
@@ -93,7 +93,7 @@ Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::Ch
 
 namespace {
 
-// As result_json writes a check (src/cli/report.cpp).
+// As result_json writes a check (src/report/report.cpp).
 CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& c) {
   CheckResult out;
   const tmcert::Body& a = scene.bodies[c.bodies[0]];

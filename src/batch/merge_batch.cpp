@@ -1,7 +1,7 @@
 #include "src/batch/merge_batch.h"
 
-#include "src/scene/model.h"
-#include "src/scene/parse.h"
+#include "src/model/model.h"
+#include "src/io/parse.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #include "src/batch/run_batch.h"
 
 #include "src/batch/batch_environment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <algorithm>
 #include <atomic>

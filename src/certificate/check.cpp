@@ -15,8 +15,8 @@
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/motions.h"
 #include "src/certificate/exact_claims.h"
-#include "src/scene/parse.h"
-#include "src/scene/read_file.h"
+#include "src/io/parse.h"
+#include "src/io/read_file.h"
 
 #include <gmp.h>
 

@@ -4,7 +4,7 @@
 #include "src/certificate/check.h"
 #include "src/certificate/motions.h"
 #include "src/certificate/exact_claims.h"
-#include "src/scene/solid.h"
+#include "src/model/solid.h"
 #include "kernels/separation.h"
 #include "src/motion/bezier.h"
 

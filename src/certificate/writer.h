@@ -7,7 +7,7 @@
 // proof fails is bisected.  The checker (check.h) re-verifies the document exactly.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 #include "src/verify/verify.h"
 
 #include <cstddef>

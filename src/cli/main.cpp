@@ -6,9 +6,9 @@
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
 #include "src/cli/output_file.h"
-#include "src/cli/report.h"
+#include "src/report/report.h"
 #include "src/html/report_html.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/progress.h"
 #include "src/verify/verify.h"
 

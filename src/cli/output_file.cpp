@@ -1,6 +1,6 @@
 #include "src/cli/output_file.h"
 
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <cerrno>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include "src/verify/verify.h"
 
 #include "kernels/containment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"

@@ -10,7 +10,7 @@
 #include "src/certificate/motions.h"
 #include "src/motion/chain.h"
 #include "src/motion/segment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>

@@ -2,7 +2,7 @@
 // bad input naming the option, and a file created for a run that ends
 // without its result is removed again.
 #include "src/cli/output_file.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <boost/test/unit_test.hpp>
 

@@ -2,7 +2,7 @@
 // the result (verdict, witness, first-contact bracket, undecided pieces and
 // the work statistics) is the same for every thread count, also when the
 // node budget runs out (proofs/search-and-pruning.md).
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>

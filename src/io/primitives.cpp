@@ -1,4 +1,4 @@
-#include "src/robot/primitives.h"
+#include "src/io/primitives.h"
 
 #include <array>
 
