@@ -11,7 +11,7 @@
 // when the numbers fit (60-bit limbs, coordinates below 2^62), GMP integers
 // otherwise.  No floating point is used anywhere.
 #include "src/certificate/check.h"
-#include "src/certificate/writer.h"
+#include "src/certificate/scope.h"
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/motions.h"
 #include "src/certificate/exact_claims.h"

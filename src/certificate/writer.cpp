@@ -59,15 +59,6 @@ Motion motion_or_identity(const Body& b) {
   return m;
 }
 
-// The check's parameter interval (docs/certificate-format.md).
-std::pair<Exact, Exact> check_interval(const Body& a, const Body& b) {
-  if (a.moves()) return *a.interval();
-  if (b.moves()) return *b.interval();
-  if (a.interval()) return *a.interval();
-  if (b.interval()) return *b.interval();
-  return {Exact(0), Exact(1)};
-}
-
 // A check the plain format does not describe: a keyframe or piecewise
 // motion, a tolerance or a clearance (docs/certificate-format.md, "Planner
 // motions, tolerances and clearances").
@@ -1056,23 +1047,6 @@ struct CheckWriter {
 };
 
 }  // namespace
-
-std::string uncertifiable(const Scene& scene) {
-  // Start claims place the other body's vertices exactly at the start: a
-  // check with a solid body needs exact poses of both bodies there (a
-  // keyframe motion starting at an rpy rotation has none).
-  for (const auto& [ia, ib] : scene.checks) {
-    const Body& a = scene.bodies[ia];
-    const Body& b = scene.bodies[ib];
-    if (!a.solid && !b.solid) continue;
-    const Exact t0 = check_interval(a, b).first;
-    for (const Body* body : {&a, &b})
-      if (!exact_pose_at(*body, t0))
-        return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
-               "\" at its start is not exact (a transcendental rotation)";
-  }
-  return {};
-}
 
 std::string certificate_json(const Scene& scene, const SceneResult& result, WriteStats* stats) {
   if (!result.certified) throw InputError("--certificate: the fast kernel is not certified; use filtered or exact");
