@@ -17,7 +17,8 @@ tmcert-scene/1 documents) it stores, under OUT/<scene path>/:
   verify-without-certificate.json (and .report.html)   where no certificate
                   was written, the same run without --certificate
 Wall-clock fields are masked: every JSON "seconds" value (the only stats
-field that is not deterministic) becomes "seconds": "*", and the writer's
+field that is not deterministic; also HTML-escaped in the page) becomes
+"seconds": "*", and the writer's
 time on stderr ("..., 0.0123 s)") becomes "* s)".  Scenes run in
 parallel (--jobs, default 2); each run has a time limit (--timeout, default
 300 s) after which its record says "timeout".
@@ -25,7 +26,7 @@ parallel (--jobs, default 2); each run has a time limit (--timeout, default
 import argparse, concurrent.futures, json, os, re, subprocess, sys, tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SECONDS = re.compile(rb'("seconds"\s*:\s*)(-?[0-9][0-9.eE+-]*)')
+SECONDS = re.compile(rb'((?:"|&quot;)seconds(?:"|&quot;)\s*:\s*)(-?[0-9][0-9.eE+-]*)')
 # The writer's time on stderr: "(2 pieces, 2 separations, 0.0123 s)".
 STDERR_SECONDS = re.compile(rb'(, )[0-9][0-9.eE+-]* s\)')
 
