@@ -13,7 +13,7 @@
 // scripts/ccd_csv_to_scene.py, with its --truth-out list for false safe /
 // false collision.
 #include "bench/ccd_queries.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <nlohmann/json.hpp>

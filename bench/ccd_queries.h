@@ -24,7 +24,7 @@
 
 #include "kernels/static_intersection.h"
 #include "src/metric/metric.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <random>
 #include <string>

@@ -31,7 +31,7 @@
 // --verbose prints the search statistics of every edge.
 // Exit status 0; 3 on bad usage.
 #include "src/ompl/certified_arm.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/narrowphase/collision.h>

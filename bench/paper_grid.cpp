@@ -14,7 +14,7 @@
 // the paper's figures for n <= 10.  Exit status 0 when every verdict is the
 // expected one (collision / safe / safe) and the reference agrees, 1
 // otherwise, 3 on bad usage.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <algorithm>

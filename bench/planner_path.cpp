@@ -41,7 +41,7 @@
 // aid, not a proof).
 // Exit status: 0 when every certified verdict is the expected one (safe
 // variant safe, colliding variant collision), 1 otherwise, 3 on bad usage.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <fcl/geometry/bvh/BVH_model.h>

@@ -35,7 +35,7 @@
 #include "bench/ccd_queries.h"
 #include "kernels/static_intersection.h"
 #include "src/metric/metric.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <algorithm>

@@ -12,9 +12,9 @@ packages=(
   libboost-test-dev librapidcheck-dev
   nlohmann-json3-dev libcli11-dev
   libflint-arb-dev
-  liburdfdom-dev        # URDF robots (src/robot/urdf.cpp; brings TinyXML and console_bridge)
+  liburdfdom-dev        # URDF robots (src/io/urdf.cpp; brings TinyXML and console_bridge)
   libtinyxml-dev libconsole-bridge-dev
-  libassimp-dev         # COLLADA (.dae) meshes (src/scene/mesh.cpp)
+  libassimp-dev         # COLLADA (.dae) meshes (src/io/mesh.cpp)
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libassimp-dev         # only for bench/omplapp_fcl.cpp (OMPL.app's COLLADA meshes, as OMPL.app reads them)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples

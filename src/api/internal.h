@@ -10,8 +10,8 @@
 // internal types are written tmcert::X.
 #pragma once
 
-#include "src/scene/model.h"
-#include "src/scene/parse.h"
+#include "src/model/model.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include "tmcert/errors.h"

@@ -1,5 +1,5 @@
 // Scene (include/tmcert/scene.h): the validated internal scene, shared.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include "src/api/internal.h"
 

@@ -4,7 +4,7 @@
 // built in code is validated by exactly the checks of a scene file, and
 // its errors name the same fields; there is no second validator.
 #include "kernels/number_types.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include "src/api/internal.h"
 #include "tmcert/scene_builder.h"

@@ -4,10 +4,10 @@
 #include "kernels/decimal.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/cli/report.h"
+#include "src/report/report.h"
 #include "src/html/report_html.h"
-#include "src/scene/output_file.h"
-#include "src/scene/parse.h"
+#include "src/io/output_file.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include "src/api/internal.h"
@@ -96,7 +96,7 @@ Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::Ch
 
 namespace {
 
-// As result_json writes a check (src/cli/report.cpp).
+// As result_json writes a check (src/report/report.cpp).
 CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& c) {
   CheckResult out;
   const tmcert::Body& a = scene.bodies[c.bodies[0]];
@@ -258,7 +258,7 @@ std::string Result::certificate() const {
 }
 
 void Result::write_certificate(const std::string& path) const {
-  // The command line's rules for output paths (src/scene/output_file.h):
+  // The command line's rules for output paths (src/io/output_file.h):
   // checked first (InputError: empty, a directory, not writable, or one of
   // the scene's files), written only once the document is whole, a failed
   // write a ResourceLimit naming the path, leaving no partial file.

@@ -1,8 +1,8 @@
 #include "src/batch/batch_environment.h"
 
-#include "src/cli/report.h"
-#include "src/robot/robot.h"
-#include "src/scene/parse.h"
+#include "src/report/report.h"
+#include "src/io/robot.h"
+#include "src/io/parse.h"
 #include "src/verify/fixed_environment.h"
 
 #include <nlohmann/json.hpp>

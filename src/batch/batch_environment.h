@@ -4,8 +4,8 @@
 // (src/verify/fixed_environment.h) and every request costs only its search.
 #pragma once
 
-#include "src/scene/model.h"
-#include "src/scene/parse.h"
+#include "src/model/model.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <cstddef>

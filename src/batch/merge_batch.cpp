@@ -1,8 +1,8 @@
 #include "src/batch/merge_batch.h"
 
-#include "src/scene/model.h"
-#include "src/scene/output_file.h"
-#include "src/scene/parse.h"
+#include "src/model/model.h"
+#include "src/io/output_file.h"
+#include "src/io/parse.h"
 
 #include <nlohmann/json.hpp>
 
@@ -241,7 +241,7 @@ class Replacement {
 
 std::size_t merge_batch(const std::vector<std::string>& shards, const std::string& output) {
   if (shards.empty()) throw InputError("batch-merge: at least one result file is required");
-  // The output is checked before any work (src/scene/output_file.h): none
+  // The output is checked before any work (src/io/output_file.h): none
   // of the result files to merge, nor the standard output's file; it is
   // written (truncated) only after the check of every line.
   std::optional<OutputFile> file_out;

@@ -18,7 +18,7 @@ namespace tmcert {
 // together the files hold every index from 0 to the largest exactly once.
 // Throws InputError naming the file and line otherwise (exit 3), or when
 // `output` cannot be written or is one of the files to merge
-// (src/scene/output_file.h); OutputError (exit 4) when a write fails; nothing is written then: a new or plain
+// (src/io/output_file.h); OutputError (exit 4) when a write fails; nothing is written then: a new or plain
 // `output` file is written beside it and renamed onto it at the end (it
 // keeps its permissions); standard output, or an `output` that is a
 // device, a FIFO or a file with several links, is written only after a

@@ -1,8 +1,8 @@
 #include "src/batch/run_batch.h"
 
 #include "src/batch/batch_environment.h"
-#include "src/scene/output_file.h"
-#include "src/scene/parse.h"
+#include "src/io/output_file.h"
+#include "src/io/parse.h"
 
 #include <algorithm>
 #include <atomic>
@@ -277,7 +277,7 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
     run->set_activity("reading the environment");
   }
   // Bad files are exit 3 before any work: the output is checked first
-  // (src/scene/output_file.h), and written (truncated) only once the
+  // (src/io/output_file.h), and written (truncated) only once the
   // environment is read and the output is known to be none of the inputs:
   // the requests file (or the standard input's file), the environment
   // scene and its meshes and URDFs.

@@ -46,7 +46,7 @@ struct BatchCounts {
 // 3) for a bad environment, a bad or unwritable file, or an output that is
 // an input (the requests, the environment scene or its files), before any
 // result is written; OutputError (exit 4) when writing the results fails
-// (the results file is removed then, src/scene/output_file.h).
+// (the results file is removed then, src/io/output_file.h).
 int run_batch(const BatchOptions& options, BatchCounts* counts = nullptr);
 
 }  // namespace tmcert

@@ -1,6 +1,6 @@
 #include "src/batch/shard.h"
 
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <algorithm>
 #include <cctype>

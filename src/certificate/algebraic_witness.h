@@ -5,7 +5,7 @@
 #pragma once
 
 #include "kernels/moving_contact.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <optional>
 #include <string>

@@ -11,12 +11,12 @@
 // when the numbers fit (60-bit limbs, coordinates below 2^62), GMP integers
 // otherwise.  No floating point is used anywhere.
 #include "src/certificate/check.h"
-#include "src/certificate/writer.h"
+#include "src/certificate/scope.h"
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/motions.h"
 #include "src/certificate/exact_claims.h"
-#include "src/scene/parse.h"
-#include "src/scene/read_file.h"
+#include "src/io/parse.h"
+#include "src/io/read_file.h"
 
 #include <gmp.h>
 

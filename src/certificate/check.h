@@ -2,7 +2,7 @@
 // proofs/certificates.md): re-verifies every claim of a
 // tmcert-certificate/1 document in exact rational arithmetic.
 //
-// Independence: this code shares the scene reader (src/scene) and the exact
+// Independence: this code shares the scene reader (src/io, src/model) and the exact
 // number type (kernels/number_types.h) with the verifier and nothing else:
 // its Bernstein products, degree elevation, de Casteljau restriction, pose
 // evaluation and ray test are its own, so a bug in src/motion, src/metric or
@@ -10,7 +10,7 @@
 #pragma once
 
 #include "kernels/number_types.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <nlohmann/json.hpp>
 

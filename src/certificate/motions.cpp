@@ -1,6 +1,6 @@
 #include "src/certificate/motions.h"
 
-#include "src/motion/chain.h"
+#include "src/model/chain.h"
 
 #include <gmp.h>
 #include <arb.h>
@@ -392,7 +392,7 @@ BallMat pose_matrix(const Pose& pose) {
 // I + sin(q) K + (1 - cos q) K^2 about the unit axis (K = [u]x), a
 // prismatic joint the translation q u.
 BallPose link_pose(const LinkMotion& link, const B& s) {
-  const LinkChain& chain = *link.chain;
+  const ChainDescription& chain = *link.chain;
   const auto& constants = chain.constant_poses();
   auto constant = [&](std::size_t k) {
     BallMat c{{B(1), B(0), B(0), B(0), B(1), B(0), B(0), B(0), B(1)}, {B(0), B(0), B(0)}};
@@ -531,6 +531,65 @@ std::optional<Mat34E> exact_keyframe(const Pose& p) {
   return m;
 }
 
+// a b for 3x4 affine maps, exactly.
+Mat34E compose_exact(const Mat34E& a, const Mat34E& b) {
+  Mat34E out;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) {
+      Exact sum = a[4 * r] * b[c] + a[4 * r + 1] * b[4 + c] + a[4 * r + 2] * b[8 + c];
+      if (c == 3) sum += a[4 * r + 3];
+      out[4 * r + c] = sum;
+    }
+  return out;
+}
+
+// The rational square root of q >= 0, when there is one.
+std::optional<Exact> exact_sqrt(const Exact& q) {
+  if (q < 0) return std::nullopt;
+  mpz_srcptr num = mpq_numref(q.mpq());
+  mpz_srcptr den = mpq_denref(q.mpq());
+  if (!mpz_perfect_square_p(num) || !mpz_perfect_square_p(den)) return std::nullopt;
+  CGAL::Gmpz n, d;
+  mpz_sqrt(n.mpz(), num);
+  mpz_sqrt(d.mpz(), den);
+  return Exact(n, d);
+}
+
+// The link's pose C_0 J_1(q_1) C_1 ... J_n(q_n) C_n at joint values q, when
+// it is rational: every constant's poses exact, every revolute joint at
+// q = 0 (sin and cos of a nonzero rational are irrational), every prismatic
+// joint at 0 or with an axis of rational length.  nullopt otherwise.
+std::optional<Mat34E> exact_link_pose(const ChainDescription& chain, const std::vector<Exact>& q) {
+  const auto constant = [&](std::size_t k) -> std::optional<Mat34E> {
+    Mat34E c = kIdentity;
+    for (const Pose& p : chain.constant_poses()[k]) {
+      const std::optional<Mat34E> m = exact_keyframe(p);
+      if (!m) return std::nullopt;
+      c = compose_exact(c, *m);
+    }
+    return c;
+  };
+  std::optional<Mat34E> m = constant(0);
+  if (!m) return std::nullopt;
+  for (std::size_t j = 0; j < chain.joint_count(); ++j) {
+    const ChainJoint& joint = chain.joint(j);
+    if (joint.kind == ChainJoint::Kind::Revolute) {
+      if (q[j] != 0) return std::nullopt;
+    } else if (q[j] != 0) {
+      const Vec3E& k = joint.axis;
+      const std::optional<Exact> n = exact_sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
+      if (!n) return std::nullopt;
+      Mat34E shift = kIdentity;
+      for (int i = 0; i < 3; ++i) shift[4 * i + 3] = k[i] / *n * q[j];
+      m = compose_exact(*m, shift);
+    }
+    const std::optional<Mat34E> c = constant(j + 1);
+    if (!c) return std::nullopt;
+    m = compose_exact(*m, *c);
+  }
+  return m;
+}
+
 const MotionSegment* segment_over(const Trajectory& tr, const Exact& ta, const Exact& tb) {
   for (const MotionSegment& seg : tr.segments)
     if (seg.t0 <= ta && tb <= seg.t1) return &seg;
@@ -605,8 +664,8 @@ std::optional<Mat34E> exact_pose_at(const Body& body, const Exact& t) {
     if (!seg) return std::nullopt;
     if (seg->rational) return evaluate(*seg->rational, t);
     if (seg->link) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
-      if (t == seg->t0) return seg->link->chain->exact_pose(seg->link->from);
-      if (t == seg->t1) return seg->link->chain->exact_pose(seg->link->to);
+      if (t == seg->t0) return exact_link_pose(*seg->link->chain, seg->link->from);
+      if (t == seg->t1) return exact_link_pose(*seg->link->chain, seg->link->to);
       return std::nullopt;
     }
     if (t == seg->t0) return exact_keyframe(seg->from);

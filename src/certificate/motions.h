@@ -13,7 +13,7 @@
 #pragma once
 
 #include "kernels/number_types.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <array>
 #include <optional>

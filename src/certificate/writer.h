@@ -7,7 +7,8 @@
 // proof fails is bisected.  The checker (check.h) re-verifies the document exactly.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/certificate/scope.h"
+#include "src/model/model.h"
 #include "src/verify/verify.h"
 
 #include <cstddef>
@@ -29,11 +30,5 @@ struct WriteStats {
 // Throws InputError for a result of the fast kernel and ResourceLimit when a
 // cleared piece cannot be proven within the bisection limit.
 std::string certificate_json(const Scene& scene, const SceneResult& result, WriteStats* stats = nullptr);
-
-// Why certificates (tmcert-certificate/1) cannot cover this scene: keyframe
-// and piecewise motions, tolerances and clearances are not part of the
-// format; empty when they can.  Both the writer and the checker refuse such
-// scenes (bad input, exit 3) rather than certify a motion they do not model.
-std::string uncertifiable(const Scene& scene);
 
 }  // namespace tmcert::certificate

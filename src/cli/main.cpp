@@ -5,10 +5,10 @@
 #include "src/batch/run_batch.h"
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/cli/report.h"
+#include "src/report/report.h"
 #include "src/html/report_html.h"
-#include "src/scene/output_file.h"
-#include "src/scene/parse.h"
+#include "src/io/output_file.h"
+#include "src/io/parse.h"
 #include "src/verify/progress.h"
 #include "src/verify/verify.h"
 
@@ -166,7 +166,7 @@ void print_warnings(const tmcert::Scene& scene) {
 
 int run_verify(const VerifyArgs& args) {
   using namespace tmcert;
-  // Output paths are checked first (src/scene/output_file.h): a path that
+  // Output paths are checked first (src/io/output_file.h): a path that
   // cannot be written is bad input (exit 3), never a verdict without its
   // file.  Nothing is created or changed before the result is written; a
   // FIFO is opened here once, so that its reader gets an end of file (not

@@ -1,7 +1,7 @@
 #include "src/html/report_html.h"
 
 #include "kernels/real_roots.h"
-#include "src/cli/report.h"
+#include "src/report/report.h"
 #include "src/html/assets.h"
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"

@@ -7,7 +7,7 @@
 // delta with ||delta|| <= 1.  Everything is an exact rational.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <array>
 

@@ -44,7 +44,8 @@ void sincos(const Jet& a, Jet& s, Jet& one_minus_c) {
 
 }  // namespace
 
-LinkChain::LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints) : constant_poses_(constants) {
+LinkChain::LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints)
+    : ChainDescription(constants, joints) {
   if (constants.size() != joints.size() + 1) throw std::invalid_argument("LinkChain: constants.size() != joints + 1");
   RoundingGuard guard;
   for (const std::vector<Pose>& list : constants) {
@@ -172,23 +173,33 @@ namespace {
 
 class LinkModel final : public SegmentModel {
  public:
-  explicit LinkModel(const LinkMotion& m) : motion_(m) {
+  explicit LinkModel(const LinkMotion& m) : motion_(m), chain_(prepared(m.chain)) {
     RoundingGuard guard;
     for (std::size_t j = 0; j < m.from.size(); ++j) {
       from_.push_back(to_interval(m.from[j]));
       delta_.push_back(to_interval(m.to[j] - m.from[j]));
     }
   }
-  PoseJet pose(const Jet& s) const override { return motion_.chain->pose(from_, delta_, s); }
+  PoseJet pose(const Jet& s) const override { return chain_->pose(from_, delta_, s); }
   std::optional<Mat34E> exact_pose(const Exact& s) const override {
     std::vector<Exact> q;
     q.reserve(motion_.from.size());
     for (std::size_t j = 0; j < motion_.from.size(); ++j) q.push_back(motion_.from[j] + (motion_.to[j] - motion_.from[j]) * s);
-    return motion_.chain->exact_pose(q);
+    return chain_->exact_pose(q);
   }
 
  private:
+  // The chain with its enclosures: the verifier's chains are prepared once
+  // (PlacedRobot); any other description is prepared here.
+  static std::shared_ptr<const LinkChain> prepared(const std::shared_ptr<const ChainDescription>& d) {
+    if (auto chain = std::dynamic_pointer_cast<const LinkChain>(d)) return chain;
+    std::vector<ChainJoint> joints;
+    for (std::size_t j = 0; j < d->joint_count(); ++j) joints.push_back(d->joint(j));
+    return std::make_shared<const LinkChain>(d->constant_poses(), std::move(joints));
+  }
+
   LinkMotion motion_;
+  std::shared_ptr<const LinkChain> chain_;
   std::vector<Interval> from_, delta_;
 };
 

@@ -13,6 +13,7 @@
 // child within the pass.  proofs/robot-links.md section 4.
 #pragma once
 
+#include "src/model/chain.h"
 #include "src/motion/segment.h"
 
 #include <memory>
@@ -21,25 +22,13 @@
 
 namespace tmcert {
 
-struct ChainJoint {
-  enum class Kind { Revolute, Prismatic };
-  Kind kind = Kind::Revolute;
-  Vec3E axis;  // as written, nonzero; normalized (exactly or enclosed)
-};
-
 // An immutable chain description, shared by every segment of a link's
 // trajectory.  Build with make_link_chain.
-class LinkChain {
+class LinkChain : public ChainDescription {
  public:
   // constants.size() == joints.size() + 1.  Throws std::invalid_argument
   // on a zero axis or mismatched counts (callers validate first).
   LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints);
-
-  std::size_t joint_count() const { return joints_.size(); }
-  // The constant poses as given (C_k is the product of its list, left to
-  // right), for independent evaluations (the certificate checker).
-  const std::vector<std::vector<Pose>>& constant_poses() const { return constant_poses_; }
-  const ChainJoint& joint(std::size_t j) const { return joints_[j].joint; }
 
   // The exact pose at joint values q (one per joint), when it is exact:
   // every constant exact, every revolute joint at q = 0, every prismatic
@@ -68,16 +57,8 @@ class LinkChain {
     std::array<Interval, 9> cross;        // [u]x, rows
     std::array<Interval, 9> cross2;       // [u]x^2 = u u^T - I, from exact axis data
   };
-  std::vector<std::vector<Pose>> constant_poses_;
   std::vector<Constant> constants_;
   std::vector<Prepared> joints_;
-};
-
-// One segment of a link's motion: the chain, and the joint values (one per
-// chain joint, in chain order) at s = 0 and s = 1.
-struct LinkMotion {
-  std::shared_ptr<const LinkChain> chain;
-  std::vector<Exact> from, to;
 };
 
 // The model of a link segment.

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "kernels/jet.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <array>
 #include <memory>

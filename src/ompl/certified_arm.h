@@ -8,7 +8,7 @@
 #pragma once
 
 #include "src/ompl/certified_motion_validator.h"
-#include "src/robot/robot.h"
+#include "src/io/robot.h"
 
 #include <memory>
 #include <string>

@@ -6,8 +6,8 @@
 // tmcert::api writes internal types as tmcert::X.
 #include "src/ompl/certified_arm.h"
 #include "src/ompl/certified_motion_validator.h"
-#include "src/robot/robot.h"
-#include "src/scene/parse.h"
+#include "src/io/robot.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include "src/api/internal.h"

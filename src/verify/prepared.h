@@ -9,7 +9,7 @@
 #include "src/metric/metric.h"
 #include "src/motion/bezier.h"
 #include "src/verify/hierarchy.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <memory>
 #include <mutex>

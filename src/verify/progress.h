@@ -20,7 +20,7 @@
 // returning a result.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <algorithm>
 #include <atomic>

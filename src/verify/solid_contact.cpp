@@ -1,6 +1,6 @@
 #include "src/verify/solid_contact.h"
 
-#include "src/scene/solid.h"
+#include "src/model/solid.h"
 
 #include <cmath>
 #include <limits>

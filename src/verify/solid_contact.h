@@ -5,7 +5,7 @@
 #pragma once
 
 #include "kernels/containment.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 #include "src/verify/verify.h"
 
 #include <array>

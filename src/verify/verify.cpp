@@ -1,7 +1,7 @@
 #include "src/verify/verify.h"
 
 #include "kernels/containment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
@@ -11,7 +11,7 @@
 #include "src/verify/search.h"
 #include "src/verify/solid_contact.h"
 #include "src/verify/true_shape.h"
-#include "src/robot/primitives.h"
+#include "src/io/primitives.h"
 
 #include <CGAL/number_utils.h>
 
@@ -479,7 +479,7 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
   if (enlarged_pair(x, y)) {
     // A URDF cylinder or sphere: a collision only with a contact proven on
     // the true shapes; parts left undecided because the polyhedra touch are
-    // searched again with finer polyhedra (src/robot/primitives.h), up to
+    // searched again with finer polyhedra (src/io/primitives.h), up to
     // the finest, on the same deadline (not for certificates, whose pieces
     // are the scene's polyhedra).  proofs/robot-links.md section 6.
     const Exact t_end = x.moves() ? x.interval()->second : y.moves() ? y.interval()->second

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "kernels/filtered.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 #include "src/verify/progress.h"
 
 #include <chrono>

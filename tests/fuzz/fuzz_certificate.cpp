@@ -11,7 +11,7 @@
 // malformed certificate must be rejected or be bad input (InputError);
 // any other exception, a crash or a sanitizer report is a bug.
 #include "src/certificate/check.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 #include "tests/fuzz/fuzz.h"
 

@@ -5,8 +5,8 @@
 // (bad input, exit 3); any other exception, a crash, a hang or a sanitizer
 // report is a bug.  A scene read must satisfy the model's own invariants
 // checked below.
-#include "src/scene/mesh.h"
-#include "src/scene/parse.h"
+#include "src/io/mesh.h"
+#include "src/io/parse.h"
 #include "tests/fuzz/fuzz.h"
 
 #include <unistd.h>

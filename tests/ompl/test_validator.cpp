@@ -6,7 +6,7 @@
 
 #include "src/ompl/certified_arm.h"
 #include "src/ompl/certified_motion_validator.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>

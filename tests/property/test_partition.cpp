@@ -39,7 +39,7 @@
 #include "tests/support/mp_reference.h"
 #include "tests/support/scene_testing.h"
 
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <rapidcheck.h>
 #include <rapidcheck/boost_test.h>

@@ -22,7 +22,7 @@
 
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
-#include "src/robot/robot.h"
+#include "src/io/robot.h"
 
 #include <rapidcheck.h>
 #include <rapidcheck/boost_test.h>

@@ -5,7 +5,7 @@
 
 #include "kernels/number_types.h"
 #include "src/metric/metric.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <array>
 #include <random>

@@ -12,7 +12,7 @@
 
 #include "kernels/number_types.h"
 #include "src/metric/metric.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 #include "src/certificate/algebraic_witness.h"
 #include "tests/support/witness_time.h"
 #include "src/verify/verify.h"
@@ -84,7 +84,7 @@ inline std::vector<Vec3E> body_vertices(const Body& b) {
   return v;
 }
 
-// Default masses exactly as the parser computes them (src/scene/parse.cpp):
+// Default masses exactly as the parser computes them (src/io/parse.cpp):
 // the fallback size of a single point is the extent of every body's
 // vertices in its own frame.
 inline void rebuild_masses(Scene& s) {

@@ -10,7 +10,7 @@
 #include "src/certificate/motions.h"
 #include "src/motion/chain.h"
 #include "src/motion/segment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
@@ -896,6 +896,65 @@ BOOST_AUTO_TEST_CASE(link_enclosure_matches_the_verifiers) {
   for (const char* st : {"0", "1/3", "0.5", "0.77", "1"})
     compared += compare_pose_enclosures(body, *model, q(st), q(st), std::string("link s = ") + st);
   BOOST_TEST(compared == 5 * 12);
+}
+
+// The checker's exact link pose at a waypoint (its own product of the
+// chain's constants and joints, src/certificate/motions.cpp) against the
+// verifier's LinkChain::exact_pose: equal where the pose is rational (exact
+// constants, revolute joints at 0, prismatic axes of rational length or at
+// 0), absent in both elsewhere (a revolute joint off 0, a prismatic axis of
+// irrational length off 0, an rpy constant).
+BOOST_AUTO_TEST_CASE(exact_link_pose_matches_the_verifiers) {
+  Pose quat;
+  quat.translation = v("0", "0.1", "0.3");
+  quat.rotation.kind = Rotation::Kind::Quaternion;
+  quat.rotation.quaternion = {q("3"), q("1"), q("0"), q("-2")};
+  Pose matrix;
+  matrix.translation = v("1/3", "0", "-2");
+  matrix.rotation.kind = Rotation::Kind::Matrix;
+  matrix.rotation.matrix = {q("0"), q("-1"), q("0"), q("1"), q("0"), q("0"), q("0"), q("0"), q("1")};
+  Pose rpy;
+  rpy.translation = v("0", "0", "0.5");
+  rpy.rotation.kind = Rotation::Kind::Rpy;
+  rpy.rotation.rpy = {q("0.1"), q("0"), q("0")};
+  Pose shift;
+  shift.translation = v("0.25", "0", "0");
+  std::vector<ChainJoint> joints(3);
+  joints[0].axis = v("0", "0", "1");
+  joints[1].kind = ChainJoint::Kind::Prismatic;
+  joints[1].axis = v("3", "0", "4");  // length 5
+  joints[2].kind = ChainJoint::Kind::Prismatic;
+  joints[2].axis = v("1", "1", "0");  // length sqrt 2
+  int exact = 0, compared = 0;
+  for (const bool with_rpy : {false, true}) {
+    const std::vector<std::vector<Pose>> constants = {
+        {quat, matrix}, {shift}, {}, {with_rpy ? rpy : shift, matrix}};
+    auto link = std::make_shared<LinkMotion>();
+    const auto chain = std::make_shared<const LinkChain>(constants, joints);
+    link->chain = chain;
+    for (const std::vector<const char*>& from : std::vector<std::vector<const char*>>{
+             {"0", "0", "0"}, {"0", "-1/7", "0"}, {"0", "2", "0.5"}, {"0.5", "0", "0"}, {"0", "3", "0"}}) {
+      link->from = {q(from[0]), q(from[1]), q(from[2])};
+      link->to = {q("1"), q("1"), q("1")};
+      MotionSegment seg;
+      seg.t0 = 0;
+      seg.t1 = 1;
+      seg.link = link;
+      Body body;
+      body.name = "link";
+      body.trajectory = Trajectory{{seg}};
+      const std::optional<Mat34E> theirs = chain->exact_pose(link->from);
+      const std::optional<Mat34E> ours = cert::exact_pose_at(body, Exact(0));
+      BOOST_TEST(theirs.has_value() == ours.has_value(), "from " << from[0] << " " << from[1] << " " << from[2]);
+      if (theirs && ours) {
+        BOOST_TEST((*theirs == *ours));
+        ++exact;
+      }
+      ++compared;
+    }
+  }
+  BOOST_TEST(compared == 10);
+  BOOST_TEST(exact == 3);  // without rpy: every joint at 0, or only the prismatic of length 5 off 0
 }
 
 BOOST_AUTO_TEST_CASE(joint_curve_by_hand) {

@@ -3,7 +3,7 @@
 // proofs/certificates.md).
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include "kernels/real_roots.h"

@@ -1,7 +1,7 @@
 // The default epsilon is per check (issue 15): 1/1000 of the box of the
 // check's own two bodies, so that a body far away elsewhere in the scene
 // does not coarsen a check it is not part of.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>

@@ -274,7 +274,7 @@ BOOST_AUTO_TEST_SUITE_END()
 
 // ------------------------------------------------------------------ regression scenes
 
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 namespace {

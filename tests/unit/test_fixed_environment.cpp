@@ -5,7 +5,7 @@
 // (proofs/ompl-validator.md "Checked by"); a solid's inside counts.  Seeded; replay a failure with
 // the seed printed.
 #include "src/motion/segment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/fixed_environment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/search.h"

@@ -5,7 +5,7 @@
 // clipping and the pairwise simplicity test, 52 s; now a constrained
 // Delaunay triangulation).  The time bounds are generous (a loaded 2-core
 // machine); the old code exceeded them many times over.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>

@@ -4,7 +4,7 @@
 // promptly; and the interval arithmetic behind the filtered kernel keeps its
 // rounding mode (also under the sanitizers of make test).
 #include "kernels/number_types.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -2,7 +2,7 @@
 // parsing the line where it has tmcert's form, parses any other line whole,
 // refuses a file cut short, and never leaves part of a merge in the output.
 #include "src/batch/merge_batch.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <boost/test/unit_test.hpp>
 

@@ -10,10 +10,10 @@
 #include "kernels/jet.h"
 #include "kernels/real_roots.h"
 #include "kernels/validated.h"
-#include "src/cli/report.h"
+#include "src/report/report.h"
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 #include "tests/support/mp_reference.h"
 

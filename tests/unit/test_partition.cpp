@@ -6,8 +6,8 @@
 // finding 2: the witness ends the claims ("not_searched").
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/cli/report.h"
-#include "src/scene/parse.h"
+#include "src/report/report.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>

@@ -2,7 +2,7 @@
 // share stays below its unit until the check is done, so the fraction
 // reaches 1 only at the end; a cancelled run never clears what it did not
 // search, and verify_scene then gives no result.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/progress.h"
 #include "src/verify/verify.h"
 

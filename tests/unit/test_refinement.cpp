@@ -3,7 +3,7 @@
 // check are searched again at epsilon/10, ... down to epsilon/10^6.
 #include "src/certificate/check.h"
 #include "src/certificate/writer.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/fixed_environment.h"
 #include "src/verify/verify.h"
 

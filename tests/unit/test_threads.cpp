@@ -4,7 +4,7 @@
 // node budget runs out (proofs/search-and-pruning.md); the parts of a path
 // cut at its joins run at once, merged in the same way
 // (proofs/enclosures.md section 7).
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>

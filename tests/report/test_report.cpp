@@ -1,7 +1,7 @@
-// src/cli/report.cpp, the human summary: decimals beside exact numbers, the
+// src/report/report.cpp, the human summary: decimals beside exact numbers, the
 // contact point, and every undecided interval with its reason and a hint
 // that fits the reason (docs/scene-format.md, "Human summary").
-#include "src/cli/report.h"
+#include "src/report/report.h"
 
 #include <boost/test/unit_test.hpp>
 

@@ -6,19 +6,19 @@
 // Then the tree is validated and turned into the exact model; every error
 // names the JSON path of the offending value.  Polygons are checked
 // (planar, simple) and split into convex pieces with exact arithmetic.
-// Mesh files (src/scene/mesh.h) are read relative to the scene file, and
+// Mesh files (src/io/mesh.h) are read relative to the scene file, and
 // every face goes through the same polygon checks.
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include "kernels/decimal.h"
 
 #include "src/motion/segment.h"
 
 #include "src/metric/metric.h"
-#include "src/scene/mesh.h"
-#include "src/scene/read_file.h"
-#include "src/scene/solid.h"
-#include "src/robot/robot.h"
+#include "src/io/mesh.h"
+#include "src/io/read_file.h"
+#include "src/model/solid.h"
+#include "src/io/robot.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>

@@ -128,11 +128,11 @@ struct Body {
   // URDF cylinders and spheres): the body contains them and is larger, so
   // `safe` holds for them and a collision is one of the enlarged model.
   std::vector<std::string> enlarged;
-  // A robot link's URDF cylinder or sphere (src/robot/urdf.cpp), when the
+  // A robot link's URDF cylinder or sphere (src/io/urdf.cpp), when the
   // body is one: the true shape, in the body frame (a cylinder of this
   // radius and length about the z axis, or a ball of this radius, centred
   // at the origin); the polygons are its circumscribed polyhedron at
-  // refinement `level` (src/robot/primitives.h).  `safe` may rest on the
+  // refinement `level` (src/io/primitives.h).  `safe` may rest on the
   // polyhedron; a collision is reported only when proven on the true shape
   // (proofs/robot-links.md section 6).
   struct Primitive {

@@ -1,7 +1,7 @@
 // The URDF collision primitives as exact polyhedra, centred at the origin:
 // a box exactly, a cylinder (axis z) and a sphere by circumscribed
 // polyhedra with rational vertices that provably contain them
-// (proofs/robot-links.md section 1, tests/unit/test_robot.cpp).
+// (proofs/robot-links.md section 1, tests/io/test_robot.cpp).
 //
 // Both circumscribed solids come from one construction: tangent planes
 // n . x = 1 (scaled by the radius) with rational UNIT normals
@@ -14,7 +14,7 @@
 #pragma once
 
 #include "kernels/number_types.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <vector>
 

@@ -3,7 +3,7 @@
 // union of the shells' insides.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <string>
 #include <vector>

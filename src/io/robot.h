@@ -3,7 +3,7 @@
 // immutable RobotModel, place it at a base pose (PlacedRobot: the link
 // chains prepared once), and add its links to a Scene as bodies moving
 // along a joint-space path (linear between waypoints).  The scene reader
-// (src/scene/parse.cpp, "robots") and planners (the OMPL validator) both
+// (src/io/parse.cpp, "robots") and planners (the OMPL validator) both
 // go through these functions.
 //
 //   auto model = tmcert::load_urdf("arm.urdf");                // InputError: exit 3
@@ -18,7 +18,7 @@
 #pragma once
 
 #include "src/motion/chain.h"
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <memory>
 #include <optional>

@@ -3,7 +3,7 @@
 // end), and at most a given number of bytes.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <cstdint>
 #include <string>

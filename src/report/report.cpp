@@ -1,4 +1,4 @@
-#include "src/cli/report.h"
+#include "src/report/report.h"
 
 #include "kernels/decimal.h"
 #include "kernels/real_roots.h"

@@ -1,5 +1,5 @@
 // Solid validation (solid.h, proofs/containment.md §4).
-#include "src/scene/solid.h"
+#include "src/model/solid.h"
 
 #include "kernels/static_intersection.h"
 

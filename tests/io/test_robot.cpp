@@ -1,14 +1,14 @@
-// Robots from URDF (src/robot/, src/motion/chain.*): forward kinematics
+// Robots from URDF (src/io/robot.*, urdf.cpp, primitives.*; src/motion/chain.*): forward kinematics
 // against an independent MPFR evaluation at rational joint values, the
 // Taylor enclosures of link pieces against dense MPFR samples, the
 // circumscribed primitives checked exactly, the C++ API (bodies, default
 // checks, verdicts), and URDF errors naming the element.
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
-#include "src/robot/primitives.h"
-#include "src/robot/robot.h"
-#include "src/scene/parse.h"
-#include "src/scene/solid.h"
+#include "src/io/primitives.h"
+#include "src/io/robot.h"
+#include "src/io/parse.h"
+#include "src/model/solid.h"
 #include "src/verify/verify.h"
 #include "tests/support/mp_reference.h"
 

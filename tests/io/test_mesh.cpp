@@ -1,11 +1,11 @@
-// Mesh bodies (src/scene/mesh.cpp, the "mesh" and "solid" fields in
-// src/scene/parse.cpp): every format read exactly, OBJ index forms, binary
+// Mesh bodies (src/io/mesh.cpp, the "mesh" and "solid" fields in
+// src/io/parse.cpp): every format read exactly, OBJ index forms, binary
 // and ASCII STL, relative paths, closedness of solids, and one check per
 // class of error (each an InputError naming the file and the line, face or
 // field).
-#include "src/scene/mesh.h"
-#include "src/scene/parse.h"
-#include "src/scene/solid.h"
+#include "src/io/mesh.h"
+#include "src/io/parse.h"
+#include "src/model/solid.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>

@@ -1,11 +1,11 @@
-// The scene reader's JSON tree (src/scene/parse.cpp: every value in one
+// The scene reader's JSON tree (src/io/parse.cpp: every value in one
 // array, keys and text pooled, paths spelled out only for messages) and the
-// result writer (src/cli/report.cpp), against what they replaced: error
+// result writer (src/report/report.cpp), against what they replaced: error
 // paths into containers that follow nested ones, duplicate keys in large
 // objects, number tokens near the double range, and the result document
 // byte for byte as nlohmann's dump(2) writes it.
-#include "src/cli/report.h"
-#include "src/scene/parse.h"
+#include "src/report/report.h"
+#include "src/io/parse.h"
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>

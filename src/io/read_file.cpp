@@ -1,6 +1,6 @@
-#include "src/scene/read_file.h"
+#include "src/io/read_file.h"
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <cerrno>
 #include <cstring>

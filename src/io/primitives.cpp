@@ -1,6 +1,6 @@
-#include "src/robot/primitives.h"
+#include "src/io/primitives.h"
 
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <array>
 #include <cmath>

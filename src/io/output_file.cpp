@@ -1,7 +1,7 @@
-#include "src/scene/output_file.h"
+#include "src/io/output_file.h"
 
 #include "kernels/allocation.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <cerrno>
 #include <climits>

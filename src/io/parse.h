@@ -1,8 +1,8 @@
 // Reading tmcert-scene/1 documents (SCENE_FORMAT.md) into the exact model.
 #pragma once
 
-#include "src/scene/model.h"
-#include "src/scene/solid.h"
+#include "src/model/model.h"
+#include "src/model/solid.h"
 
 #include <memory>
 #include <optional>

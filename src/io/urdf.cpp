@@ -4,16 +4,16 @@
 // every number is read again from the XML text (TinyXML, the parser urdfdom
 // itself uses) with the exact decimal reader, because urdfdom stores
 // doubles.
-#include "src/robot/robot.h"
+#include "src/io/robot.h"
 
 #include "kernels/decimal.h"
 #include "src/metric/metric.h"
 #include "src/motion/segment.h"
-#include "src/robot/primitives.h"
-#include "src/scene/mesh.h"
-#include "src/scene/parse.h"
-#include "src/scene/read_file.h"
-#include "src/scene/solid.h"
+#include "src/io/primitives.h"
+#include "src/io/mesh.h"
+#include "src/io/parse.h"
+#include "src/io/read_file.h"
+#include "src/model/solid.h"
 
 #include <console_bridge/console.h>
 #include <tinyxml.h>

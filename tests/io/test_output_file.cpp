@@ -1,12 +1,12 @@
-// src/scene/output_file: output paths are checked before the work (bad
+// src/io/output_file: output paths are checked before the work (bad
 // input naming the option), nothing is created or changed before the
 // result is written, a FIFO is opened once, the same file is found under
 // any name, and a write that fails is OutputError leaving no partial file.
-#include "src/scene/output_file.h"
+#include "src/io/output_file.h"
 
-#include "src/scene/model.h"
-#include "src/scene/parse.h"
-#include "src/scene/read_file.h"
+#include "src/model/model.h"
+#include "src/io/parse.h"
+#include "src/io/read_file.h"
 
 #include <boost/test/unit_test.hpp>
 

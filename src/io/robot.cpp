@@ -1,8 +1,8 @@
-#include "src/robot/robot.h"
+#include "src/io/robot.h"
 
 #include "kernels/decimal.h"
 
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <algorithm>
 #include <map>

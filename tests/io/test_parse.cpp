@@ -1,7 +1,7 @@
-// Scene parsing (src/scene/parse.cpp): exact numbers, defaults, polygon
+// Scene parsing (src/io/parse.cpp): exact numbers, defaults, polygon
 // cleaning and convex splitting, and one check per class of error.
 #include "src/metric/metric.h"
-#include "src/scene/parse.h"
+#include "src/io/parse.h"
 
 #include <boost/test/unit_test.hpp>
 

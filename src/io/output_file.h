@@ -20,7 +20,7 @@
 //   file is not.
 #pragma once
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <cstddef>
 #include <optional>

@@ -2,11 +2,11 @@
 // parse_exact (decimal forms only: "1e-3", "-0.5", "+2", ".5"; no "p/q",
 // which none of the formats has), binary STL floats through their exact
 // double value.  Errors name the file and the line (or triangle).
-#include "src/scene/mesh.h"
+#include "src/io/mesh.h"
 
-#include "src/scene/read_file.h"
+#include "src/io/read_file.h"
 
-#include "src/scene/model.h"
+#include "src/model/model.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>

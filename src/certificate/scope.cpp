@@ -1,0 +1,42 @@
+#include "src/certificate/scope.h"
+
+#include "src/certificate/motions.h"
+
+namespace tmcert::certificate {
+
+// The check's parameter interval (docs/certificate-format.md).
+std::pair<Exact, Exact> check_interval(const Body& a, const Body& b) {
+  if (a.moves()) return *a.interval();
+  if (b.moves()) return *b.interval();
+  if (a.interval()) return *a.interval();
+  if (b.interval()) return *b.interval();
+  return {Exact(0), Exact(1)};
+}
+
+std::string uncertifiable(const Scene& scene) {
+  // Start claims place the other body's vertices exactly at the start: a
+  // check with a solid body needs exact poses of both bodies there (a
+  // keyframe motion starting at an rpy rotation has none).
+  for (const auto& [ia, ib] : scene.checks) {
+    const Body& a = scene.bodies[ia];
+    const Body& b = scene.bodies[ib];
+    if (a.solid || b.solid) {
+      const Exact t0 = check_interval(a, b).first;
+      for (const Body* body : {&a, &b})
+        if (!exact_pose_at(*body, t0))
+          return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
+                 "\" at its start is not exact (a transcendental rotation)";
+    }
+    // A URDF cylinder or sphere: its collisions are proven on the true
+    // shape and its safe parts may rest on finer polyhedra than the
+    // scene's (proofs/robot-links.md section 6), which the format does not
+    // describe.
+    for (const Body* body : {&a, &b})
+      if (body->primitive)
+        return "check [\"" + a.name + "\", \"" + b.name + "\"] has the URDF " + body->enlarged.front() + " \"" +
+               body->name + "\" (proven on its true shape and finer polyhedra, which certificates do not describe yet)";
+  }
+  return {};
+}
+
+}  // namespace tmcert::certificate
