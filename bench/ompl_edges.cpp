@@ -275,8 +275,8 @@ Eigen::Isometry3d to_double(const Pose& p) {
   return out;
 }
 
-// Forward kinematics in doubles: the world pose of every link's body frame
-// at joint values `q` (column k: joint `joints[k]`).
+// Forward kinematics in doubles: the world pose of every link's frame at
+// joint values `q` (column k: joint `joints[k]`).
 std::vector<Eigen::Isometry3d> link_poses(const PlacedRobot& robot, const std::vector<std::string>& joints,
                                           const double* q) {
   const RobotModel& m = robot.model();
@@ -306,8 +306,6 @@ std::vector<Eigen::Isometry3d> link_poses(const PlacedRobot& robot, const std::v
   for (std::size_t l = 0; l < m.links.size(); ++l) {
     pose(static_cast<int>(l));
   }
-  for (std::size_t l = 0; l < m.links.size(); ++l)
-    for (const Pose& p : m.links[l].body_frame) out[l] = out[l] * to_double(p);
   return out;
 }
 
@@ -320,10 +318,15 @@ class FclArmChecker final : public ob::StateValidityChecker {
       : ob::StateValidityChecker(si), robot_(std::move(robot)), joints_(std::move(joints)),
         obstacles_(obstacles, fcl::Transform3d::Identity()) {
     const RobotModel& m = robot_->model();
+    // One object per part of a link (its collision elements in the part's
+    // frame within the link frame).
     for (std::size_t l = 0; l < m.links.size(); ++l)
-      if (m.links[l].geometry) {
+      for (const LinkPart& part : m.links[l].parts) {
         links_.push_back(static_cast<int>(l));
-        objects_.push_back(std::make_unique<fcl::CollisionObjectd>(fcl_model(*m.links[l].geometry),
+        Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+        for (const Pose& p : part.frame) frame = frame * to_double(p);
+        frames_.push_back(frame);
+        objects_.push_back(std::make_unique<fcl::CollisionObjectd>(fcl_model(part.geometry),
                                                                    fcl::Transform3d::Identity()));
       }
   }
@@ -331,8 +334,9 @@ class FclArmChecker final : public ob::StateValidityChecker {
     const auto poses = link_poses(*robot_, joints_, s->as<ob::RealVectorStateSpace::StateType>()->values);
     for (std::size_t k = 0; k < links_.size(); ++k) {
       fcl::Transform3d tf = fcl::Transform3d::Identity();
-      tf.linear() = poses[links_[k]].linear();
-      tf.translation() = poses[links_[k]].translation();
+      const Eigen::Isometry3d placed = poses[links_[k]] * frames_[k];
+      tf.linear() = placed.linear();
+      tf.translation() = placed.translation();
       objects_[k]->setTransform(tf);
       objects_[k]->computeAABB();
       fcl::CollisionRequestd request;
@@ -348,6 +352,7 @@ class FclArmChecker final : public ob::StateValidityChecker {
   std::vector<std::string> joints_;
   fcl::CollisionObjectd obstacles_;
   std::vector<int> links_;
+  std::vector<Eigen::Isometry3d> frames_;  // each part's frame in its link's frame
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects_;
 };
 

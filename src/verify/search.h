@@ -484,7 +484,7 @@ struct Check {
     bool uncertain = false;
     CheckResult probe;  // the enlarged model's witnesses, not reported
     Check sub = fork(probe);
-    if (sub.static_test(u, all ? nullptr : &parts, &uncertain) || uncertain || sub.interior_witness(u) ||
+    if (sub.static_test(u, all ? nullptr : &parts, &uncertain) || uncertain || sub.interior_witness(u) != Apartness::Free ||
         sub.distance_witness(u, all ? nullptr : &parts))
       enlarged_touch = true;
     result.stats.static_tests += probe.stats.static_tests;
