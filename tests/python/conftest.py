@@ -148,8 +148,12 @@ def builder_from_document(doc: Dict[str, Any], base: Path) -> tmcert.SceneBuilde
             robot.self_collision(r["self_collision"])
         for link_a, link_b in r.get("allowed_pairs", []):
             robot.allow(link_a, link_b)
-        assert set(r) <= {"name", "urdf", "base", "joints", "path", "self_collision", "allowed_pairs"}, r
-    for d in doc["bodies"]:
+        if "srdf" in r:
+            robot.srdf(os.path.join(str(base), r["srdf"]))
+        assert set(r) <= {"name", "urdf", "srdf", "base", "joints", "path", "self_collision", "allowed_pairs"}, r
+    for folder in doc.get("package_paths", []):
+        b.package_path(os.path.join(str(base), folder))
+    for d in doc.get("bodies", []):
         body = b.add_body(d["name"])
         for key, value in d.items():
             if key in ("name", "comment"):
@@ -195,7 +199,8 @@ def builder_from_document(doc: Dict[str, Any], base: Path) -> tmcert.SceneBuilde
         elif key == "clearance":
             b.clearance(exact(value))
         else:
-            assert key in ("format", "comment", "bodies", "robots", "checks"), f"scene field {key} not rebuilt"
+            assert key in ("format", "comment", "bodies", "robots", "checks", "package_paths"), \
+                f"scene field {key} not rebuilt"
     return b
 
 

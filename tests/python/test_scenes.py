@@ -40,7 +40,7 @@ def test_the_lists_cover_every_motion_type_and_feature() -> None:
     for scene, _ in SCENES:
         doc = read_document(scene)
         seen.update(key for key in ("robots", "checks", "clearance") if key in doc)
-        for body in doc["bodies"]:
+        for body in doc.get("bodies", []):
             seen.update(key for key in ("mesh", "solid", "mass", "tolerance", "segments", "points") if key in body)
             if "motion" in body:
                 motions(body["motion"])
