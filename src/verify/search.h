@@ -437,6 +437,17 @@ struct Check {
         result.stats, uncertain);
   }
 
+  // The pairs of parts that still have a live feature pair, into `parts`;
+  // true (parts left incomplete) when a pair of hierarchy nodes is still
+  // alive, which may hold any pair of parts.
+  bool live_parts(const std::vector<PairRef>& alive, std::set<std::pair<int, int>>& parts) const {
+    for (const PairRef& p : alive) {
+      if (p.nodes) return true;
+      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
+    }
+    return false;
+  }
+
   // Exact static test of the configuration at curve parameter u, restricted
   // to the parts that still have a live feature pair (all parts when a pair
   // of hierarchy nodes is still alive); then, with a tolerance or a
@@ -444,14 +455,7 @@ struct Check {
   bool try_witness(const Exact& u, const std::vector<PairRef>& alive) {
     if (enlarged_pair(*moving.body, *other.body)) return true_witness(u, alive);
     std::set<std::pair<int, int>> parts;
-    bool all = false;
-    for (const PairRef& p : alive) {
-      if (p.nodes) {
-        all = true;
-        break;
-      }
-      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
-    }
+    const bool all = live_parts(alive, parts);
     if (auto hit = static_test(u, all ? nullptr : &parts)) {
       set_witness(u, *hit);
       return true;
@@ -473,14 +477,7 @@ struct Check {
       return true;
     }
     std::set<std::pair<int, int>> parts;
-    bool all = false;
-    for (const PairRef& p : alive) {
-      if (p.nodes) {
-        all = true;
-        break;
-      }
-      parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
-    }
+    const bool all = live_parts(alive, parts);
     bool uncertain = false;
     CheckResult probe;  // the enlarged model's witnesses, not reported
     Check sub = fork(probe);
