@@ -64,6 +64,14 @@ CertifiedMotionValidator::CertifiedMotionValidator(const ob::SpaceInformationPtr
 }
 
 EdgeCertificate CertifiedMotionValidator::certify(const ob::State* s1, const ob::State* s2) const {
+  return run(s1, s2, false);
+}
+
+EdgeCertificate CertifiedMotionValidator::decide(const ob::State* s1, const ob::State* s2) const {
+  return run(s1, s2, true);
+}
+
+EdgeCertificate CertifiedMotionValidator::run(const ob::State* s1, const ob::State* s2, bool decide) const {
   EdgeCertificate out;
   auto not_certified = [&](const std::string& why) {
     out.problem = why;
@@ -73,7 +81,8 @@ EdgeCertificate CertifiedMotionValidator::certify(const ob::State* s1, const ob:
   };
   // Whatever goes wrong is "not certified", never "safe".
   try {
-    out.check = environment_->check(motions_->segment(s1, s2));
+    const std::vector<Trajectory> motions = motions_->segment(s1, s2);
+    out.check = decide ? environment_->decide(motions) : environment_->check(motions);
   } catch (const std::exception& e) {
     not_certified(e.what());
   } catch (...) {
@@ -109,7 +118,8 @@ EdgeCertificate CertifiedMotionValidator::certify_state(const ob::State* s) cons
 }
 
 bool CertifiedMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  const bool ok = certify(s1, s2).check.verdict == Verdict::Safe;
+  // Only "safe or not" is asked: decided at the first proof of contact.
+  const bool ok = decide(s1, s2).check.verdict == Verdict::Safe;
   if (ok) ++valid_;
   else ++invalid_;
   return ok;

@@ -86,12 +86,20 @@ class CertifiedMotionValidator final : public ompl::base::MotionValidator {
 
   // The full result for the segment (or, with s1 == s2 as states, the state).
   EdgeCertificate certify(const ompl::base::State* s1, const ompl::base::State* s2) const;
+  // What checkMotion(s1, s2) runs: safe exactly when certify() is, but a
+  // collision is decided at the first proof of contact
+  // (FixedEnvironment::decide: sampled configurations first), so its
+  // first-contact bracket may start at 0 and its checks stop at the first
+  // that is not safe.
+  EdgeCertificate decide(const ompl::base::State* s1, const ompl::base::State* s2) const;
   // A state certified free (exact static test, or the segment to itself).
   EdgeCertificate certify_state(const ompl::base::State* s) const;
 
   const FixedEnvironment& environment() const { return *environment_; }
 
  private:
+  EdgeCertificate run(const ompl::base::State* s1, const ompl::base::State* s2, bool decide) const;
+
   std::shared_ptr<const FixedEnvironment> environment_;
   std::shared_ptr<const StateMotions> motions_;
 };

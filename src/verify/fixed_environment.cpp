@@ -5,7 +5,9 @@
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
 #include "src/verify/refine.h"
+#include "src/verify/sample_first.h"
 #include "src/verify/search.h"
+#include "src/verify/true_shape.h"
 #include "src/verify/solid_contact.h"
 
 #include <algorithm>
@@ -166,6 +168,7 @@ struct StaticOutcome {
   enum class Kind { Free, Hit, Unknown } kind = Kind::Free;
   int part_mover = 0, part_environment = 0;
   Vec3E point;  // a Hit at an exact configuration
+  std::optional<std::array<Interval, 3>> box;  // a Hit at an enclosed one: a box holding the crossing point
 };
 
 // The mover's parts placed by the interval map `map` (enclosing the pose),
@@ -209,11 +212,12 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
   if (!exact) {
     RoundingGuard guard;
     for (const Candidate& c : candidates)
-      if (certain_crossing(c.x, c.y)) {
+      if (const auto box = certain_crossing(c.x, c.y)) {
         out.kind = StaticOutcome::Kind::Hit;
         out.part_mover = c.pi;
         out.part_environment = c.pj;
-        return out;  // no exact point: callers only use the kind
+        out.box = box;  // no exact point: the box of the certain crossing
+        return out;
       }
     out.kind = StaticOutcome::Kind::Unknown;
     return out;
@@ -337,7 +341,11 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
 
 FixedEnvironment::~FixedEnvironment() = default;
 
-MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) const {
+MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) const { return run(motions, false); }
+
+MotionCheck FixedEnvironment::decide(const std::vector<Trajectory>& motions) const { return run(motions, true); }
+
+MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool decide) const {
   if (motions.size() + 1 != bodies_.size())
     throw InputError("motions: " + std::to_string(motions.size()) + " given for " + std::to_string(bodies_.size() - 1) +
                      " movers");
@@ -393,7 +401,99 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     r.stats.prefiltered = true;
     out.checks.push_back(r);
   };
+  // The end of the result: every check's epsilon and interval, and the
+  // motion's witness and bracket from the check that decided it.
+  auto finish = [&]() -> MotionCheck& {
+    for (CheckResult& r : out.checks) {
+      if (!r.refined) r.epsilon = *options_.epsilon;
+      r.interval = {t0, t1};
+    }
+    if (decided < out.checks.size()) {
+      out.witness = out.checks[decided].witness;
+      out.first_contact = out.checks[decided].first_contact;
+    }
+    return out;
+  };
+  // A swept box that misses the environment's root box, or every
+  // environment simplex's box (a mover), or the other mover's swept box.
+  auto boxes_clear = [&](int a, int b) {
+    if (b == 0)
+      return swept[a].valid && (index_->nodes.empty() || !index_->any(swept[a].lo, swept[a].hi));
+    return disjoint(swept[a], swept[b]);
+  };
+  if (decide) {
+    // Contacts first where they are cheapest (src/verify/sample_first.h,
+    // proofs/sample-first.md): the exact static test of the configuration
+    // at a few sampled parameters, for every pair the boxes do not clear.
+    // Not for a URDF cylinder or sphere, whose polyhedron's contact proves
+    // nothing about the true shape.
+    std::vector<std::size_t> sampled;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const auto [a, b] = pairs[k];
+      if (!enlarged_pair(bodies_[a], bodies_[b]) && !boxes_clear(a, b)) sampled.push_back(k);
+    }
+    const std::vector<Exact> times = sample_times(t0, t1, kSampledParameters);
+    std::vector<std::optional<StartPose>> at(bodies_.size());
+    const Exact* at_time = nullptr;
+    std::uint64_t configurations = 0;
+    const auto hit = first_sampled_contact(times, sampled.size(), [&](std::size_t i, const Exact& t) -> std::optional<Witness> {
+      if (at_time != &t) {
+        for (auto& p : at) p.reset();
+        at_time = &t;
+      }
+      auto pose = [&](int body) -> const StartPose& {
+        if (!at[body]) at[body] = pose_at(motions[body - 1], t);
+        return *at[body];
+      };
+      const auto [a, b] = pairs[sampled[i]];
+      ++configurations;
+      if (b == 0) {
+        const StartPose& p = pose(a);
+        const StaticOutcome o = static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts);
+        if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
+        Witness w{t,
+                  {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,
+                   bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
+                  o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+        if (o.box) {
+          std::array<std::array<Exact, 2>, 3> box;
+          for (int c = 0; c < 3; ++c) box[c] = {Exact((*o.box)[c].inf()), Exact((*o.box)[c].sup())};
+          w.point_box = box;
+        }
+        return w;
+      }
+      // Two movers: the search's filtered static test with both poses.
+      const StartPose& pa = pose(a);
+      const StartPose& pb = pose(b);
+      CheckStats stats;
+      const auto h = detail::filtered_first_hit(
+          prepared_[a]->parts, &pa.map, prepared_[b]->parts, &pb.map, nullptr,
+          [&]() -> std::optional<std::pair<std::optional<Mat34E>, std::optional<Mat34E>>> {
+            if (!pa.exact || !pb.exact) return std::nullopt;  // enclosed: certain crossings only
+            return std::pair{pa.exact, pb.exact};
+          },
+          stats);
+      if (!h) return std::nullopt;
+      Witness w{t, {bodies_[a].name + " " + prepared_[a]->parts[h->part_moving].name,
+                    bodies_[b].name + " " + prepared_[b]->parts[h->part_other].name},
+                h->point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+      if (h->box) {
+        std::array<std::array<Exact, 2>, 3> box;
+        for (int c = 0; c < 3; ++c) box[c] = {Exact((*h->box)[c].inf()), Exact((*h->box)[c].sup())};
+        w.point_box = box;
+      }
+      return w;
+    });
+    if (hit) {
+      const auto [a, b] = pairs[sampled[hit->first]];
+      out.checks.push_back(sampled_collision({a, b}, t0, t1, hit->second, configurations));
+      record(0);
+      return finish();
+    }
+  }
   for (const auto& [a, b] : pairs) {
+    // decide(): the first check that is not safe decides the motion.
+    if (decide && out.verdict != Verdict::Safe) break;
     // A mover whose swept box misses the box of the whole environment never
     // meets it, insides of solids included (every point of a solid lies in
     // the box of its vertices): cleared before any exact test, which for
@@ -473,15 +573,7 @@ MotionCheck FixedEnvironment::check(const std::vector<Trajectory>& motions) cons
     settle_enlarged(out.checks.back(), *prepared_[a], *prepared_[b], t1);
     record(out.checks.size() - 1);
   }
-  for (CheckResult& r : out.checks) {
-    if (!r.refined) r.epsilon = *options_.epsilon;
-    r.interval = {t0, t1};
-  }
-  if (decided < out.checks.size()) {
-    out.witness = out.checks[decided].witness;
-    out.first_contact = out.checks[decided].first_contact;
-  }
-  return out;
+  return finish();
 }
 
 std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E>& poses) const {

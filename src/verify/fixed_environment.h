@@ -6,6 +6,7 @@
 
 #include "src/verify/verify.h"
 
+#include <cstddef>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -60,6 +61,19 @@ class FixedEnvironment {
   // wait for each other (the movers' motions are set in place).
   MotionCheck check(const std::vector<Trajectory>& motions) const;
 
+  // The same question for a planner's validator, which needs only "safe"
+  // or "not safe", decided at the first proof of contact
+  // (proofs/sample-first.md): first the exact static test of each pair the
+  // boxes do not clear at kSampledParameters sampled parameters
+  // (src/verify/sample_first.h); a contact there is the verdict, with a
+  // check that claims nothing before its witness (undecided "limit") nor
+  // after it (not searched).  Else the checks of check(), in order, up to
+  // the first that is not safe (the later ones are not run: `checks` holds
+  // those run).  Safe exactly when check() is safe; a collision is always
+  // proven; safe_until may be lower than check()'s.
+  MotionCheck decide(const std::vector<Trajectory>& motions) const;
+  static constexpr std::size_t kSampledParameters = 9;
+
   // The exact static test of the movers at exact poses (one per mover):
   // a witness (t = 0) when a mover touches the environment or a listed
   // mover pair touches (a solid's inside included), else nothing (the
@@ -80,6 +94,8 @@ class FixedEnvironment {
   const VerifyOptions& options() const { return options_; }
 
  private:
+  MotionCheck run(const std::vector<Trajectory>& motions, bool decide) const;
+
   mutable std::vector<Body> bodies_;  // the movers' motions change per check (under mutex_)
   std::vector<std::pair<int, int>> pairs_;  // indices into bodies_
   VerifyOptions options_;
