@@ -1,6 +1,7 @@
 #include "src/verify/fixed_environment.h"
 
 #include "kernels/robust_crossing.h"
+#include "src/verify/edge_slices.h"
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
@@ -180,7 +181,8 @@ struct StaticOutcome {
 // crossing leaves the outcome Unknown.
 StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array<Interval, 12>& map,
                           const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
-                          const std::vector<StaticPart>& environment) {
+                          const std::vector<StaticPart>& environment,
+                          const std::vector<std::vector<SimplexI>>* local = nullptr) {
   struct Candidate {
     int pi, pj, si, sj;
     SimplexI x, y;
@@ -194,7 +196,11 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
         EnvironmentIndex::Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
         it.s.count = x.count;
         for (int v = 0; v < x.count; ++v) {
-          const std::array<Interval, 3> p = {to_interval(x.p[v][0]), to_interval(x.p[v][1]), to_interval(x.p[v][2])};
+          // The simplex's own coordinates enclosed (once per body when
+          // `local` holds them: the same intervals).
+          const std::array<Interval, 3> p =
+              local ? (*local)[i][k].p[v]
+                    : std::array<Interval, 3>{to_interval(x.p[v][0]), to_interval(x.p[v][1]), to_interval(x.p[v][2])};
           for (int c = 0; c < 3; ++c)
             it.s.p[v][c] = map[4 * c] * p[0] + map[4 * c + 1] * p[1] + map[4 * c + 2] * p[2] + map[4 * c + 3];
         }
@@ -302,6 +308,41 @@ StartPose fixed_start(const Body& b) {
 
 }  // namespace
 
+namespace {
+
+// The check searched only on `windows` (in order, inside [t0, t1]): the
+// parts between them are slices cleared by boxes (proofs/edge-slices.md).
+// A window after a cleared slice starts where the bodies are apart (the
+// slice's box covers its closed interval) and, with everything before it
+// cleared, neither is inside a solid other: its start is proven free.  The
+// first window at t0 has the caller's start test.  After a window that is
+// not cleared entirely (undecided), the rest [its end, t1] is searched as
+// one window whose start is tested (as a join after a part not cleared,
+// proofs/partition.md); a witness ends the search.
+CheckResult search_windows(const PreparedBody& pa, const PreparedBody& pb, std::array<int, 2> ids,
+                           const std::vector<std::pair<Exact, Exact>>& windows, const Exact& t0, const Exact& t1,
+                           const VerifyOptions& options, bool start_free) {
+  const auto started = std::chrono::steady_clock::now();
+  CheckResult total;
+  total.bodies = ids;
+  for (const auto& w : windows) {
+    const bool free = w.first == t0 ? start_free : true;
+    const CheckResult part = detail::check_prepared_pair(pa, pb, ids, Exact(0), options, free, w);
+    if (!detail::merge_result(total, part)) break;  // a witness ends the claims
+    if (!part.undecided.empty()) {
+      if (w.second < t1)
+        detail::merge_result(total, detail::check_prepared_pair(pa, pb, ids, Exact(0), options, false, std::pair{w.second, t1}));
+      break;
+    }
+  }
+  if (total.verdict != Verdict::Collision) total.verdict = total.undecided.empty() ? Verdict::Safe : Verdict::Undecided;
+  if (total.verdict == Verdict::Safe) total.first_contact.reset();
+  total.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return total;
+}
+
+}  // namespace
+
 FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
                                    std::vector<std::pair<int, int>> mover_pairs, const VerifyOptions& options)
     : options_(options) {
@@ -335,7 +376,23 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
   const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
   for (const Body& b : bodies_) {
     vertices_.push_back(every_vertex(b));
+    enclosed_.push_back(enclosed_vertices(b));
     representatives_.push_back(component_representatives(b, identity));
+  }
+  for (const auto& p : prepared_) {
+    std::vector<std::vector<SimplexI>> parts;
+    for (const StaticPart& part : p->parts) {
+      std::vector<SimplexI> list;
+      for (const Simplex& x : part.simplices) {
+        SimplexI e;
+        e.count = x.count;
+        for (int v = 0; v < x.count; ++v)
+          for (int c = 0; c < 3; ++c) e.p[v][c] = to_interval(x.p[v][c]);
+        list.push_back(e);
+      }
+      parts.push_back(std::move(list));
+    }
+    local_.push_back(std::move(parts));
   }
 }
 
@@ -385,11 +442,16 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
   // poses over eighths of an enclosed segment) that overlaps no
   // environment simplex's box, or two movers' disjoint swept boxes, clear
   // the check without a search.
+  // The boxes are those of the motion's slices (edge_slices.h): every
+  // pose of a slice enclosed, the mover's vertices enclosed once; their
+  // union holds everything the mover sweeps (proofs/edge-slices.md).
   std::vector<SweptBox> swept(bodies_.size());
+  std::vector<EdgeSlices> slices(bodies_.size());
   std::vector<StartPose> start(bodies_.size());
   start[0] = fixed_start(bodies_[0]);
   for (std::size_t k = 1; k < bodies_.size(); ++k) {
-    swept[k] = swept_box(bodies_[k]);
+    slices[k] = edge_slices(motions[k - 1], enclosed_[k], kSlices);
+    swept[k] = slices[k].whole;
     start[k] = start_pose_of(motions[k - 1]);
   }
   const Exact t1 = motions.front().t1();
@@ -421,6 +483,24 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       return swept[a].valid && (index_->nodes.empty() || !index_->any(swept[a].lo, swept[a].hi));
     return disjoint(swept[a], swept[b]);
   };
+  // Per pair, the runs of slices its boxes do not clear (computed when
+  // first needed).
+  std::vector<std::optional<std::vector<std::pair<Exact, Exact>>>> windows_of(pairs.size());
+  auto pair_windows = [&](std::size_t k) -> const std::vector<std::pair<Exact, Exact>>& {
+    if (windows_of[k]) return *windows_of[k];
+    const auto [a, b] = pairs[k];
+    const EdgeSlices& sa = slices[a];
+    if (b != 0 && !(sa.t == slices[b].t)) return *(windows_of[k] = std::vector<std::pair<Exact, Exact>>{{t0, t1}});
+    return *(windows_of[k] = slice_runs(sa, [&](std::size_t i) {
+      if (!sa.valid[i]) return true;
+      if (b == 0) return index_->any(sa.lo[i], sa.hi[i]);
+      const EdgeSlices& sb = slices[b];
+      if (!sb.valid[i]) return true;
+      for (int c = 0; c < 3; ++c)
+        if (sa.hi[i][c] < sb.lo[i][c] || sb.hi[i][c] < sa.lo[i][c]) return false;
+      return true;
+    }));
+  };
   if (decide) {
     // Contacts first where they are cheapest (src/verify/sample_first.h,
     // proofs/sample-first.md): the exact static test of the configuration
@@ -430,10 +510,11 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
     std::vector<std::size_t> sampled;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const auto [a, b] = pairs[k];
-      if (!enlarged_pair(bodies_[a], bodies_[b]) && !boxes_clear(a, b)) sampled.push_back(k);
+      if (!enlarged_pair(bodies_[a], bodies_[b]) && !boxes_clear(a, b) && !pair_windows(k).empty()) sampled.push_back(k);
     }
     const std::vector<Exact> times = sample_times(t0, t1, kSampledParameters);
     std::vector<std::optional<StartPose>> at(bodies_.size());
+    std::vector<std::vector<std::unique_ptr<SegmentModel>>> models(bodies_.size());  // per mover, built once
     const Exact* at_time = nullptr;
     std::uint64_t configurations = 0;
     const auto hit = first_sampled_contact(times, sampled.size(), [&](std::size_t i, const Exact& t) -> std::optional<Witness> {
@@ -442,14 +523,19 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         at_time = &t;
       }
       auto pose = [&](int body) -> const StartPose& {
-        if (!at[body]) at[body] = pose_at(motions[body - 1], t);
+        if (!at[body]) at[body] = pose_at(motions[body - 1], t, &models[body]);
         return *at[body];
       };
       const auto [a, b] = pairs[sampled[i]];
+      // Only inside the slices the boxes do not clear: elsewhere nothing
+      // touches (proofs/edge-slices.md).
+      const auto& runs = pair_windows(sampled[i]);
+      if (std::none_of(runs.begin(), runs.end(), [&](const auto& r) { return r.first <= t && t <= r.second; }))
+        return std::nullopt;
       ++configurations;
       if (b == 0) {
         const StartPose& p = pose(a);
-        const StaticOutcome o = static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts);
+        const StaticOutcome o = static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a]);
         if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
         Witness w{t,
                   {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,
@@ -491,7 +577,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       return finish();
     }
   }
-  for (const auto& [a, b] : pairs) {
+  for (std::size_t k_pair = 0; k_pair < pairs.size(); ++k_pair) {
+    const auto [a, b] = pairs[k_pair];
     // decide(): the first check that is not safe decides the motion.
     if (decide && out.verdict != Verdict::Safe) break;
     // A mover whose swept box misses the box of the whole environment never
@@ -542,14 +629,24 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       prefiltered(a, b);
       continue;
     }
+    // The slices whose boxes meet an obstacle's box (a mover against the
+    // environment) or the other mover's slice box: only those are searched
+    // (proofs/edge-slices.md); none left, the check is cleared by boxes.
+    const std::vector<std::pair<Exact, Exact>>& windows = pair_windows(k_pair);
+    if (windows.empty()) {
+      prefiltered(a, b);
+      continue;
+    }
     // A mover's start against the environment through the index (the
     // search's own start test would enclose every environment simplex
     // again); proven free, the search skips its start test.  A hit or an
     // unknown outcome leaves the start test to the search, which then
-    // reports the collision with its witness, or stops undecided.
+    // reports the collision with its witness, or stops undecided.  Only
+    // when the first window starts at t0.
     const bool start_free =
-        b == 0 && static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts).kind ==
-                      StaticOutcome::Kind::Free;
+        b == 0 && windows.front().first == t0 &&
+        static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts, &local_[a]).kind ==
+            StaticOutcome::Kind::Free;
     // VerifyOptions::time_limit bounds each check, as in Verifier::check.
     VerifyOptions options = options_;
     if (options.time_limit > 0)
@@ -557,7 +654,9 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                              std::chrono::duration<double>(options.time_limit));
     const auto started = std::chrono::steady_clock::now();
-    CheckResult result = detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free);
+    CheckResult result = windows.size() == 1 && windows.front() == std::pair{t0, t1}
+                             ? detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free)
+                             : search_windows(*prepared_[a], *prepared_[b], {a, b}, windows, t0, t1, options, start_free);
     // Refinement (src/verify/refine.h), as in Verifier::check: the
     // undecided parts searched again as parts of [t0, t1].
     if (options.refine && result.verdict == Verdict::Undecided)
@@ -597,7 +696,8 @@ std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E
     }
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const StaticOutcome o =
-        static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts);
+        static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts,
+                    &local_[k + 1]);
     if (o.kind == StaticOutcome::Kind::Hit)
       return Witness{Exact(0),
                      {bodies_[k + 1].name + " " + prepared_[k + 1]->parts[o.part_mover].name,

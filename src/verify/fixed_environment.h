@@ -4,6 +4,7 @@
 // OMPL motion validator (src/ompl/) is built on it.
 #pragma once
 
+#include "kernels/static_intersection.h"
 #include "src/verify/verify.h"
 
 #include <cstddef>
@@ -73,6 +74,9 @@ class FixedEnvironment {
   // proven; safe_until may be lower than check()'s.
   MotionCheck decide(const std::vector<Trajectory>& motions) const;
   static constexpr std::size_t kSampledParameters = 9;
+  // The slices of each motion segment whose boxes are tested against the
+  // environment before any search (proofs/edge-slices.md).
+  static constexpr int kSlices = 16;
 
   // The exact static test of the movers at exact poses (one per mover):
   // a witness (t = 0) when a mover touches the environment or a listed
@@ -107,6 +111,12 @@ class FixedEnvironment {
   // Per body, in its own frame: its vertices, and one vertex per connected
   // component with its feature name (the containment of solids).
   std::vector<std::vector<Vec3E>> vertices_;
+  // Per body, its distinct vertices enclosed once (the edge's slices,
+  // src/verify/edge_slices.h).
+  std::vector<std::vector<std::array<Interval, 3>>> enclosed_;
+  // Per body, per part, its simplices' coordinates enclosed once (the
+  // static test places them by the pose's interval map).
+  std::vector<std::vector<std::vector<SimplexI>>> local_;
   std::vector<std::vector<std::pair<std::string, Vec3E>>> representatives_;
   mutable std::mutex mutex_;
 };
