@@ -175,7 +175,7 @@ std::string point_text(const Witness& w) {
   return text;
 }
 
-void report(const char* name, const std::vector<Row>& rows, std::size_t print_limit) {
+void report(const char* name, const std::vector<Row>& rows, std::size_t print_limit, bool full) {
   std::vector<double> cert_safe, cert_all, disc_all, disc_safe, cert_coll, disc_coll, full_coll, cert_searched,
       disc_searched;
   std::size_t safe = 0, collision = 0, undecided = 0, disc_ok = 0, missed = 0, disc_only_reject = 0, disagree = 0;
@@ -221,11 +221,11 @@ void report(const char* name, const std::vector<Row>& rows, std::size_t print_li
   line("certified safe", cert_safe, disc_safe);
   line("certified safe, searched", cert_searched, disc_searched);
   line("certified collision", cert_coll, disc_coll);
-  if (!full_coll.empty())
+  if (full && !full_coll.empty())
     std::printf("certified collision edges (%zu), full search with the first-contact bracket (certify): median %.3f "
                 "ms, max %.3f ms\n",
                 full_coll.size(), quantile(full_coll, 0.5) * ms, quantile(full_coll, 1.0) * ms);
-  std::printf("edges where checkMotion and the full search disagree on safe: %zu\n", disagree);
+  if (full) std::printf("edges where checkMotion and the full search disagree on safe: %zu\n", disagree);
   std::printf("edges the discrete validator accepted that tmcert proves colliding: %zu\n", missed);
   std::printf("edges tmcert certifies safe that the discrete validator rejected: %zu\n", disc_only_reject);
   std::size_t printed = 0;
@@ -449,10 +449,10 @@ int main(int argc, char** argv) {
     t = Clock::now();
     const EdgeCertificate e = validator->decide(a, b);  // what checkMotion(a, b) runs
     r.certified = since(t);
+    r.verdict = e.check.verdict;
     t = Clock::now();
     r.full_verdict = full ? validator->certify(a, b).check.verdict : r.verdict;
     r.full = since(t);
-    r.verdict = e.check.verdict;
     r.witness = e.check.witness;
     r.prefiltered = !e.check.checks.empty();
     for (const CheckResult& c : e.check.checks) r.prefiltered = r.prefiltered && c.stats.prefiltered;
@@ -466,7 +466,7 @@ int main(int argc, char** argv) {
                     (unsigned long long)c.stats.sphere_tests, (unsigned long long)c.stats.exact_pieces, c.stats.seconds * 1e3);
     rows.push_back(r);
   }
-  report("SE(3) gripper among the fixture, RRT extension edges", rows, 10);
+  report("SE(3) gripper among the fixture, RRT extension edges", rows, 10, full);
   for (const auto& [a, b] : edges) {
     si_discrete->freeState(a);
     si_discrete->freeState(b);
@@ -515,10 +515,10 @@ int main(int argc, char** argv) {
       t0 = Clock::now();
       const EdgeCertificate e = arm_validator->decide(a, b);  // what checkMotion(a, b) runs
       r.certified = since(t0);
+      r.verdict = e.check.verdict;
       t0 = Clock::now();
       r.full_verdict = full ? arm_validator->certify(a, b).check.verdict : r.verdict;
       r.full = since(t0);
-      r.verdict = e.check.verdict;
       r.witness = e.check.witness;
       r.prefiltered = !e.check.checks.empty();
       for (const CheckResult& c : e.check.checks) r.prefiltered = r.prefiltered && c.stats.prefiltered;
@@ -532,7 +532,7 @@ int main(int argc, char** argv) {
       }
       jrows.push_back(r);
     }
-    report("6-joint arm beside the fixture, RRT extension edges in joint space", jrows, 10);
+    report("6-joint arm beside the fixture, RRT extension edges in joint space", jrows, 10, full);
     for (const auto& [a, b] : jedges) {
       jdiscrete->freeState(a);
       jdiscrete->freeState(b);
