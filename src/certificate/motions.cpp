@@ -1,5 +1,7 @@
 #include "src/certificate/motions.h"
 
+#include "src/certificate/motion_kinds.h"
+
 #include "src/model/chain.h"
 
 #include <gmp.h>
@@ -603,6 +605,42 @@ PoseBox exact_box(const Mat34E& m) {
   return b;
 }
 
+// ---------------------------------------------------------------- kinds
+
+// The checker's own view of one kind of motion segment (motion_kinds.h,
+// src/model/segment_kind.h): which segments are of it, the exact pose at
+// a segment's ends where it is known, and the pose over a ball of segment
+// parameters s (null for the rational kind, whose pieces are restricted
+// exactly instead).
+struct CheckerKind {
+  const char* name;
+  bool (*holds)(const MotionSegment& seg);
+  std::optional<Mat34E> (*exact_end)(const MotionSegment& seg, bool last);
+  std::optional<BallPose> (*pose)(const MotionSegment& seg, const B& s);
+};
+
+const CheckerKind kCheckerKinds[] = {
+    {"rational_bezier", [](const MotionSegment& seg) { return seg.rational.has_value(); },
+     [](const MotionSegment& seg, bool last) -> std::optional<Mat34E> {
+       return evaluate(*seg.rational, last ? seg.t1 : seg.t0);
+     },
+     nullptr},
+    {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr; },
+     [](const MotionSegment& seg, bool last) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
+       return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
+     },
+     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }},
+    {"keyframe", [](const MotionSegment& seg) { return !seg.rational && !seg.link; },
+     [](const MotionSegment& seg, bool last) { return exact_keyframe(last ? seg.to : seg.from); },
+     [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }},
+};
+
+const CheckerKind& checker_kind(const MotionSegment& seg) {
+  for (const CheckerKind& kind : kCheckerKinds)
+    if (kind.holds(seg)) return kind;
+  return kCheckerKinds[2];  // not reached: the keyframe kind holds what the others do not
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- public
@@ -622,7 +660,7 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
     }
     const Exact span = seg->t1 - seg->t0;
     const B s = interval((ta - seg->t0) / span, (tb - seg->t0) / span);
-    const auto pose = seg->link ? std::optional<BallPose>(link_pose(*seg->link, s)) : keyframe_pose(*seg, s);
+    const auto pose = checker_kind(*seg).pose(*seg, s);
     std::optional<PoseBox> box;
     if (pose) box = to_box(*pose);
     if (!box) {
@@ -663,13 +701,8 @@ std::optional<Mat34E> exact_pose_at(const Body& body, const Exact& t) {
     const MotionSegment* seg = segment_over(*body.trajectory, t, t);
     if (!seg) return std::nullopt;
     if (seg->rational) return evaluate(*seg->rational, t);
-    if (seg->link) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
-      if (t == seg->t0) return exact_link_pose(*seg->link->chain, seg->link->from);
-      if (t == seg->t1) return exact_link_pose(*seg->link->chain, seg->link->to);
-      return std::nullopt;
-    }
-    if (t == seg->t0) return exact_keyframe(seg->from);
-    if (t == seg->t1) return exact_keyframe(seg->to);
+    if (t == seg->t0) return checker_kind(*seg).exact_end(*seg, false);
+    if (t == seg->t1) return checker_kind(*seg).exact_end(*seg, true);
     return std::nullopt;
   }
   if (!body.motion) return kIdentity;
@@ -683,10 +716,18 @@ std::optional<PoseBox> pose_box_at(const Body& body, const Exact& t) {
   const MotionSegment* seg = segment_over(*body.trajectory, t, t);
   if (!seg || seg->rational) return std::nullopt;
   const Exact s = (t - seg->t0) / (seg->t1 - seg->t0);
-  const auto pose = seg->link ? std::optional<BallPose>(link_pose(*seg->link, B(s))) : keyframe_pose(*seg, B(s));
+  const auto pose = checker_kind(*seg).pose(*seg, B(s));
   if (!pose) return std::nullopt;
   return to_box(*pose);
 }
+
+std::vector<std::string> checker_kind_names() {
+  std::vector<std::string> out;
+  for (const CheckerKind& kind : kCheckerKinds) out.emplace_back(kind.name);
+  return out;
+}
+
+std::string_view checker_kind_name(const MotionSegment& seg) { return checker_kind(seg).name; }
 
 PoseBox control_box(const Motion& m) {
   PoseBox b;

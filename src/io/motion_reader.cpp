@@ -5,6 +5,7 @@
 
 #include "kernels/decimal.h"
 
+#include "src/model/segment_kind.h"
 #include "src/motion/segment.h"
 
 #include <Eigen/Geometry>
@@ -73,12 +74,6 @@ std::string nearest_quaternion_hint(const std::array<Exact, 9>& m) {
 bool same_pose(const Pose& a, const Pose& b) {
   if (a.translation != b.translation || a.rotation.kind != b.rotation.kind) return false;
   return a.rotation.kind != Rotation::Kind::Rpy || a.rotation.rpy == b.rotation.rpy;
-}
-
-// The exact pose at a segment's end (`last`) or start, when it is exact.
-std::optional<Mat34E> segment_end(const MotionSegment& seg, bool last) {
-  if (seg.rational) return motion_pose(*seg.rational, last ? seg.t1 : seg.t0);
-  return exact_pose(last ? seg.to : seg.from);
 }
 
 }  // namespace
@@ -266,7 +261,7 @@ void SceneReader::piecewise(const Members& obj, const Path& path, std::vector<Mo
       if (prev.t1 != next.t0)
         fail(piece_path, join + ": the intervals do not abut (the previous piece ends at " + to_string(prev.t1) +
                              ", this one starts at " + to_string(next.t0) + ")");
-      const std::optional<Mat34E> end = segment_end(prev, true), start = segment_end(next, false);
+      const std::optional<Mat34E> end = kind_of(prev).exact_end(prev, true), start = kind_of(next).exact_end(next, false);
       if (end && start) {
         if (*end != *start) fail(piece_path, join + ": the poses differ at t = " + to_string(next.t0) + " (a jump)");
       } else if (!(!prev.rational && !next.rational && same_pose(prev.to, next.from))) {

@@ -8,7 +8,6 @@
 
 #include "kernels/decimal.h"
 #include "src/metric/metric.h"
-#include "src/motion/segment.h"
 #include "src/io/primitives.h"
 #include "src/io/mesh.h"
 #include "src/io/parse.h"

@@ -1,5 +1,7 @@
 #include "src/motion/segment.h"
 
+#include "src/motion/segment_kinds.h"
+
 #include "kernels/decimal.h"
 
 #include "src/motion/bezier.h"
@@ -550,10 +552,12 @@ class KeyframeModel final : public SegmentModel {
 
 std::unique_ptr<SegmentModel> make_bezier_model(const Motion& motion) { return std::make_unique<BezierModel>(motion); }
 
+std::unique_ptr<SegmentModel> make_keyframe_model(const Pose& a, const Pose& b, Interpolation how) {
+  return std::make_unique<KeyframeModel>(a, b, how);
+}
+
 std::unique_ptr<SegmentModel> make_segment_model(const MotionSegment& segment) {
-  if (segment.rational) return make_bezier_model(*segment.rational);
-  if (segment.link) return make_link_model(*segment.link);
-  return std::make_unique<KeyframeModel>(segment.from, segment.to, segment.interpolation);
+  return verified_kind_of(segment).model(segment);
 }
 
 }  // namespace tmcert

@@ -5,6 +5,7 @@
 
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
+#include "src/motion/segment_kinds.h"
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
 #include "src/verify/refine.h"
@@ -131,14 +132,8 @@ std::optional<ReachBox> reach_box(const Body& b) {
         add_curve_maps(*seg.rational, maps);
         continue;
       }
-      if (seg.link) {
-        const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
-        for (const Exact s : {Exact(0), Exact(1)}) maps.push_back(enclose_pose(*model, s));
-        continue;
-      }
-      RoundingGuard guard;
-      maps.push_back(interval_pose(seg.from));
-      maps.push_back(interval_pose(seg.to));
+      const VerifiedSegmentKind& kind = verified_kind_of(seg);
+      for (const bool last : {false, true}) maps.push_back(kind.enclosed_end(seg, last));
     }
   RoundingGuard guard;
   const Interval local[3] = {Interval(lo[0], hi[0]), Interval(lo[1], hi[1]), Interval(lo[2], hi[2])};
@@ -314,9 +309,7 @@ std::optional<Mat34E> start_pose(const Body& b) {
   if (b.motion) return b.motion->control_points[0];  // the curve's value at its start
   if (b.trajectory) {
     const MotionSegment& first = b.trajectory->segments.front();
-    if (first.rational) return first.rational->control_points[0];
-    if (first.link) return make_segment_model(first)->exact_pose(Exact(0));
-    return exact_pose(first.from);
+    return kind_of(first).exact_end(first, false);
   }
   return Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 }
@@ -329,9 +322,7 @@ PoseInterval start_pose_enclosed(const Body& b) {
     return out;
   }
   const MotionSegment& first = b.trajectory->segments.front();
-  if (first.link) return enclose_pose(*make_segment_model(first), Exact(0));
-  RoundingGuard guard;
-  return interval_pose(first.from);
+  return verified_kind_of(first).enclosed_end(first, false);
 }
 
 // The boxes of the two bodies at their start poses (enclosures of every
