@@ -12,6 +12,7 @@
 
 #include "src/model/model.h"
 #include "src/io/parse.h"
+#include "src/verify/options.h"
 #include "src/verify/verify.h"
 
 #include "tmcert/errors.h"
@@ -47,10 +48,17 @@ Rational to_rational(const tmcert::Exact& q);
 // A witness as Result shows it; `bodies` are what c.bodies index.
 Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::CheckResult& c, const tmcert::Witness& w);
 
-// The command line's rules for the options (src/cli/main.cpp), with the
-// option's name in the message; epsilon and max_depth default to the
-// scene's (epsilon may stay absent: each check's own default).
-tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o);
+// The public options as written (src/verify/options.h), the epsilon read
+// in the library's words ("epsilon: ..."); the other rules are checked by
+// check_options / build_options.
+tmcert::WrittenOptions written_options(Kernel kernel, const std::optional<Number>& epsilon,
+                                       std::optional<int> max_depth, std::optional<double> time_limit, int threads);
+
+// The options of verify() for `scene` by the one rule set (build_options,
+// the library's words): epsilon and max_depth default to the scene's
+// (epsilon absent for PerCheck: each check's own default).
+tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o,
+                                       tmcert::EpsilonScope scope = tmcert::EpsilonScope::PerCheck);
 
 // Runs f, turning the internal exceptions into the public ones (same
 // messages).  std::bad_alloc and other standard exceptions pass through.

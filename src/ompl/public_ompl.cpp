@@ -26,10 +26,8 @@ namespace {
 tmcert::VerifyOptions edge_options(const tmcert::Scene& scene, const VerifyOptions& o) {
   if (o.kernel == Kernel::Fast)
     throw InputError("kernel: the fast kernel is not certified; the OMPL validator accepts only certified edges");
-  tmcert::VerifyOptions options = internal_options(scene, o);
-  // Without an epsilon (or "auto"): the scene's default, refined
-  // (internal_options sets `refine`).
-  if (!options.epsilon) options.epsilon = tmcert::default_epsilon(scene);
+  // Without an epsilon (or "auto"): the whole scene's default, refined.
+  tmcert::VerifyOptions options = internal_options(scene, o, tmcert::EpsilonScope::WholeScene);
   options.threads = 1;          // an edge is one search; planners run edges in their own threads
   options.record_cover = false;  // no certificates of edges
   return options;
