@@ -13,7 +13,8 @@
 // scene_builder.h (SceneBuilder), scene.h (Scene), verify.h (verify,
 // VerifyOptions), result.h (Result, CheckResult, Witness), certificate.h
 // (check_certificate), errors.h (InputError, ResourceLimit, Cancelled),
-// batch.h (batch, batch_merge).  They use only the C++20 standard library;
+// batch.h (batch, batch_merge), environment.h (Environment: many motions
+// of one body against obstacles prepared once, from several threads).  They use only the C++20 standard library;
 // link the target tmcert::tmcert (shared) or tmcert::tmcert_static from
 // find_package(tmcert).  ompl.h, the certified OMPL motion validator, is
 // not included here: it needs OMPL; link tmcert::ompl from
@@ -31,6 +32,7 @@
 
 #include "tmcert/batch.h"
 #include "tmcert/certificate.h"
+#include "tmcert/environment.h"
 #include "tmcert/errors.h"
 #include "tmcert/export.h"
 #include "tmcert/motion.h"

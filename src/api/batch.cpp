@@ -3,6 +3,7 @@
 #include "src/batch/merge_batch.h"
 #include "src/batch/run_batch.h"
 #include "src/batch/shard.h"
+#include "src/verify/options.h"
 #include "src/verify/progress.h"
 
 #include "src/api/internal.h"
@@ -20,30 +21,9 @@ BatchSummary batch(const BatchOptions& options) {
     o.scene = options.scene;
     o.output = options.output;
     if (!options.shard.empty()) o.shard = tmcert::Shard::parse(options.shard);
-    o.verify.kernel = static_cast<tmcert::KernelKind>(static_cast<int>(options.kernel));
-    if (options.epsilon && options.epsilon->text() == "auto") {
-      o.epsilon_auto = true;
-    } else if (options.epsilon) {
-      tmcert::Exact e;
-      if (!tmcert::parse_exact(options.epsilon->text(), e) || !(e > 0))
-        throw InputError("epsilon: must be a positive number (decimal or p/q), got " +
-                         tmcert::quote_text(options.epsilon->text()));
-      o.epsilon = e;
-    }
-    if (options.max_depth) {
-      if (*options.max_depth < 1 || *options.max_depth > 200)
-        throw InputError("max_depth: must be between 1 and 200, got " + std::to_string(*options.max_depth));
-      o.max_depth = *options.max_depth;
-    }
-    if (options.time_limit) {
-      const double seconds = *options.time_limit;
-      if (!std::isfinite(seconds) || !(seconds > 0) || seconds > 1e9)
-        throw InputError("time_limit: must be a number of seconds, > 0 and at most 1e9");
-      o.verify.time_limit = seconds;
-    }
-    if (options.threads < 1 || options.threads > 256)
-      throw InputError("threads: must be between 1 and 256, got " + std::to_string(options.threads));
-    o.threads = options.threads;
+    o.verify = written_options(options.kernel, options.epsilon, options.max_depth, options.time_limit, options.threads);
+    tmcert::check_options(o.verify, tmcert::OptionSpelling::Library);
+    o.spelling = tmcert::OptionSpelling::Library;
     o.stats = options.stats;
     o.quiet = true;
     tmcert::BatchCounts counts;
@@ -55,7 +35,7 @@ BatchSummary batch(const BatchOptions& options) {
           options.progress_interval > 3600)
         throw InputError("progress_interval: must be a number of seconds, > 0 and at most 3600");
       tmcert::RunProgress run;
-      o.verify.run = &run;
+      o.run = &run;
       std::exception_ptr callback_error;
       try {
         tmcert::ProgressWatcher watcher(

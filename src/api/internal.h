@@ -12,9 +12,11 @@
 
 #include "src/model/model.h"
 #include "src/io/parse.h"
+#include "src/verify/options.h"
 #include "src/verify/verify.h"
 
 #include "tmcert/errors.h"
+#include "tmcert/motion.h"
 #include "tmcert/numbers.h"
 #include "tmcert/result.h"
 #include "tmcert/scene.h"
@@ -24,6 +26,7 @@
 #include <new>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace tmcert::api {
 
@@ -47,10 +50,47 @@ Rational to_rational(const tmcert::Exact& q);
 // A witness as Result shows it; `bodies` are what c.bodies index.
 Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::CheckResult& c, const tmcert::Witness& w);
 
-// The command line's rules for the options (src/cli/main.cpp), with the
-// option's name in the message; epsilon and max_depth default to the
-// scene's (epsilon may stay absent: each check's own default).
-tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o);
+// The public options as written (src/verify/options.h), the epsilon read
+// in the library's words ("epsilon: ..."); the other rules are checked by
+// check_options / build_options.
+tmcert::WrittenOptions written_options(Kernel kernel, const std::optional<Number>& epsilon,
+                                       std::optional<int> max_depth, std::optional<double> time_limit, int threads);
+
+// The options of verify() for `scene` by the one rule set (build_options,
+// the library's words): epsilon and max_depth default to the scene's
+// (epsilon absent for PerCheck: each check's own default).
+tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o,
+                                       tmcert::EpsilonScope scope = tmcert::EpsilonScope::PerCheck);
+
+// The words of the refusals of an Environment or of the OMPL adapter
+// (src/api/environment.cpp, src/ompl/public_ompl.cpp).
+struct ObstacleWords {
+  const char* scene;      // "an OMPL planning scene": the obstacles of <scene> must be fixed
+  const char* user;       // "the OMPL validator": tolerances are not supported by <user>
+  const char* obstacles;  // "every body but the robot"
+  const char* fast;       // why the fast kernel is refused
+};
+
+// The obstacles (bodies `indices` of the scene) as one fixed body, each
+// placed by its one-pose motion.  A body that moves, has a tolerance, is
+// solid next to other obstacles (their union is then no longer the solid
+// the containment test expects) or is a URDF cylinder or sphere is
+// rejected, naming the body.
+tmcert::Body obstacle_body(const tmcert::Scene& scene, const std::vector<std::size_t>& indices,
+                           const ObstacleWords& words);
+
+// The scene's clearances are not honoured against fixed obstacles: refused.
+void require_no_clearance(const tmcert::Scene& scene, const ObstacleWords& words);
+
+// The options of motions against prepared obstacles: the fast kernel
+// refused, epsilon for the whole scene (EpsilonScope::WholeScene), one
+// thread per motion, no certificates.
+tmcert::VerifyOptions environment_options(const tmcert::Scene& scene, const VerifyOptions& o,
+                                          const ObstacleWords& words);
+
+// A motion as the tmcert-scene/1 object SceneBuilder writes
+// (src/api/scene_builder.cpp).
+std::string motion_json(const Motion& m);
 
 // Runs f, turning the internal exceptions into the public ones (same
 // messages).  std::bad_alloc and other standard exceptions pass through.

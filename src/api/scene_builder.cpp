@@ -130,6 +130,8 @@ std::string absolute_file(const std::string& path) {
 
 }  // namespace
 
+std::string motion_json(const Motion& m) { return motion(m).dump(); }
+
 Motion Motion::translation(const Point& from, const Point& to, Number t0, Number t1) {
   auto pose = [](const Point& p) -> AffineMap { return {1, 0, 0, p[0], 0, 1, 0, p[1], 0, 0, 1, p[2]}; };
   return RationalBezier{{pose(from), pose(to)}, {}, {std::move(t0), std::move(t1)}};

@@ -8,6 +8,7 @@
 #include "src/html/report_html.h"
 #include "src/io/output_file.h"
 #include "src/io/parse.h"
+#include "src/verify/options.h"
 #include "src/verify/verify.h"
 
 #include "src/api/internal.h"
@@ -137,36 +138,22 @@ CheckResult public_check(const tmcert::Scene& scene, const tmcert::CheckResult& 
 
 }  // namespace
 
-tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o) {
-  tmcert::VerifyOptions options;
-  options.kernel = same_enum<tmcert::KernelKind>(o.kernel);
-  if (o.epsilon && o.epsilon->text() == "auto") {
-    options.refine = true;  // each check's own default, refined (SCENE_FORMAT.md "Decisive by default")
-  } else if (o.epsilon) {
-    tmcert::Exact e;
-    if (!tmcert::parse_exact(o.epsilon->text(), e) || !(e > 0))
-      throw InputError("epsilon: must be a positive number (decimal or p/q), got " + tmcert::quote_text(o.epsilon->text()));
-    options.epsilon = e;
-  } else {
-    options.epsilon = scene.epsilon;  // absent: each check's own default, refined
-    options.refine = !scene.epsilon;
-  }
-  if (o.max_depth && (*o.max_depth < 1 || *o.max_depth > 200))
-    throw InputError("max_depth: must be between 1 and 200, got " + std::to_string(*o.max_depth));
-  options.max_depth = o.max_depth ? *o.max_depth : scene.max_depth;
-  if (o.threads < 1 || o.threads > 256) throw InputError("threads: must be between 1 and 256, got " + std::to_string(o.threads));
-  options.threads = o.threads;
-  if (o.time_limit) {
-    const double seconds = *o.time_limit;
-    if (!std::isfinite(seconds) || !(seconds > 0) || seconds > 1e9)
-      throw InputError("time_limit: must be a number of seconds, > 0 and at most 1e9");
-    options.time_limit = seconds;
-  }
-  options.hierarchy = !o.all_pairs;
-  options.record_cover = o.certificate;
-  if (o.certificate && options.kernel == tmcert::KernelKind::Fast)
-    throw InputError("certificate: the fast kernel is not certified; use the filtered or the exact kernel");
-  return options;
+tmcert::WrittenOptions written_options(Kernel kernel, const std::optional<Number>& epsilon,
+                                       std::optional<int> max_depth, std::optional<double> time_limit, int threads) {
+  tmcert::WrittenOptions w;
+  w.kernel = same_enum<tmcert::KernelKind>(kernel);
+  if (epsilon) w.epsilon = tmcert::parse_epsilon(epsilon->text(), tmcert::OptionSpelling::Library);
+  w.max_depth = max_depth;
+  w.time_limit = time_limit;
+  w.threads = threads;
+  return w;
+}
+
+tmcert::VerifyOptions internal_options(const tmcert::Scene& scene, const VerifyOptions& o, tmcert::EpsilonScope scope) {
+  tmcert::WrittenOptions w = written_options(o.kernel, o.epsilon, o.max_depth, o.time_limit, o.threads);
+  w.all_pairs = o.all_pairs;
+  w.certificate = o.certificate;
+  return tmcert::build_options(w, scene, scope, tmcert::OptionSpelling::Library);
 }
 
 namespace {

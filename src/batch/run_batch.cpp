@@ -271,7 +271,7 @@ class Pool {
 
 int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
   const auto started = Clock::now();
-  RunProgress* const run = options.verify.run;
+  RunProgress* const run = options.run;
   if (run) {
     run->count_other_items();
     run->set_activity("reading the environment");
@@ -339,19 +339,12 @@ int run_batch(const BatchOptions& options, BatchCounts* counts_out) {
     for (const std::string& warning : scene.warnings) std::cerr << "tmcert batch: warning: " << warning << "\n";
   }
   if (run) run->set_activity("preparing the environment");
-  VerifyOptions verify = options.verify;
-  // No epsilon given (or `--epsilon auto`): the scene's default, refined
-  // (SCENE_FORMAT.md "Decisive by default").
-  verify.refine = options.epsilon_auto || (!options.epsilon && !scene.epsilon);
-  verify.epsilon = options.epsilon_auto ? default_epsilon(scene)
-                   : options.epsilon    ? *options.epsilon
-                   : scene.epsilon      ? *scene.epsilon
-                                        : default_epsilon(scene);
-  verify.max_depth = options.max_depth ? *options.max_depth : scene.max_depth;
+  VerifyOptions verify = build_options(options.verify, scene, EpsilonScope::WholeScene, options.spelling);
+  verify.run = options.run;
   verify.threads = 1;  // requests run in parallel instead
   const BatchEnvironment environment(std::move(scene), std::move(robots), verify, base, options.stats);
 
-  const int threads = std::max(1, options.threads);
+  const int threads = std::max(1, options.verify.threads);
   std::vector<std::unique_ptr<BatchEnvironment::Worker>> workers;
   for (int k = 0; k < threads; ++k) workers.push_back(std::make_unique<BatchEnvironment::Worker>(environment));
   Writer writer(file_out ? &*file_out : nullptr);

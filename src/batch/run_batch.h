@@ -4,7 +4,8 @@
 #pragma once
 
 #include "src/batch/shard.h"
-#include "src/verify/verify.h"
+#include "src/verify/options.h"
+#include "src/verify/progress.h"
 
 #include <optional>
 #include <string>
@@ -16,22 +17,21 @@ struct BatchOptions {
   std::string scene;     // the environment scene; empty: the first line of `requests`
   std::string output;    // the results file; empty: standard output
   Shard shard;
-  // Kernel, max_depth, time limit as for verify; epsilon and max_depth
-  // default to the environment scene's.
-  VerifyOptions verify;
-  std::optional<Exact> epsilon;
-  // `--epsilon auto`: the environment's default epsilon, refined, whatever
-  // the environment gives (refinement is also on when neither gives one).
-  bool epsilon_auto = false;
-  std::optional<int> max_depth;
-  int threads = 1;       // requests run in parallel (output order kept)
+  // Kernel, epsilon, max_depth, time limit as written, for verify
+  // (src/verify/options.h): epsilon and max_depth default to the
+  // environment scene's, epsilon by resolve_epsilon for the whole scene
+  // (one prepared environment serves every request); threads: requests
+  // run in parallel (output order kept), each check in one thread.
+  WrittenOptions verify;
+  OptionSpelling spelling = OptionSpelling::CommandLine;  // of messages
   bool stats = false;    // each check's "stats", wall-clock seconds included
   std::vector<std::string> package_paths;  // --package-path (ReadOptions)
   bool quiet = false;    // no summary line on stderr
-  // Progress and cancellation: verify.run (src/verify/progress.h) counts
-  // the shard's requests as its items (those read so far, those written);
+  // Progress and cancellation: `run` (src/verify/progress.h) counts the
+  // shard's requests as its items (those read so far, those written);
   // once it is cancelled, no further result line is written and run_batch
   // throws Cancelled (the output then ends after the last complete line).
+  RunProgress* run = nullptr;
 };
 
 // What a run did (its summary line).

@@ -9,6 +9,7 @@
 #include "src/html/report_html.h"
 #include "src/io/output_file.h"
 #include "src/io/parse.h"
+#include "src/verify/options.h"
 #include "src/verify/progress.h"
 #include "src/verify/verify.h"
 
@@ -139,12 +140,11 @@ class TerminalProgress {
   tmcert::ProgressWatcher watcher_;  // last: stopped first
 };
 
-// --epsilon: a positive number (decimal or p/q), exactly.
-tmcert::Exact epsilon_option(const std::string& text) {
-  tmcert::Exact e;
-  if (!tmcert::parse_exact(text, e) || !(e > 0))
-    throw tmcert::InputError("--epsilon: must be a positive number (decimal or p/q), got '" + text + "'");
-  return e;
+// --kernel (CLI11 admits only these three names).
+tmcert::KernelKind kernel_option(const std::string& name) {
+  return name == "exact" ? tmcert::KernelKind::Exact
+         : name == "fast" ? tmcert::KernelKind::Fast
+                          : tmcert::KernelKind::Filtered;
 }
 
 // --time-limit: a positive, finite number of seconds, at most 10^9 (about 31 years).
@@ -153,7 +153,7 @@ double time_limit_option(const std::string& option) {
   char* end = nullptr;
   errno = 0;
   const double seconds = std::strtod(text, &end);
-  if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(seconds) || !(seconds > 0) || seconds > 1e9)
+  if (end == text || *end != '\0' || errno == ERANGE || !tmcert::valid_time_limit(seconds))
     throw tmcert::InputError("--time-limit: must be a number of seconds, > 0 and at most 1e9, got '" + option + "'");
   return seconds;
 }
@@ -191,24 +191,17 @@ int run_verify(const VerifyArgs& args) {
   } else {
     print_warnings(scene);
   }
-  VerifyOptions options;
-  options.kernel = args.kernel == "exact" ? KernelKind::Exact
-                   : args.kernel == "fast" ? KernelKind::Fast
-                                           : KernelKind::Filtered;
-  if (args.epsilon == "auto") {
-    options.refine = true;  // each check's own default, refined
-  } else if (!args.epsilon.empty()) {
-    options.epsilon = epsilon_option(args.epsilon);  // fixed: no refinement
-  } else {
-    options.epsilon = scene.epsilon;  // absent: each check's own default, refined
-    options.refine = !scene.epsilon;
-  }
-  options.max_depth = args.max_depth >= 0 ? args.max_depth : scene.max_depth;
-  options.hierarchy = !args.all_pairs;
-  if (!args.time_limit.empty()) options.time_limit = time_limit_option(args.time_limit);
-  options.record_cover = !args.certificate.empty();
-  if (options.record_cover && options.kernel == KernelKind::Fast)
-    throw InputError("--certificate: the fast kernel is not certified; use --kernel filtered or exact");
+  // The options by the library's rules (src/verify/options.h), in the
+  // command line's words.
+  WrittenOptions written;
+  written.kernel = kernel_option(args.kernel);
+  if (!args.epsilon.empty()) written.epsilon = parse_epsilon(args.epsilon, OptionSpelling::CommandLine);
+  if (args.max_depth >= 0) written.max_depth = args.max_depth;
+  if (!args.time_limit.empty()) written.time_limit = time_limit_option(args.time_limit);
+  written.threads = args.threads;
+  written.all_pairs = args.all_pairs;
+  written.certificate = !args.certificate.empty();
+  VerifyOptions options = build_options(written, scene, EpsilonScope::PerCheck, OptionSpelling::CommandLine);
   require_supported(scene);
   if (!args.certificate.empty())
     if (const std::string why = certificate::uncertifiable(scene); !why.empty())
@@ -218,6 +211,10 @@ int run_verify(const VerifyArgs& args) {
   if (report_file) outputs.push_back(&*report_file);
   require_distinct(outputs, scene.input_files);
   options.run = &run;
+  // As before the options were built in one place: the command line's
+  // --threads spreads the checks, not the parts of one check (the library
+  // spreads both; the result is the same).
+  options.threads = 1;
   const SceneResult result = verify_scene(scene, options, args.threads);
   // Every document is built before anything is written, and the files
   // before the verdict is printed: running out of memory on the way leaves
@@ -284,13 +281,11 @@ int run_batch_command(BatchArgs& args) {
   using namespace tmcert;
   BatchOptions& o = args.options;
   if (args.shard) o.shard = Shard::parse(*args.shard);
-  o.verify.kernel = args.kernel == "exact" ? KernelKind::Exact
-                    : args.kernel == "fast" ? KernelKind::Fast
-                                            : KernelKind::Filtered;
-  if (args.epsilon == "auto") o.epsilon_auto = true;
-  else if (!args.epsilon.empty()) o.epsilon = epsilon_option(args.epsilon);
-  if (args.max_depth >= 0) o.max_depth = args.max_depth;
+  o.verify.kernel = kernel_option(args.kernel);
+  if (!args.epsilon.empty()) o.verify.epsilon = parse_epsilon(args.epsilon, OptionSpelling::CommandLine);
+  if (args.max_depth >= 0) o.verify.max_depth = args.max_depth;
   if (!args.time_limit.empty()) o.verify.time_limit = time_limit_option(args.time_limit);
+  o.spelling = OptionSpelling::CommandLine;
   return run_batch(o);
 }
 
@@ -344,13 +339,13 @@ int main(int argc, char** argv) {
                      "'auto' or absent (and none in the scene): per check, 1/1000 of the diagonal of its two bodies' "
                      "box, its undecided parts searched again at epsilon/10, ... down to 1e-9 of that diagonal");
   verify->add_option("--max-depth", args.max_depth, "subdivision depth limit (overrides the scene)")
-      ->check(CLI::Range(1, 200));  // as the scene's max_depth
+      ->check(CLI::Range(tmcert::kMinDepth, tmcert::kMaxDepth));  // as the scene's max_depth
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
   CLI::Option* certificate_option = verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
   CLI::Option* report_option = verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
-  verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(1, 256));
+  verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
                      "(reason limit), never safe; refinement (no --epsilon) stops at it, else at 30 s");
@@ -380,12 +375,12 @@ int main(int argc, char** argv) {
                     "environment): the environment's default, undecided parts searched again at epsilon/10, ... down to "
                     "epsilon/10^6");
   batch->add_option("--max-depth", batch_args.max_depth, "subdivision depth limit (overrides the environment)")
-      ->check(CLI::Range(1, 200));
+      ->check(CLI::Range(tmcert::kMinDepth, tmcert::kMaxDepth));
   batch->add_option("--kernel", batch_args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   batch->add_option("--time-limit", batch_args.time_limit, "seconds per check (the rest of a check past it is undecided)");
-  batch->add_option("--threads", batch_args.options.threads, "requests run in parallel (the output is the same)")
-      ->check(CLI::Range(1, 256));
+  batch->add_option("--threads", batch_args.options.verify.threads, "requests run in parallel (the output is the same)")
+      ->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   batch->add_option("--package-path", batch_args.options.package_paths, package_help)->allow_extra_args(false);
   batch->add_flag("--stats", batch_args.options.stats,
                   "give each check its stats, wall-clock seconds included (output not reproducible)");

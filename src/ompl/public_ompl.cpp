@@ -20,86 +20,9 @@ namespace tmcert::api {
 
 namespace {
 
-// The options of an edge: the public options by the command line's rules,
-// epsilon as the options give it, else the scene's, else the default of the
-// whole scene (as `tmcert batch`: FixedEnvironment needs one for all edges).
-tmcert::VerifyOptions edge_options(const tmcert::Scene& scene, const VerifyOptions& o) {
-  if (o.kernel == Kernel::Fast)
-    throw InputError("kernel: the fast kernel is not certified; the OMPL validator accepts only certified edges");
-  tmcert::VerifyOptions options = internal_options(scene, o);
-  // Without an epsilon (or "auto"): the scene's default, refined
-  // (internal_options sets `refine`).
-  if (!options.epsilon) options.epsilon = tmcert::default_epsilon(scene);
-  options.threads = 1;          // an edge is one search; planners run edges in their own threads
-  options.record_cover = false;  // no certificates of edges
-  return options;
-}
-
-const std::string& scene_name(const tmcert::Scene& scene) { return scene.source; }
-
-// A fixed body's geometry placed by its one-pose motion, if any (x -> A x + a
-// for the control point [A | a]), exactly.
-tmcert::Vec3E placed(const tmcert::Mat34E& m, const tmcert::Vec3E& x) {
-  tmcert::Vec3E out;
-  for (int r = 0; r < 3; ++r) out[r] = m[4 * r] * x[0] + m[4 * r + 1] * x[1] + m[4 * r + 2] * x[2] + m[4 * r + 3];
-  return out;
-}
-
-// The obstacles (bodies `indices` of the scene) as one fixed body, each
-// placed by its one-pose motion.  A body that moves, has a tolerance, or
-// is solid next to other obstacles (their union is then no longer the
-// solid the containment test expects) is rejected, naming the body.
-tmcert::Body obstacle_body(const tmcert::Scene& scene, const std::vector<std::size_t>& indices) {
-  tmcert::Body out;
-  out.name = "obstacles";
-  const auto field = [&](std::size_t i) {
-    return scene_name(scene) + ": bodies[" + std::to_string(i) + "] (" + tmcert::quote_text(scene.bodies[i].name) + ")";
-  };
-  for (std::size_t i : indices) {
-    const tmcert::Body& b = scene.bodies[i];
-    if (b.moves())
-      throw InputError(field(i) + ".motion: the obstacles of an OMPL planning scene must be fixed (every body but the robot)");
-    if (b.tolerance != 0) throw InputError(field(i) + ".tolerance: tolerances are not supported by the OMPL validator");
-    if (b.solid && indices.size() > 1)
-      throw InputError(field(i) + ".solid: a solid obstacle must be the only obstacle of an OMPL planning scene");
-    if (b.primitive)  // its collisions must be proven on its true shape, in its own frame
-      throw InputError(field(i) + ": a robot link's URDF cylinder or sphere cannot be an obstacle of an OMPL planning scene");
-    const bool posed = b.motion.has_value() || b.trajectory.has_value();
-    if (b.trajectory)  // a one-pose trajectory does not occur (keyframes of one pose reduce to a motion)
-      throw InputError(field(i) + ".motion: the obstacles of an OMPL planning scene must be fixed (every body but the robot)");
-    const tmcert::Mat34E pose = posed ? b.motion->control_points.front() : tmcert::Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-    const auto at = [&](const tmcert::Vec3E& x) { return posed ? placed(pose, x) : x; };
-    const int offset = static_cast<int>(out.polygons.size());
-    for (const auto& polygon : b.polygons) {
-      std::vector<tmcert::Vec3E> p;
-      for (const tmcert::Vec3E& x : polygon) p.push_back(at(x));
-      out.polygons.push_back(std::move(p));
-    }
-    for (const tmcert::ConvexPiece& piece : b.pieces) {
-      tmcert::ConvexPiece p{offset + piece.polygon, {}};
-      for (const tmcert::Vec3E& x : piece.vertices) p.vertices.push_back(at(x));
-      out.pieces.push_back(std::move(p));
-    }
-    for (const auto& s : b.segments) out.segments.push_back({at(s[0]), at(s[1])});
-    for (const tmcert::Vec3E& x : b.points) out.points.push_back(at(x));
-    for (std::size_t k = 0; k < b.mass.points.size(); ++k) {
-      out.mass.points.push_back(at(b.mass.points[k]));
-      out.mass.weights.push_back(b.mass.weights[k]);
-    }
-    out.solid = b.solid;
-    out.enlarged.insert(out.enlarged.end(), b.enlarged.begin(), b.enlarged.end());
-  }
-  return out;
-}
-
-// The scene's clearances are not honoured by the validator: reject them.
-void require_no_clearance(const tmcert::Scene& scene) {
-  if (scene.clearance != 0) throw InputError(scene_name(scene) + ": clearance: not supported by the OMPL validator");
-  for (std::size_t k = 0; k < scene.check_clearance.size(); ++k)
-    if (scene.check_clearance[k] && *scene.check_clearance[k] != 0)
-      throw InputError(scene_name(scene) + ": checks[" + std::to_string(k) +
-                       "].clearance: not supported by the OMPL validator");
-}
+// The words of the OMPL adapter's refusals (src/api/environment.cpp).
+const ObstacleWords kOmpl{"an OMPL planning scene", "the OMPL validator", "every body but the robot",
+                          "the OMPL validator accepts only certified edges"};
 
 const tmcert::SceneRobot& scene_robot(const Scene& scene, const std::string& name) {
   for (const tmcert::SceneRobot& r : scene.impl().robots)
@@ -114,7 +37,7 @@ std::shared_ptr<ompl::base::MotionValidator> use_certified_se3(const ompl::base:
                                                                const VerifyOptions& options) {
   return public_errors([&]() -> std::shared_ptr<ompl::base::MotionValidator> {
     const tmcert::Scene& s = *scene.impl().scene;
-    require_no_clearance(s);
+    require_no_clearance(s, kOmpl);
     std::optional<std::size_t> robot;
     std::vector<std::size_t> obstacles;
     for (std::size_t i = 0; i < s.bodies.size(); ++i)
@@ -122,7 +45,8 @@ std::shared_ptr<ompl::base::MotionValidator> use_certified_se3(const ompl::base:
       else obstacles.push_back(i);
     if (!robot) throw InputError(s.source + ": bodies: no body named " + tmcert::quote_text(robot_body));
     if (obstacles.empty()) throw InputError(s.source + ": bodies: no obstacle (every body but the robot is one)");
-    return tmcert::use_certified_se3(si, s.bodies[*robot], obstacle_body(s, obstacles), edge_options(s, options));
+    return tmcert::use_certified_se3(si, s.bodies[*robot], obstacle_body(s, obstacles, kOmpl),
+                                     environment_options(s, options, kOmpl));
   });
 }
 
@@ -132,7 +56,7 @@ std::shared_ptr<ompl::base::MotionValidator> use_certified_arm(
     const std::vector<std::pair<std::string, std::string>>& allowed_pairs, const VerifyOptions& options) {
   return public_errors([&]() -> std::shared_ptr<ompl::base::MotionValidator> {
     const tmcert::Scene& s = *scene.impl().scene;
-    require_no_clearance(s);
+    require_no_clearance(s, kOmpl);
     const tmcert::SceneRobot& robot = scene_robot(scene, robot_name);
     std::vector<bool> link(s.bodies.size(), false);
     for (int b : robot.bodies) link[b] = true;
@@ -141,8 +65,8 @@ std::shared_ptr<ompl::base::MotionValidator> use_certified_arm(
       if (!link[i]) obstacles.push_back(i);
     if (obstacles.empty())
       throw InputError(s.source + ": bodies: no obstacle (every body but the robot's links is one)");
-    return tmcert::use_certified_arm(si, robot.robot, joints, obstacle_body(s, obstacles), self_collision,
-                                     allowed_pairs, edge_options(s, options));
+    return tmcert::use_certified_arm(si, robot.robot, joints, obstacle_body(s, obstacles, kOmpl), self_collision,
+                                     allowed_pairs, environment_options(s, options, kOmpl));
   });
 }
 

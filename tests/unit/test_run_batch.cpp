@@ -59,7 +59,7 @@ tmcert::BatchOptions options(const fs::path& requests, const fs::path& output, i
   o.requests = requests.string();
   o.scene = kExample + "/environment.json";
   o.output = output.string();
-  o.threads = threads;
+  o.verify.threads = threads;
   o.quiet = true;
   return o;
 }
@@ -94,7 +94,7 @@ BOOST_AUTO_TEST_CASE(cancelled_before_the_first_result) {
     run.count_other_items();
     run.cancel();
     tmcert::BatchOptions o = options(file, dir.path / "out.jsonl", n);
-    o.verify.run = &run;
+    o.run = &run;
     BOOST_CHECK_THROW(tmcert::run_batch(o), tmcert::Cancelled);
     BOOST_TEST(content(dir.path / "out.jsonl").empty(), n << " threads");
   }
@@ -111,7 +111,7 @@ BOOST_AUTO_TEST_CASE(cancelled_while_running) {
     tmcert::RunProgress run;
     run.count_other_items();
     tmcert::BatchOptions o = options(file, dir.path / "out.jsonl", n);
-    o.verify.run = &run;
+    o.run = &run;
     std::atomic<bool> over{false};
     std::thread canceller([&] {
       while (!over && run.report().checks_done < 20) std::this_thread::sleep_for(std::chrono::microseconds(200));
