@@ -1,0 +1,331 @@
+// Internal to src/verify: a check's tests of the configuration at one curve
+// parameter (search_check.h): the filtered static test under the curve's or the
+// enclosure's poses, the witnesses a stop tries (a common point, a vertex inside
+// a solid, a closest pair within a clearance or tolerance, a point of the true
+// shapes of URDF primitives), and the whole configuration's apartness used by
+// the partition (proofs/witness.md, proofs/containment.md, proofs/partition.md).
+#pragma once
+
+#include "src/verify/search_check.h"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace tmcert::detail {
+
+template <int B>
+void Check<B>::set_witness(const Exact& u, const StaticHit& hit) {
+  const std::string a = moving.body->name + " " + moving.parts[hit.part_moving].name;
+  const std::string b = other.body->name + " " + other.parts[hit.part_other].name;
+  Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, hit.point};
+  if (hit.box) {
+    std::array<std::array<Exact, 2>, 3> box;
+    for (int i = 0; i < 3; ++i) box[i] = {Exact((*hit.box)[i].inf()), Exact((*hit.box)[i].sup())};
+    w.point_box = box;
+  }
+  result.witness = w;
+  result.verdict = Verdict::Collision;
+}
+
+// The configuration at curve parameter u: interval maps first (cheap),
+// exact only for simplex pairs the interval filter cannot separate.
+// With enclosed motions the poses are known exactly only where the
+// motion is rational (keyframes with exact rotations); elsewhere a hit
+// must be a certain transversal crossing (kernels/robust_crossing.h), and
+// `uncertain` (when given) is set when a simplex pair could be neither
+// separated nor proven to meet.
+template <int B>
+std::optional<StaticHit> Check<B>::static_test(const Exact& u, const std::set<std::pair<int, int>>* only,
+                                               bool* uncertain) {
+  ++result.stats.static_configurations;
+  std::array<std::array<Interval, 12>, B> maps;
+  if (extras.enclosed) {
+    maps = extras.enclosed->poses(u);
+  } else {
+    RoundingGuard guard;
+    const Interval ui = to_interval(u), vi = Interval(1) - ui;
+    HomogeneousCurve<Interval, B> work = root_interval;
+    constexpr std::size_t W = kHomogeneousSize<B> - 1;
+    for (std::size_t level = 1; level < work.size(); ++level)
+      for (std::size_t k = 0; k + level < work.size(); ++k)
+        for (std::size_t e = 0; e <= W; ++e) work[k][e] = vi * work[k][e] + ui * work[k + 1][e];
+    for (int b = 0; b < B; ++b)
+      for (int e = 0; e < 12; ++e) maps[b][e] = work[0][12 * b + e] / work[0][W];
+  }
+  return filtered_first_hit(
+      moving.parts, &maps[0], other.parts, B == 2 ? &maps[B - 1] : nullptr, only,
+      [&]() -> std::optional<std::pair<std::optional<Mat34E>, std::optional<Mat34E>>> {
+        std::pair<std::optional<Mat34E>, std::optional<Mat34E>> exact;
+        if (extras.enclosed) {
+          const auto poses = extras.enclosed->exact_poses(u);
+          if (!poses) return std::nullopt;  // enclosed only: certain crossings
+          exact.first = (*poses)[0];
+          if constexpr (B == 2) exact.second = (*poses)[1];
+          return exact;
+        }
+        exact.first = evaluate<B>(curve, u, 0);
+        if constexpr (B == 2) exact.second = evaluate<B>(curve, u, 1);
+        return exact;
+      },
+      result.stats, uncertain);
+}
+
+// The pairs of parts that still have a live feature pair, into `parts`;
+// true (parts left incomplete) when a pair of hierarchy nodes is still
+// alive, which may hold any pair of parts.
+template <int B>
+bool Check<B>::live_parts(const std::vector<PairRef>& alive, std::set<std::pair<int, int>>& parts) const {
+  for (const PairRef& p : alive) {
+    if (p.nodes) return true;
+    parts.insert({moving_table(moving, p.kind).part[p.i], other_table(other, p.kind).part[p.j]});
+  }
+  return false;
+}
+
+// Exact static test of the configuration at curve parameter u, restricted
+// to the parts that still have a live feature pair (all parts when a pair
+// of hierarchy nodes is still alive); then, with a tolerance or a
+// clearance, the distance witness.
+template <int B>
+bool Check<B>::try_witness(const Exact& u, const std::vector<PairRef>& alive) {
+  if (enlarged_pair(*moving.body, *other.body)) return true_witness(u, alive);
+  std::set<std::pair<int, int>> parts;
+  const bool all = live_parts(alive, parts);
+  if (auto hit = static_test(u, all ? nullptr : &parts)) {
+    set_witness(u, *hit);
+    return true;
+  }
+  return interior_witness(u) == Apartness::Contact || distance_witness(u, all ? nullptr : &parts);
+}
+
+// A URDF cylinder or sphere (Body::primitive) in the check: a contact of
+// the polyhedra (a static hit, a component inside, a distance witness)
+// is one of the enlarged model only.  The witness is a point proven in
+// both true bodies at u (true_shape.h); when there is none but the
+// polyhedra touch at u, the piece's stop is `enlarged_model`
+// (proofs/robot-links.md section 6).
+template <int B>
+bool Check<B>::true_witness(const Exact& u, const std::vector<PairRef>& alive) {
+  const std::array<ShapeSide, 2> side = sides_at(u);
+  if (const std::optional<TrueContact> c = true_contact(side[0], side[1], result.stats)) {
+    result.witness = witness_of(scene_t(u), *c, swapped);
+    result.verdict = Verdict::Collision;
+    return true;
+  }
+  std::set<std::pair<int, int>> parts;
+  const bool all = live_parts(alive, parts);
+  bool uncertain = false;
+  CheckResult probe;  // the enlarged model's witnesses, not reported
+  Check sub = fork(probe);
+  if (sub.static_test(u, all ? nullptr : &parts, &uncertain) || uncertain || sub.interior_witness(u) != Apartness::Free ||
+      sub.distance_witness(u, all ? nullptr : &parts))
+    enlarged_touch = true;
+  result.stats.static_tests += probe.stats.static_tests;
+  return false;
+}
+
+// The polyhedra of a URDF primitive touch on [u0, u1] without a contact
+// of the true shapes proven there: the contact tests see only the onset
+// of contact, and the true shapes meet (if they do) after the polyhedra
+// do, so the true contact is tried at later instants u1 + (u1 - u0) 2^k up
+// to the end.  Found at u: [u0, u] is undecided `enlarged_model` and the
+// witness is at u (proofs/robot-links.md section 6).
+template <int B>
+bool Check<B>::true_witness_later(const Exact& u0, const Exact& u1) {
+  Exact step = u1 - u0;
+  if (!(step > 0)) step = Exact(1, 1024);
+  for (int k = 0; k < 70 && u1 < 1; ++k, step *= 2) {
+    const Exact u = std::min(Exact(1), u1 + step);
+    const std::array<ShapeSide, 2> side = sides_at(u);
+    if (const std::optional<TrueContact> c = true_contact(side[0], side[1], result.stats)) {
+      const Exact t0 = scene_t(u0), tw = scene_t(u);
+      if (!result.undecided.empty() && result.undecided.back().t1 == t0 &&
+          result.undecided.back().reason == StopReason::EnlargedModel)
+        result.undecided.back().t1 = tw;
+      else
+        result.undecided.push_back({t0, tw, StopReason::EnlargedModel});
+      result.first_contact = std::pair{result.first_contact ? result.first_contact->first : t0, tw};
+      result.witness = witness_of(tw, *c, swapped);
+      result.verdict = Verdict::Collision;
+      ++result.stats.stops;
+      return true;
+    }
+    if (u == 1) break;
+  }
+  return false;
+}
+
+// The two bodies at curve parameter u (moving, other), for true_contact.
+template <int B>
+std::array<ShapeSide, 2> Check<B>::sides_at(const Exact& u) const {
+  std::array<PoseInterval, B> maps;
+  std::array<std::optional<Mat34E>, B> exact;
+  if (extras.enclosed) {
+    maps = extras.enclosed->poses(u);
+    for (int b = 0; b < B; ++b) exact[b] = extras.enclosed->models[b]->exact_pose(extras.enclosed->s_of(b, u));
+  } else {
+    for (int b = 0; b < B; ++b) {
+      exact[b] = b == 0 ? evaluate<B>(curve, u, 0) : evaluate<B>(curve, u, B - 1);
+      for (int e = 0; e < 12; ++e) maps[b][e] = to_interval((*exact[b])[e]);
+    }
+  }
+  return {moving_side(moving, exact[0], maps[0]), B == 2 ? moving_side(other, exact[B - 1], maps[B - 1]) : fixed_side(other)};
+}
+
+// A solid's inside counts as contact: a vertex of one body inside a
+// solid body at u, exactly, is a collision there, so an interpenetration
+// lasting a moment is proven even when the surfaces meet only at
+// irrational times.  One vertex per connected component suffices when
+// the surfaces do not meet at u (proofs/containment.md §5); any vertex
+// found inside is a witness whatever the surfaces do.  Free: no solid, or
+// no component inside; Unknown: a solid and no exact pose at u.
+template <int B>
+Apartness Check<B>::interior_witness(const Exact& u) {
+  if (!has_solid()) return Apartness::Free;
+  Mat34E pose[2];
+  if (extras.enclosed) {  // exact poses only (a keyframe with an exact rotation)
+    const auto poses = extras.enclosed->exact_poses(u);
+    if (!poses) return Apartness::Unknown;
+    pose[0] = (*poses)[0];
+    pose[1] = B == 2 ? (*poses)[B - 1] : fixed_pose(*other.body);
+  } else {
+    pose[0] = evaluate<B>(curve, u, 0);
+    pose[1] = B == 2 ? evaluate<B>(curve, u, B - 1) : fixed_pose(*other.body);
+  }
+  const Body* body[2] = {moving.body, other.body};
+  for (int s = 0; s < 2; ++s) {
+    if (!body[s]->solid) continue;
+    const std::unique_ptr<ClosedSurface> surface = placed_surface(*body[s], pose[s]);
+    if (!surface) continue;  // singular: the solid is its surface, tested above
+    for (const auto& [part, point] : component_representatives(*body[1 - s], pose[1 - s])) {
+      ++result.stats.static_tests;
+      if (!surface->contains(point)) continue;
+      std::array<std::string, 2> names;
+      names[s] = body[s]->name + " interior";
+      names[1 - s] = body[1 - s]->name + " " + part;
+      result.witness = Witness{scene_t(u), swapped ? std::array{names[1], names[0]} : names, point};
+      result.verdict = Verdict::Collision;
+      return Apartness::Contact;
+    }
+  }
+  return Apartness::Free;
+}
+
+// Tolerance and clearance (SCENE_FORMAT.md): at curve parameter u, where
+// the poses are exact, the exact closest points of the two bodies; they
+// prove a clearance violation when no farther apart than the clearance,
+// and a toleranced contact when a translation within one body's tolerance
+// brings them together (proofs/enclosures.md section 6).
+template <int B>
+bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, int>>* only) {
+  if (!extras.distance_witness()) return false;
+  Mat34E m1;
+  std::optional<Mat34E> m2;
+  if (extras.enclosed) {
+    const auto exact = extras.enclosed->exact_poses(u);
+    if (!exact) return false;
+    m1 = (*exact)[0];
+    if constexpr (B == 2) m2 = (*exact)[1];
+  } else {
+    m1 = evaluate<B>(curve, u, 0);
+    if constexpr (B == 2) m2 = evaluate<B>(curve, u, 1);
+  }
+  Exact bound2 = extras.clearance2;
+  for (const Exact& r : extras.reach2) bound2 = std::max(bound2, r);
+  const auto hit = closest_within(moving.parts, &m1, other.parts, m2 ? &*m2 : nullptr, bound2, only, result.stats);
+  if (!hit) return false;
+  const ClosestPoints* best = &hit->points;
+  const int best_i = hit->part_a, best_j = hit->part_b;
+  const std::string a = moving.body->name + " " + moving.parts[best_i].name;
+  const std::string b = other.body->name + " " + other.parts[best_j].name;
+  Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, best->a};
+  if (best->d2 > 0) {
+    if (extras.clearance2 > 0 && best->d2 <= extras.clearance2) {
+      w.points = swapped ? std::array{best->b, best->a} : std::array{best->a, best->b};
+      w.point = (*w.points)[0];
+    } else if (best->d2 <= extras.reach2[0]) {  // translate the moving body onto the other
+      w.displacement = Vec3E{best->b[0] - best->a[0], best->b[1] - best->a[1], best->b[2] - best->a[2]};
+      w.displaced = swapped ? 1 : 0;
+      w.point = best->b;
+    } else {
+      w.displacement = Vec3E{best->a[0] - best->b[0], best->a[1] - best->b[1], best->a[2] - best->b[2]};
+      w.displaced = swapped ? 0 : 1;
+      w.point = best->a;
+    }
+  }
+  result.witness = w;
+  result.verdict = Verdict::Collision;
+  return true;
+}
+
+// Whether one body of the pair (a solid) holds a component of the other
+// at curve parameter u, by the start machinery of solids
+// (start_containment: exact ray parity at exact poses, else the boxes
+// of the enclosed poses).  Contact sets the witness.
+template <int B>
+Apartness Check<B>::containment_at(const Exact& u) {
+  if (!has_solid()) return Apartness::Free;
+  auto enclosed = [](const Mat34E& m) {
+    std::array<Interval, 12> out;
+    for (int e = 0; e < 12; ++e) out[e] = to_interval(m[e]);
+    return out;
+  };
+  StartPose pose[2];
+  if (extras.enclosed) {
+    const auto boxes = extras.enclosed->poses(u);
+    const auto exact = extras.enclosed->exact_poses(u);
+    for (int b = 0; b < B; ++b) {
+      pose[b].map = boxes[b];
+      if (exact) pose[b].exact = (*exact)[b];
+    }
+  } else {
+    for (int b = 0; b < B; ++b) {
+      pose[b].exact = evaluate<B>(curve, u, b);
+      pose[b].map = enclosed(*pose[b].exact);
+    }
+  }
+  if constexpr (B == 1) {
+    pose[1].exact = fixed_pose(*other.body);
+    pose[1].map = enclosed(*pose[1].exact);
+  }
+  const Body* body[2] = {moving.body, other.body};
+  bool unknown = false;
+  for (int s = 0; s < 2; ++s) {
+    if (!body[s]->solid) continue;
+    const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+    ++result.stats.static_tests;
+    const Containment c = start_containment(*body[s], every_vertex(*body[s]), pose[s], *body[1 - s],
+                                            component_representatives(*body[1 - s], identity), pose[1 - s],
+                                            (s == 0) != swapped);
+    if (c.kind == Containment::Kind::Hit) {
+      result.witness = *c.witness;
+      result.witness->t = scene_t(u);
+      result.verdict = Verdict::Collision;
+      return Apartness::Contact;
+    }
+    unknown = unknown || c.kind == Containment::Kind::Unknown;
+  }
+  return unknown ? Apartness::Unknown : Apartness::Free;
+}
+
+// The whole configuration at curve parameter u: every simplex pair's
+// static test, then the solids' insides, then (tolerance, clearance) the
+// distance witness.  Contact sets the witness.
+template <int B>
+Apartness Check<B>::free_at(const Exact& u) {
+  bool uncertain = false;
+  if (auto hit = static_test(u, nullptr, &uncertain)) {
+    set_witness(u, *hit);
+    return Apartness::Contact;
+  }
+  const Apartness inside = uncertain ? Apartness::Unknown : containment_at(u);
+  if (inside == Apartness::Contact) return inside;
+  if (distance_witness(u, nullptr)) return Apartness::Contact;
+  return inside;
+}
+
+}  // namespace tmcert::detail
