@@ -2,6 +2,7 @@
 // tiling of its interval, its verdict against its pieces and undecided
 // intervals, its witness, its start claims, and its pieces' proofs in turn.
 #include "src/certificate/checker.h"
+#include "src/certificate/check_enclosed.h"
 #include "src/certificate/check_ray.h"
 #include "src/certificate/exact_claims.h"
 
@@ -317,23 +318,41 @@ std::string Checker::at_text(const CheckContext& ctx, const Exact& t) {
 
 // Checks the start claims, and that one is given at every run start in
 // `runs` for each solid body with a nonsingular pose there; returns the
-// number of points checked.
+// number of points checked.  Where both poses at a claim's instant are
+// exact the other body's vertex is placed exactly; otherwise it is enclosed
+// in the solid's frame (check_enclosed.h).
 std::size_t Checker::check_start(CheckContext& ctx, const std::vector<Exact>& runs) {
   std::size_t checked = 0;
   const bool solid = ctx.body[0]->solid || ctx.body[1]->solid;
-  // The poses at each instant a claim is made or needed, exact.
-  std::map<Exact, std::array<Mat34E, 2>> poses;
-  auto poses_at = [&](const Exact& t) -> const std::array<Mat34E, 2>& {
+  // The poses at each instant a claim is made or needed: exact, or (when
+  // either is not) both enclosed, the exact one with radius 0.
+  struct Poses {
+    std::array<std::optional<Mat34E>, 2> exact;
+    std::array<PoseBox, 2> box;
+    bool enclosed() const { return !exact[0] || !exact[1]; }
+    // A nonsingular pose: exact with a nonzero determinant, or enclosed
+    // (rigid: a keyframe or robot link motion).
+    bool nonsingular(int s) const { return !exact[s] || sgn(determinant(*exact[s])) != 0; }
+  };
+  std::map<Exact, Poses> poses;
+  auto poses_at = [&](const Exact& t) -> const Poses& {
     auto it = poses.find(t);
     if (it != poses.end()) return it->second;
-    std::array<Mat34E, 2> p;
-    for (int s = 0; s < 2; ++s) {
-      const std::optional<Mat34E> m = claim_pose(ctx, s, t);
-      if (!m)
-        reject(ctx.label + ": start: the pose of " + quote_text(ctx.body[s]->name) + " at " + at_text(ctx, t) +
-               " is not exact (a transcendental rotation): start claims need exact poses");
-      p[s] = *m;
-    }
+    Poses p;
+    for (int s = 0; s < 2; ++s) p.exact[s] = claim_pose(ctx, s, t);
+    if (p.enclosed())
+      for (int s = 0; s < 2; ++s) {
+        if (p.exact[s]) {
+          p.box[s].center = *p.exact[s];
+          for (Exact& r : p.box[s].radius) r = 0;
+          continue;
+        }
+        const std::optional<PoseBox> box = ctx.body[s]->motion ? std::nullopt : pose_box_at(*ctx.body[s], t);
+        if (!box)
+          reject(ctx.label + ": start: the pose of " + quote_text(ctx.body[s]->name) + " at " + at_text(ctx, t) +
+                 " is neither exact nor finitely enclosed: start claims need exact or enclosed poses");
+        p.box[s] = *box;
+      }
     return poses.emplace(t, p).first->second;
   };
   if (solid)
@@ -347,14 +366,29 @@ std::size_t Checker::check_start(CheckContext& ctx, const std::vector<Exact>& ru
     BodyData& other = *ctx.data[1 - s];
     const std::string L = ctx.label + ": start[" + std::to_string(k) + "] (solid " + quote_text(solid_body.name) + ")";
     if (!solid_body.solid) reject(L + ": " + quote_text(solid_body.name) + " is not solid");
-    const std::array<Mat34E, 2>& pose = poses_at(entry.t);
-    const std::vector<std::vector<Vec3E>> polygons = placed(*ctx.data[s], pose[s]);
+    const Poses& pose = poses_at(entry.t);
+    const bool enclosed = pose.enclosed();
+    // Exact: the solid's polygons placed; enclosed: in its own frame.
+    const std::vector<std::vector<Vec3E>> polygons =
+        enclosed ? placed(*ctx.data[s], identity_pose()) : placed(*ctx.data[s], *pose.exact[s]);
     const std::vector<int> shells = piece_shells(solid_body);
     for (std::size_t i = 0; i < entry.points.size(); ++i) {
       const StartPoint& p = entry.points[i];
-      const Vec3E x = place_point(pose[1 - s], other.elems[p.element][p.vertex]);
+      const Vec3E& vertex = other.elems[p.element][p.vertex];
       const std::string LP = L + ".points[" + std::to_string(i) + "] (" + quote_text(other.body->name) + " element " +
                              std::to_string(p.element) + " vertex " + std::to_string(p.vertex) + ")";
+      Vec3E x;
+      if (enclosed) {
+        const std::optional<RBox> box = solid_frame_box(pose.box[s], pose.exact[s], pose.box[1 - s], vertex);
+        if (!box) reject(LP + ": the pose of " + quote_text(solid_body.name) + " is singular");
+        for (std::size_t q = 0; q < polygons.size(); ++q)
+          if (!box_clear_of_polygon(*box, polygons[q]))
+            reject(LP + ": the box enclosing the vertex at " + at_text(ctx, entry.t) + " in the frame of " +
+                   quote_text(solid_body.name) + " is not clear of its element " + std::to_string(q));
+        x = box_center(*box);
+      } else {
+        x = place_point(*pose.exact[1 - s], vertex);
+      }
       const std::optional<std::vector<int>> n = ray_crossings(polygons, shells, x, p.ray);
       if (!n)
         reject(LP + ": the ray along " + str(p.ray) +
@@ -382,7 +416,7 @@ std::size_t Checker::check_start(CheckContext& ctx, const std::vector<Exact>& ru
   if (solid)
     for (const Exact& t : runs)
       for (int s = 0; s < 2; ++s)
-        if (ctx.body[s]->solid && !seen.count({s, t}) && sgn(determinant(poses_at(t)[s])) != 0)
+        if (ctx.body[s]->solid && !seen.count({s, t}) && poses_at(t).nonsingular(s))
           reject(ctx.label + ": start: no claim for the solid " + quote_text(ctx.body[s]->name) + " (\"" +
                  (s == 0 ? "a" : "b") + "\")" + (t == ctx.t0 ? "" : " at t = " + str(t)) +
                  ": the other body could " +

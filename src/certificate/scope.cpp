@@ -14,18 +14,19 @@ std::pair<Exact, Exact> check_interval(const Body& a, const Body& b) {
 }
 
 std::string uncertifiable(const Scene& scene) {
-  // Start claims place the other body's vertices exactly at the start: a
-  // check with a solid body needs exact poses of both bodies there (a
-  // keyframe motion starting at an rpy rotation has none).
+  // Start claims place the other body's vertices at the start, exactly or
+  // (where a pose there is not exact: an rpy rotation, a joint away from 0)
+  // enclosed by the checker's own pose boxes: a check with a solid body
+  // needs a finite enclosure of both poses there.
   for (const auto& [ia, ib] : scene.checks) {
     const Body& a = scene.bodies[ia];
     const Body& b = scene.bodies[ib];
     if (a.solid || b.solid) {
       const Exact t0 = check_interval(a, b).first;
       for (const Body* body : {&a, &b})
-        if (!exact_pose_at(*body, t0))
+        if (!exact_pose_at(*body, t0) && (body->motion || !pose_box_at(*body, t0)))
           return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
-                 "\" at its start is not exact (a transcendental rotation)";
+                 "\" at its start is neither exact nor enclosed";
     }
     // A URDF cylinder or sphere: its collisions are proven on the true
     // shape and its safe parts may rest on finer polyhedra than the

@@ -40,6 +40,10 @@ std::optional<std::pair<Vec3E, bool>> ray_from(const Body& solid, const std::vec
 // det of m's linear part is 0.
 bool singular(const Mat34E& m);
 
+// Per element the root of its component (elements linked by exactly equal
+// vertices), the first element of each component its own root.
+std::vector<std::size_t> component_roots(const std::vector<std::vector<Vec3E>>& el);
+
 // ---------------------------------------------------------------- one check
 
 struct CheckWriter {
@@ -87,6 +91,16 @@ struct CheckWriter {
   void before_witness(const Prover& prover, const Exact& from, json& out) const;
 
   void start(const Exact& at, json& out) const;
+
+  // The pose start claims place a body by when it is exact (a rational
+  // motion anywhere; a planner motion where its pose is exact), else none.
+  std::optional<Mat34E> exact_start_pose(const Body& body, const Exact& at) const;
+
+  // The start claim of solid k (0: a, 1: b) where a pose at `at` is not
+  // exact: the other body's vertices enclosed in the solid's frame
+  // (check_enclosed.h), one per component, each box clear of the solid's
+  // polygons and its centre outside by a ray.
+  void enclosed_start(int k, const Exact& at, json& out) const;
 
   // Runs of pieces (in order) of an undecided check with a solid body that
   // start after an undecided interval where a body's pose is not exact:

@@ -5,10 +5,13 @@
 #include "src/certificate/writer_check.h"
 #include "src/certificate/algebraic_witness.h"
 #include "src/certificate/check.h"
+#include "src/certificate/check_enclosed.h"
 #include "src/certificate/exact_claims.h"
 #include "src/model/solid.h"
 
 #include <algorithm>
+#include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <sstream>
@@ -125,6 +128,26 @@ std::optional<std::pair<Vec3E, bool>> ray_from(const Body& solid, const std::vec
 bool singular(const Mat34E& m) {
   return m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8]) +
              m[2] * (m[4] * m[9] - m[5] * m[8]) == 0;
+}
+
+// Per element the root of its component (elements linked by exactly equal
+// vertices), the first element of each component its own root.
+std::vector<std::size_t> component_roots(const std::vector<std::vector<Vec3E>>& el) {
+  std::vector<std::size_t> parent(el.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<Vec3E, std::size_t> owner;
+  for (std::size_t e = 0; e < el.size(); ++e)
+    for (const Vec3E& v : el[e]) {
+      auto [it, fresh] = owner.emplace(v, e);
+      if (!fresh) parent[find(e)] = find(it->second);
+    }
+  std::vector<std::size_t> root(el.size());
+  for (std::size_t e = 0; e < el.size(); ++e) root[e] = find(e);
+  return root;
 }
 
 // ---------------------------------------------------------------- witnesses and start claims
@@ -338,26 +361,19 @@ void CheckWriter::start(const Exact& at, json& out) const {
     const Body& solid = *bodies[k];
     const Body& other = *bodies[1 - k];
     if (!solid.solid) continue;
+    if (!exact_start_pose(solid, at) || !exact_start_pose(other, at)) {
+      enclosed_start(k, at, out);
+      continue;
+    }
     const Mat34E ms = pose(solid, at);
     if (singular(ms)) continue;
     const auto polygons = placed_pieces(solid, ms);
     const Mat34E mo = pose(other, at);
     const auto el = elements(other);
-    std::vector<std::size_t> parent(el.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    auto find = [&](std::size_t i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    std::map<Vec3E, std::size_t> owner;
-    for (std::size_t e = 0; e < el.size(); ++e)
-      for (const Vec3E& v : el[e]) {
-        auto [it, fresh] = owner.emplace(v, e);
-        if (!fresh) parent[find(e)] = find(it->second);
-      }
+    const std::vector<std::size_t> root = component_roots(el);
     json points = json::array();
     for (std::size_t e = 0; e < el.size(); ++e) {
-      if (find(e) != e) continue;
+      if (root[e] != e) continue;
       const Vec3E p = apply(mo, el[e][0]);
       auto ray = ray_from(solid, polygons, p);
       if (!ray || ray->second)
@@ -369,6 +385,66 @@ void CheckWriter::start(const Exact& at, json& out) const {
     entry["points"] = std::move(points);
     out.push_back(std::move(entry));
   }
+}
+
+std::optional<Mat34E> CheckWriter::exact_start_pose(const Body& body, const Exact& at) const {
+  if (body.trajectory) return exact_pose_at(body, at);
+  return pose(body, at);
+}
+
+void CheckWriter::enclosed_start(int k, const Exact& at, json& out) const {
+  const Body* bodies[2] = {&a, &b};
+  const Body& solid = *bodies[k];
+  const Body& other = *bodies[1 - k];
+  // The two poses as the checker encloses them (the exact one with radius 0).
+  std::optional<Mat34E> exact[2];
+  PoseBox box[2];
+  const Body* pair[2] = {&solid, &other};
+  for (int s = 0; s < 2; ++s) {
+    exact[s] = exact_start_pose(*pair[s], at);
+    if (exact[s]) {
+      box[s].center = *exact[s];
+      for (Exact& r : box[s].radius) r = 0;
+      continue;
+    }
+    const std::optional<PoseBox> b = pair[s]->motion ? std::nullopt : pose_box_at(*pair[s], at);
+    if (!b) fail("the pose of " + pair[s]->name + " at t = " + to_string(at) + " is neither exact nor enclosed");
+    box[s] = *b;
+  }
+  if (exact[0] && singular(*exact[0])) return;
+  // The solid in its own frame; each vertex of the other body as a box there.
+  const auto polygons = placed_pieces(solid, kIdentity);
+  const auto el = elements(other);
+  const std::vector<std::size_t> root = component_roots(el);
+  std::vector<std::vector<std::size_t>> members(el.size());
+  for (std::size_t e = 0; e < el.size(); ++e) members[root[e]].push_back(e);
+  json points = json::array();
+  for (std::size_t e = 0; e < el.size(); ++e) {
+    if (root[e] != e) continue;
+    bool found = false;
+    for (std::size_t m : members[e]) {
+      for (std::size_t v = 0; v < el[m].size() && !found; ++v) {
+        const std::optional<RBox> y =
+            check_internal::solid_frame_box(box[0], exact[0], box[1], el[m][v]);
+        if (!y) continue;
+        if (!std::all_of(polygons.begin(), polygons.end(),
+                         [&](const std::vector<Vec3E>& poly) { return check_internal::box_clear_of_polygon(*y, poly); }))
+          continue;
+        auto ray = ray_from(solid, polygons, check_internal::box_center(*y));
+        if (!ray || ray->second) continue;
+        points.push_back({{"element", m}, {"vertex", v}, {"ray", vec(ray->first)}});
+        found = true;
+      }
+      if (found) break;
+    }
+    if (!found)
+      fail("no vertex of the component of element " + std::to_string(e) + " of " + other.name +
+           " proven outside solid " + solid.name + " at its enclosed pose at t = " + to_string(at));
+  }
+  json entry{{"solid", k == 0 ? "a" : "b"}};
+  if (at != interval.first) entry["t"] = rational(at);
+  entry["points"] = std::move(points);
+  out.push_back(std::move(entry));
 }
 
 }  // namespace tmcert::certificate::writer_internal
