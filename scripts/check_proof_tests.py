@@ -202,7 +202,7 @@ def classify(inv, token, previous, checked_by):
 def main(argv):
     quiet = "--quiet" in argv
     args = [a for a in argv[1:] if a != "--quiet"]
-    root = os.path.abspath(args[0] if args else os.path.join(os.path.dirname(__file__), ".."))
+    root = os.path.realpath(args[0] if args else os.path.join(os.path.dirname(os.path.realpath(__file__)), ".."))
     inv = Inventory(root)
     errors = []
     proofs = os.path.join(root, "proofs")
