@@ -76,6 +76,18 @@ tmcert::Body obstacle_body(const tmcert::Scene& scene, const std::vector<std::si
   return out;
 }
 
+MoverAndObstacles split_mover(const tmcert::Scene& scene, const std::string& name, const ObstacleWords& words) {
+  std::optional<std::size_t> mover;
+  std::vector<std::size_t> obstacles;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    if (scene.bodies[i].name == name) mover = i;
+    else obstacles.push_back(i);
+  if (!mover) throw InputError(scene.source + ": bodies: no body named " + tmcert::quote_text(name));
+  if (obstacles.empty())
+    throw InputError(scene.source + ": bodies: no obstacle (" + std::string(words.obstacles) + " is one)");
+  return {*mover, std::move(obstacles)};
+}
+
 void require_no_clearance(const tmcert::Scene& scene, const ObstacleWords& words) {
   const std::string not_supported = std::string(": not supported by ") + words.user;
   if (scene.clearance != 0) throw InputError(scene.source + ": clearance" + not_supported);
@@ -133,16 +145,10 @@ Environment::Environment(const Scene& scene, const std::string& moving_body, con
   impl_ = public_errors([&] {
     const tmcert::Scene& s = *scene.impl().scene;
     require_no_clearance(s, kEnvironment);
-    std::optional<std::size_t> mover;
-    std::vector<std::size_t> obstacles;
-    for (std::size_t i = 0; i < s.bodies.size(); ++i)
-      if (s.bodies[i].name == moving_body) mover = i;
-      else obstacles.push_back(i);
-    if (!mover) throw InputError(s.source + ": bodies: no body named " + tmcert::quote_text(moving_body));
-    if (obstacles.empty()) throw InputError(s.source + ": bodies: no obstacle (every body but the moving one is one)");
+    const MoverAndObstacles split = split_mover(s, moving_body, kEnvironment);
     auto impl = std::make_unique<Impl>();
-    impl->obstacles = obstacle_body(s, obstacles, kEnvironment);
-    impl->mover = s.bodies[*mover];
+    impl->obstacles = obstacle_body(s, split.obstacles, kEnvironment);
+    impl->mover = s.bodies[split.mover];
     impl->options = environment_options(s, options, kEnvironment);
     impl->idle.push_back(impl->prepare());  // the first copy, which also checks the bodies
     impl->copies = 1;

@@ -79,6 +79,14 @@ struct ObstacleWords {
 tmcert::Body obstacle_body(const tmcert::Scene& scene, const std::vector<std::size_t>& indices,
                            const ObstacleWords& words);
 
+// The body named `name` and the others (the obstacles, in scene order);
+// refused, naming the scene, when no body has the name or none is left.
+struct MoverAndObstacles {
+  std::size_t mover;
+  std::vector<std::size_t> obstacles;
+};
+MoverAndObstacles split_mover(const tmcert::Scene& scene, const std::string& name, const ObstacleWords& words);
+
 // The scene's clearances are not honoured against fixed obstacles: refused.
 void require_no_clearance(const tmcert::Scene& scene, const ObstacleWords& words);
 

@@ -38,14 +38,8 @@ std::shared_ptr<ompl::base::MotionValidator> use_certified_se3(const ompl::base:
   return public_errors([&]() -> std::shared_ptr<ompl::base::MotionValidator> {
     const tmcert::Scene& s = *scene.impl().scene;
     require_no_clearance(s, kOmpl);
-    std::optional<std::size_t> robot;
-    std::vector<std::size_t> obstacles;
-    for (std::size_t i = 0; i < s.bodies.size(); ++i)
-      if (s.bodies[i].name == robot_body) robot = i;
-      else obstacles.push_back(i);
-    if (!robot) throw InputError(s.source + ": bodies: no body named " + tmcert::quote_text(robot_body));
-    if (obstacles.empty()) throw InputError(s.source + ": bodies: no obstacle (every body but the robot is one)");
-    return tmcert::use_certified_se3(si, s.bodies[*robot], obstacle_body(s, obstacles, kOmpl),
+    const MoverAndObstacles split = split_mover(s, robot_body, kOmpl);
+    return tmcert::use_certified_se3(si, s.bodies[split.mover], obstacle_body(s, split.obstacles, kOmpl),
                                      environment_options(s, options, kOmpl));
   });
 }
