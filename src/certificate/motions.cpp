@@ -393,8 +393,7 @@ BallMat pose_matrix(const Pose& pose) {
 // constant the product of its poses, a revolute joint Rodrigues' rotation
 // I + sin(q) K + (1 - cos q) K^2 about the unit axis (K = [u]x), a
 // prismatic joint the translation q u.
-BallPose link_pose(const LinkMotion& link, const B& s) {
-  const ChainDescription& chain = *link.chain;
+BallPose chain_pose(const ChainDescription& chain, const std::vector<B>& values) {
   const auto& constants = chain.constant_poses();
   auto constant = [&](std::size_t k) {
     BallMat c{{B(1), B(0), B(0), B(0), B(1), B(0), B(0), B(0), B(1)}, {B(0), B(0), B(0)}};
@@ -404,7 +403,7 @@ BallPose link_pose(const LinkMotion& link, const B& s) {
   BallMat m = constant(0);
   for (std::size_t j = 0; j < chain.joint_count(); ++j) {
     const ChainJoint& joint = chain.joint(j);
-    const B q = B(link.from[j]) + (B(link.to[j]) - B(link.from[j])) * s;
+    const B& q = values[j];
     const B n = bsqrt(B(joint.axis[0]) * B(joint.axis[0]) + B(joint.axis[1]) * B(joint.axis[1]) +
                       B(joint.axis[2]) * B(joint.axis[2]));
     const V3 u{B(joint.axis[0]) / n, B(joint.axis[1]) / n, B(joint.axis[2]) / n};
@@ -422,6 +421,42 @@ BallPose link_pose(const LinkMotion& link, const B& s) {
     m = compose(compose(m, J), constant(j + 1));
   }
   return BallPose{m.r, m.p};
+}
+
+BallPose link_pose(const LinkMotion& link, const B& s) {
+  std::vector<B> q;
+  for (std::size_t j = 0; j < link.chain->joint_count(); ++j)
+    q.push_back(B(link.from[j]) + (B(link.to[j]) - B(link.from[j])) * s);
+  return chain_pose(*link.chain, q);
+}
+
+// The link's pose on a cubic or quintic segment (LinkMotion): each q_j from
+// the Hermite basis polynomials in s, evaluated on the ball s (the checker's
+// own form: the verifier goes through the power basis), with the ends'
+// derivatives in s (duration times the rates, duration^2 times the
+// accelerations):
+//   cubic   (2s^3 - 3s^2 + 1) p0 + (s^3 - 2s^2 + s) D0 + (-2s^3 + 3s^2) p1 + (s^3 - s^2) D1,
+//   quintic (1 - 10s^3 + 15s^4 - 6s^5) p0 + (s - 6s^3 + 8s^4 - 3s^5) D0
+//           + (s^2 - 3s^3 + 3s^4 - s^5)/2 A0 + (s^3 - 2s^4 + s^5)/2 A1
+//           + (-4s^3 + 7s^4 - 3s^5) D1 + (10s^3 - 15s^4 + 6s^5) p1
+// (proofs/trajectories.md section 4).
+BallPose hermite_link_pose(const LinkMotion& link, const B& s) {
+  const B s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s, T(link.duration), T2 = T * T;
+  const bool quintic = link.degree() == 5;
+  std::vector<B> q;
+  for (std::size_t j = 0; j < link.chain->joint_count(); ++j) {
+    const B p0(link.from[j]), p1(link.to[j]), D0 = T * B(link.from_rate[j]), D1 = T * B(link.to_rate[j]);
+    if (!quintic) {
+      q.push_back((B(2) * s3 - B(3) * s2 + B(1)) * p0 + (s3 - B(2) * s2 + s) * D0 + (B(3) * s2 - B(2) * s3) * p1 +
+                  (s3 - s2) * D1);
+      continue;
+    }
+    const B A0 = T2 * B(link.from_accel[j]), A1 = T2 * B(link.to_accel[j]);
+    q.push_back((B(1) - B(10) * s3 + B(15) * s4 - B(6) * s5) * p0 + (s - B(6) * s3 + B(8) * s4 - B(3) * s5) * D0 +
+                (s2 - B(3) * s3 + B(3) * s4 - s5) / B(2) * A0 + (s3 - B(2) * s4 + s5) / B(2) * A1 +
+                (B(7) * s4 - B(4) * s3 - B(3) * s5) * D1 + (B(10) * s3 - B(15) * s4 + B(6) * s5) * p1);
+  }
+  return chain_pose(*link.chain, q);
 }
 
 // The box of a ball pose: the ends rounded outward to doubles, the center
@@ -625,11 +660,17 @@ const CheckerKind kCheckerKinds[] = {
        return evaluate(*seg.rational, last ? seg.t1 : seg.t0);
      },
      nullptr},
-    {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr; },
+    {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() == 1; },
      [](const MotionSegment& seg, bool last) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
      [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }},
+    {"robot_link_hermite",
+     [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() > 1; },
+     [](const MotionSegment& seg, bool last) {  // the waypoint's joint values, as for linear joints
+       return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
+     },
+     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(hermite_link_pose(*seg.link, s)); }},
     {"keyframe", [](const MotionSegment& seg) { return !seg.rational && !seg.link; },
      [](const MotionSegment& seg, bool last) { return exact_keyframe(last ? seg.to : seg.from); },
      [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }},
@@ -638,7 +679,7 @@ const CheckerKind kCheckerKinds[] = {
 const CheckerKind& checker_kind(const MotionSegment& seg) {
   for (const CheckerKind& kind : kCheckerKinds)
     if (kind.holds(seg)) return kind;
-  return kCheckerKinds[2];  // not reached: the keyframe kind holds what the others do not
+  return kCheckerKinds[3];  // not reached: the keyframe kind holds what the others do not
 }
 
 }  // namespace
