@@ -430,31 +430,53 @@ BallPose link_pose(const LinkMotion& link, const B& s) {
   return chain_pose(*link.chain, q);
 }
 
-// The link's pose on a cubic or quintic segment (LinkMotion): each q_j from
-// the Hermite basis polynomials in s, evaluated on the ball s (the checker's
-// own form: the verifier goes through the power basis), with the ends'
-// derivatives in s (duration times the rates, duration^2 times the
-// accelerations):
-//   cubic   (2s^3 - 3s^2 + 1) p0 + (s^3 - 2s^2 + s) D0 + (-2s^3 + 3s^2) p1 + (s^3 - s^2) D1,
-//   quintic (1 - 10s^3 + 15s^4 - 6s^5) p0 + (s - 6s^3 + 8s^4 - 3s^5) D0
-//           + (s^2 - 3s^3 + 3s^4 - s^5)/2 A0 + (s^3 - 2s^4 + s^5)/2 A1
-//           + (-4s^3 + 7s^4 - 3s^5) D1 + (10s^3 - 15s^4 + 6s^5) p1
-// (proofs/trajectories.md section 4).
+// The Hermite basis polynomials at s (or, with `derivative`, their
+// derivatives), each weighing one datum of a joint on a cubic or quintic
+// segment (LinkMotion), with the ends' derivatives in s (duration times the
+// rates, duration^2 times the accelerations):
+//   cubic   q = p0 + (3s^2 - 2s^3) h + (s^3 - 2s^2 + s) D0 + (s^3 - s^2) D1,
+//   quintic q = p0 + (10s^3 - 15s^4 + 6s^5) h + (s - 6s^3 + 8s^4 - 3s^5) D0
+//             + (s^2 - 3s^3 + 3s^4 - s^5)/2 A0 + (s^3 - 2s^4 + s^5)/2 A1
+//             + (-4s^3 + 7s^4 - 3s^5) D1,
+// h = p1 - p0 (the checker's own form: the verifier goes through the power
+// basis; proofs/trajectories.md section 4).  Order: h, D0, D1, A0, A1.
+std::array<B, 5> hermite_basis(const B& s, bool quintic, bool derivative) {
+  const B s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+  if (!quintic) {
+    if (derivative)
+      return {B(6) * s - B(6) * s2, B(3) * s2 - B(4) * s + B(1), B(3) * s2 - B(2) * s, B(0), B(0)};
+    return {B(3) * s2 - B(2) * s3, s3 - B(2) * s2 + s, s3 - s2, B(0), B(0)};
+  }
+  if (derivative)
+    return {B(30) * s2 - B(60) * s3 + B(30) * s4, B(1) - B(18) * s2 + B(32) * s3 - B(15) * s4,
+            B(28) * s3 - B(12) * s2 - B(15) * s4, (B(2) * s - B(9) * s2 + B(12) * s3 - B(5) * s4) / B(2),
+            (B(3) * s2 - B(8) * s3 + B(5) * s4) / B(2)};
+  return {B(10) * s3 - B(15) * s4 + B(6) * s5, s - B(6) * s3 + B(8) * s4 - B(3) * s5, B(7) * s4 - B(4) * s3 - B(3) * s5,
+          (s2 - B(3) * s3 + B(3) * s4 - s5) / B(2), (s3 - B(2) * s4 + s5) / B(2)};
+}
+
+// The link's pose on a cubic or quintic segment over the ball s: each q_j
+// in the mean value form q(m) + q'(s) (s - m) about the ball's midpoint m
+// (q' on the ball from the basis' derivatives), so that its radius is about
+// max|q'| times the ball's, as for linear joints; then the chain.
 BallPose hermite_link_pose(const LinkMotion& link, const B& s) {
-  const B s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s, T(link.duration), T2 = T * T;
   const bool quintic = link.degree() == 5;
+  B m, offset;
+  arb_get_mid_arb(m.v, s.v);
+  offset = s - m;  // a ball about 0 holding s - m
+  const std::array<B, 5> at_m = hermite_basis(m, quintic, false), slope = hermite_basis(s, quintic, true);
+  const B T(link.duration), T2 = T * T;
   std::vector<B> q;
   for (std::size_t j = 0; j < link.chain->joint_count(); ++j) {
-    const B p0(link.from[j]), p1(link.to[j]), D0 = T * B(link.from_rate[j]), D1 = T * B(link.to_rate[j]);
-    if (!quintic) {
-      q.push_back((B(2) * s3 - B(3) * s2 + B(1)) * p0 + (s3 - B(2) * s2 + s) * D0 + (B(3) * s2 - B(2) * s3) * p1 +
-                  (s3 - s2) * D1);
-      continue;
+    const B p0(link.from[j]);
+    const std::array<B, 5> data = {B(link.to[j]) - p0, T * B(link.from_rate[j]), T * B(link.to_rate[j]),
+                                   quintic ? T2 * B(link.from_accel[j]) : B(0), quintic ? T2 * B(link.to_accel[j]) : B(0)};
+    B value = p0, rate(0);
+    for (int k = 0; k < 5; ++k) {
+      value = value + at_m[k] * data[k];
+      rate = rate + slope[k] * data[k];
     }
-    const B A0 = T2 * B(link.from_accel[j]), A1 = T2 * B(link.to_accel[j]);
-    q.push_back((B(1) - B(10) * s3 + B(15) * s4 - B(6) * s5) * p0 + (s - B(6) * s3 + B(8) * s4 - B(3) * s5) * D0 +
-                (s2 - B(3) * s3 + B(3) * s4 - s5) / B(2) * A0 + (s3 - B(2) * s4 + s5) / B(2) * A1 +
-                (B(7) * s4 - B(4) * s3 - B(3) * s5) * D1 + (B(10) * s3 - B(15) * s4 + B(6) * s5) * p1);
+    q.push_back(value + rate * offset);
   }
   return chain_pose(*link.chain, q);
 }
