@@ -188,6 +188,11 @@ class TMCERT_API SceneBuilder {
   std::string to_json() const;
 
  private:
+  // The document of to_json() as a JSON value (defined and instantiated in
+  // src/api/scene_builder.cpp alone).
+  template <typename Document>
+  Document document() const;
+
   struct Check {
     std::string a, b;
     std::optional<Number> clearance;

@@ -171,8 +171,8 @@ void Checker::prove(const json& node, std::uint32_t g, std::uint32_t h, std::vec
     for (int r = 0; r < 3; ++r)
       n[r] = in_.rational_at((*sep)[r], [&] { return idx(path() + ".sep", static_cast<std::size_t>(r)); });
     ++ctx.separations;
-    const int fails = separation_fails_at(n, g, h, pc, ctx);
-    if (fails >= 0) reject(here() + ": separation fails at control point " + std::to_string(fails));
+    if (const std::optional<std::size_t> fails = separation_fails_at(n, g, h, pc, ctx))
+      reject(here() + ": separation fails at control point " + std::to_string(*fails));
     return;
   }
   const std::size_t side =
@@ -198,8 +198,8 @@ void Checker::prove(const json& node, std::uint32_t g, std::uint32_t h, std::vec
   }
 }
 
-// The first control point at which the separation claim fails, or -1.
-int Checker::separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
+// The first control point at which the separation claim fails, or nothing.
+std::optional<std::size_t> Checker::separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
                                  CheckContext& ctx) {
   const std::vector<std::uint32_t>& va = ctx.groups[0].vertices(g, scratch_a_, cache_budget_);
   const std::vector<std::uint32_t>& vb = ctx.groups[1].vertices(h, scratch_b_, cache_budget_);

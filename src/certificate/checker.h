@@ -189,8 +189,8 @@ class Checker {
   void prove(const json& node, std::uint32_t g, std::uint32_t h, std::vector<int>& trail, const PieceContext& pc,
              CheckContext& ctx);
 
-  // The first control point at which the separation claim fails, or -1.
-  int separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
+  // The first control point at which the separation claim fails, or nothing.
+  std::optional<std::size_t> separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
                           CheckContext& ctx);
 };
 

@@ -14,6 +14,7 @@
 #include "src/io/mesh.h"
 #include "src/io/polygon.h"
 #include "src/io/read_file.h"
+#include "src/io/scene_document.h"
 #include "src/io/scene_reader.h"
 #include "src/metric/metric.h"
 #include "src/model/solid.h"
@@ -491,6 +492,17 @@ Scene parse_scene_text(const std::string& text, const std::string& source, const
   const reader::Tree tree = reader::parse_json(text, source);
   const InputRecord record;
   reader::SceneReader scene_reader(source, base, tree, options);
+  scene_reader.robots_out_ = &robots;
+  Scene scene = scene_reader.read();
+  scene.input_files = record.files();
+  return scene;
+}
+
+Scene parse_scene_document(const nlohmann::ordered_json& document, const std::string& source, const std::string& base,
+                           std::vector<SceneRobot>& robots) {
+  const reader::Tree tree = reader::tree_of(document, source);
+  const InputRecord record;
+  reader::SceneReader scene_reader(source, base, tree);
   scene_reader.robots_out_ = &robots;
   Scene scene = scene_reader.read();
   scene.input_files = record.files();

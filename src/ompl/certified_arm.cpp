@@ -132,8 +132,8 @@ std::shared_ptr<CertifiedMotionValidator> use_certified_arm(
     throw InputError("use_certified_arm: the state space has " + std::to_string(space->getDimension()) +
                      " dimensions for " + std::to_string(joints.size()) + " joints");
   auto motions = std::make_shared<const JointMotions>(std::move(robot), std::move(joints));
-  auto environment = std::make_shared<const FixedEnvironment>(
-      std::move(obstacles), motions->link_bodies(), motions->self_pairs(self_collision, allowed_pairs), options);
+  auto environment = shared_environment(std::move(obstacles), motions->link_bodies(),
+                                        motions->self_pairs(self_collision, allowed_pairs), options);
   auto validator = std::make_shared<CertifiedMotionValidator>(si, environment, motions);
   si->setStateValidityChecker(std::make_shared<CertifiedStateValidityChecker>(si, validator));
   si->setMotionValidator(validator);
