@@ -131,6 +131,7 @@ std::unique_ptr<CheckContext> Checker::bind_check(const json& c, std::size_t ci)
            str(ctx->t0) + ", " + str(ctx->t1) + "] (the certificate belongs to another scene)");
   ctx->data[0] = &body_data(ia);
   ctx->data[1] = &body_data(ib);
+  bind_levels(c, *ctx, ia, ib);
   const Body& A = *ctx->body[0];
   const Body& Bb = *ctx->body[1];
   ctx->clearance = scene_.clearance_of(ci);
@@ -310,6 +311,7 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
   const std::string wp = mem(ctx.path, "witness");
   in_.object(w, wp);
   ctx.has_witness = true;
+  if (has_true_shape_side(w)) return read_true_shape_witness(w, ctx);
   const json& t = in_.member(w, "t", wp);
   if (t.is_object()) {  // {"root_of": [...], "interval": [lo, hi]}
     const std::string tp = mem(wp, "t");

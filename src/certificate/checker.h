@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +32,7 @@ struct WitnessSide {
   std::vector<Exact> weights;
   Vec3E ray;
   std::vector<std::size_t> vertices;  // an algebraic witness: the sub-feature's vertices
+  bool true_shape = false;  // {"true_shape": true}: the point is in the body's URDF cylinder or sphere (check_primitive.h)
 };
 
 struct StartPoint {
@@ -84,6 +86,10 @@ struct CheckContext {
   int displaced = 0;
   std::optional<std::array<Vec3E, 2>> points;
   bool enclosed_witness = false;
+  // A witness with a {"true_shape": true} side (check_primitive.h); without
+  // `has_point`, the point is the other side's element point.
+  bool true_shape_witness = false;
+  bool has_point = false;
   std::size_t exact_claims = 0;
   std::unique_ptr<CheckMotions> motions;  // for exact claims, built when first needed
   // A collision's "before_witness": the part of the witness's piece before
@@ -104,6 +110,10 @@ class Checker {
   const Scene& scene_;
   Reader in_;
   std::vector<std::unique_ptr<BodyData>> bodies_;
+  // Bodies whose URDF cylinder or sphere polyhedron a check names at a
+  // finer level ("levels"), by scene index and level (check_primitive.cpp).
+  std::map<std::pair<std::size_t, int>, std::unique_ptr<Body>> refined_;
+  std::map<std::pair<std::size_t, int>, std::unique_ptr<BodyData>> refined_data_;
   std::size_t cache_budget_ = kGroupCacheBudget;
   std::vector<std::uint32_t> scratch_a_, scratch_b_;
   SeparationScratch z_;
@@ -121,6 +131,10 @@ class Checker {
   // ------------------------------------------------------------ phase 1 (check.cpp)
 
   std::unique_ptr<CheckContext> bind_check(const json& c, std::size_t ci);
+
+  // A check's "levels": its bodies' URDF cylinders and spheres at a finer
+  // polyhedron (check_primitive.cpp).
+  void bind_levels(const json& c, CheckContext& ctx, std::size_t ia, std::size_t ib);
 
   // ------------------------------------------------------------ phase 2 (check.cpp)
 
@@ -147,6 +161,21 @@ class Checker {
   void check_enclosed_witness(const CheckContext& ctx);
 
   void check_witness(const CheckContext& ctx);
+
+  // One side of a point witness at an exact pose: the element's weighted
+  // point placed at `point`, or `point` inside the solid by the ray.
+  void check_side_at(const CheckContext& ctx, int s, const Mat34E& pose, const Vec3E& point);
+
+  // Witnesses on the true shape of a URDF cylinder or sphere (check_primitive.cpp).
+  static bool has_true_shape_side(const json& w);
+
+  void read_true_shape_witness(const json& w, CheckContext& ctx);
+
+  void check_true_shape_witness(const CheckContext& ctx);
+
+  // A side of a witness whose body is a URDF cylinder or sphere must be a
+  // "true_shape" side (a point of the polyhedron is not one of the link).
+  void require_true_shape_sides(const CheckContext& ctx);
 
   static std::vector<std::vector<Vec3E>> placed(const BodyData& d, const Mat34E& pose);
 

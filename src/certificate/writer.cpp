@@ -346,10 +346,15 @@ std::string certificate_json(const Scene& scene, const SceneResult& result, Writ
   doc["scene_bodies"] = std::move(bodies);
   json checks = json::array();
   for (const CheckResult& r : result.checks) {
-    const Body& a = scene.bodies[r.bodies[0]];
-    const Body& b = scene.bodies[r.bodies[1]];
+    // A URDF cylinder or sphere at the finer level the result was found
+    // on (writer_primitive.cpp).
+    const std::optional<Body> fa = at_level(scene.bodies[r.bodies[0]], r.levels[0]);
+    const std::optional<Body> fb = at_level(scene.bodies[r.bodies[1]], r.levels[1]);
+    const Body& a = fa ? *fa : scene.bodies[r.bodies[0]];
+    const Body& b = fb ? *fb : scene.bodies[r.bodies[1]];
     CheckWriter w{scene, r, a, b, s, check_interval(a, b), {}};
     checks.push_back(w.write());
+    if (fa || fb) checks.back()["levels"] = json::array({r.levels[0], r.levels[1]});
   }
   doc["checks"] = std::move(checks);
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

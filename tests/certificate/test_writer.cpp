@@ -61,8 +61,8 @@ bool accepted(const Verified& v, const json& certificate) {
 // Every scene with a known verdict: the certificate of its verification is
 // accepted, and says the same verdicts.
 // Scenes listed in tests/data/scenes/UNCERTIFIABLE ("<file><TAB><substring>"):
-// certificates do not cover them (a solid body whose start pose is not
-// exact); file name -> expected message.
+// certificates do not cover them (a solid body whose start pose is neither
+// exact nor enclosed); file name -> expected message.
 std::map<std::string, std::string> uncertifiable() {
   std::map<std::string, std::string> out;
   std::ifstream in(std::string(TMCERT_TEST_DATA) + "/scenes/UNCERTIFIABLE");
@@ -125,8 +125,9 @@ BOOST_AUTO_TEST_CASE(certificates_of_every_test_scene_are_accepted) {
 // The scenes certificates do not cover are refused with a message naming
 // the body or check (docs/scene-format.md), not certified wrongly.
 BOOST_AUTO_TEST_CASE(uncovered_scenes_get_no_certificate) {
+  // None at present (URDF cylinders and spheres are certified since
+  // check_primitive.h): whatever is listed must be refused.
   const auto listed = uncertifiable();
-  BOOST_TEST(listed.size() >= 2u);
   for (const auto& [file, substring] : listed) {
     BOOST_TEST_CONTEXT(file) {
       const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/" + file);
