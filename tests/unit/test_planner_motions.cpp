@@ -161,6 +161,13 @@ BOOST_AUTO_TEST_CASE(validated_sin_cos_remembered_results_belong_to_their_argume
     xs.push_back(Interval(a - w, a + w));   // the same upper end as the first
     xs.push_back(Interval(a));
   }
+  // Many intervals sharing one end (more than the table has entries, so
+  // that some share a slot): sin and cos are monotone over [1/4, 5/4], so
+  // a remembered narrower interval's enclosure would miss the other end.
+  for (int k = 1; k <= 1000; ++k) {
+    xs.push_back(Interval(0.25, 0.25 + k / 1024.0));
+    xs.push_back(Interval(1.25 - k / 1024.0, 1.25));
+  }
   std::vector<std::pair<Interval, Interval>> first;
   for (const Interval& x : xs) {
     const Interval s = validated::sin(x), c = validated::cos(x);
