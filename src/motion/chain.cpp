@@ -176,6 +176,53 @@ PoseJet LinkChain::pose(const std::vector<Jet>& values) const {
   return a;
 }
 
+PoseInterval LinkChain::pose_values(const std::vector<Interval>& from, const std::vector<Interval>& delta,
+                                    const Interval& s) const {
+  // pose() above with every jet replaced by its value part: Jet(x).v = x,
+  // (a + b).v = a.v + b.v, (a b).v = a.v b.v, (c a).v = c a.v, and sincos's
+  // values sin(q.v) and 1 - cos(q.v); the same operations on the same
+  // operands in the same order give the same intervals.
+  PoseInterval a;
+  for (int e = 0; e < 12; ++e) a[e] = constants_[0].enclosed[e];
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const Prepared& p = joints_[j];
+    const Interval q = from[j] + delta[j] * s;
+    if (p.joint.kind == ChainJoint::Kind::Revolute) {
+      const Interval sq = validated::sin(q), vq = Interval(1) - validated::cos(q);
+      std::array<Interval, 9> rot;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          Interval x1(0), x2(0);
+          for (int k = 0; k < 3; ++k) {
+            const Interval& ark = a[4 * r + k];
+            x1 = x1 + p.cross[3 * k + c] * ark;
+            x2 = x2 + p.cross2[3 * k + c] * ark;
+          }
+          rot[3 * r + c] = a[4 * r + c] + sq * x1 + vq * x2;
+        }
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) a[4 * r + c] = rot[3 * r + c];
+    } else {
+      for (int r = 0; r < 3; ++r) {
+        Interval au(0);
+        for (int k = 0; k < 3; ++k) au = au + p.unit[k] * a[4 * r + k];
+        a[4 * r + 3] = a[4 * r + 3] + au * q;
+      }
+    }
+    const Constant& c = constants_[j + 1];
+    if (c.identity) continue;
+    PoseInterval next;
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 4; ++col) {
+        Interval sum = c.enclosed[col] * a[4 * r] + c.enclosed[4 + col] * a[4 * r + 1] + c.enclosed[8 + col] * a[4 * r + 2];
+        if (col == 3) sum = sum + a[4 * r + 3];
+        next[4 * r + col] = sum;
+      }
+    a = next;
+  }
+  return a;
+}
+
 namespace {
 
 class LinkModel final : public SegmentModel {
@@ -188,6 +235,7 @@ class LinkModel final : public SegmentModel {
     }
   }
   PoseJet pose(const Jet& s) const override { return chain_->pose(from_, delta_, s); }
+  PoseInterval pose_values(const Interval& s) const override { return chain_->pose_values(from_, delta_, s); }
   std::optional<Mat34E> exact_pose(const Exact& s) const override {
     std::vector<Exact> q;
     q.reserve(motion_.from.size());
