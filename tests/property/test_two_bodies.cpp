@@ -851,7 +851,8 @@ BOOST_AUTO_TEST_CASE(certificates_of_random_scenes_check_and_tampering_is_caught
         }
         for (nlohmann::json& x : (*proof)["sep"]) {
           Exact q;
-          RC_ASSERT(x.is_number_integer() ? (q = Exact(x.get<long>()), true) : parse_exact(x.get<std::string>(), q));
+          const bool parsed = x.is_number_integer() ? (q = Exact(x.get<long>()), true) : parse_exact(x.get<std::string>(), q);
+          RC_ASSERT(parsed);
           x = to_string(-q);
         }
         RC_ASSERT(!certificate::check_certificate(c.scene, doc, "property").ok);
