@@ -291,6 +291,14 @@ RobotBuilder& RobotBuilder::path(std::vector<std::string> joints, std::vector<Nu
   return *this;
 }
 
+RobotBuilder& RobotBuilder::interpolation(std::string how, std::vector<std::vector<Number>> velocities,
+                                          std::vector<std::vector<Number>> accelerations) {
+  interpolation_ = std::move(how);
+  velocities_ = std::move(velocities);
+  accelerations_ = std::move(accelerations);
+  return *this;
+}
+
 RobotBuilder& RobotBuilder::self_collision(bool value) {
   self_collision_ = value;
   return *this;
@@ -399,6 +407,13 @@ std::string SceneBuilder::to_json() const {
       Json positions = Json::array();
       for (const std::vector<Number>& row : r.positions_) positions.push_back(numbers(row));
       robot["path"] = Json{{"times", numbers(r.times_)}, {"positions", std::move(positions)}};
+      if (r.interpolation_) robot["path"]["interpolation"] = *r.interpolation_;
+      for (const auto& [key, rows] : {std::pair{"velocities", &r.velocities_}, std::pair{"accelerations", &r.accelerations_}}) {
+        if (rows->empty()) continue;
+        Json list = Json::array();
+        for (const std::vector<Number>& row : *rows) list.push_back(numbers(row));
+        robot["path"][key] = std::move(list);
+      }
       if (r.self_collision_) robot["self_collision"] = *r.self_collision_;
       if (!r.allowed_.empty()) {
         Json pairs = Json::array();

@@ -116,7 +116,7 @@ void SceneReader::read_request(RequestLine& out) const {
   const Path body_path = document.member("body");
   const Node* b = find(doc, "body");
   if (const Node* r = find(doc, "robot")) {
-    // A robot's path segment: {"robot": name, "path": {"times", "positions"}}.
+    // A robot's path segment: {"robot": name, "path": {"times", "positions", ...}}.
     const Path robot_path = document.member("robot");
     if (b) fail(body_path, "a request moves a body or a robot, not both");
     if (find(doc, "motion")) fail(document.member("motion"), "a robot moves along its \"path\", not a motion");
@@ -129,6 +129,9 @@ void SceneReader::read_request(RequestLine& out) const {
     joint_path_values(*p, path_path, jp);
     out.path_times = std::move(jp.times);
     out.path_positions = std::move(jp.positions);
+    out.path_interpolation = jp.interpolation;
+    out.path_velocities = std::move(jp.velocities);
+    out.path_accelerations = std::move(jp.accelerations);
     read_request_checks(out);
     return;
   }

@@ -125,11 +125,18 @@ bool LinkChain::rational_between(const std::vector<Exact>& from, const std::vect
 }
 
 PoseJet LinkChain::pose(const std::vector<Interval>& from, const std::vector<Interval>& delta, const Jet& s) const {
+  std::vector<Jet> q;
+  q.reserve(joints_.size());
+  for (std::size_t j = 0; j < joints_.size(); ++j) q.push_back(Jet(from[j]) + delta[j] * s);
+  return pose(q);
+}
+
+PoseJet LinkChain::pose(const std::vector<Jet>& values) const {
   PoseJet a;
   for (int e = 0; e < 12; ++e) a[e] = Jet(constants_[0].enclosed[e]);
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     const Prepared& p = joints_[j];
-    const Jet q = Jet(from[j]) + delta[j] * s;
+    const Jet& q = values[j];
     if (p.joint.kind == ChainJoint::Kind::Revolute) {
       // A R(q) = A + sin(q) (A [u]x) + (1 - cos(q)) (A [u]x^2)  (Rodrigues).
       Jet sq, vq;
@@ -191,6 +198,7 @@ class LinkModel final : public SegmentModel {
  private:
   // The chain with its enclosures: the verifier's chains are prepared once
   // (PlacedRobot); any other description is prepared here.
+ public:
   static std::shared_ptr<const LinkChain> prepared(const std::shared_ptr<const ChainDescription>& d) {
     if (auto chain = std::dynamic_pointer_cast<const LinkChain>(d)) return chain;
     std::vector<ChainJoint> joints;
@@ -198,13 +206,62 @@ class LinkModel final : public SegmentModel {
     return std::make_shared<const LinkChain>(d->constant_poses(), std::move(joints));
   }
 
+ private:
   LinkMotion motion_;
   std::shared_ptr<const LinkChain> chain_;
   std::vector<Interval> from_, delta_;
 };
 
+// A link segment whose joints follow cubic or quintic Hermite polynomials
+// (LinkMotion): each q_j(s) by Horner's rule on jets from its exact
+// coefficients (hermite_coefficients) rounded outward, so that over an
+// interval S of s the jet encloses q_j, q_j' and q_j'' on all of S with a
+// width that shrinks with S; the pose is then the chain's, as for linear
+// joints (proofs/trajectories.md section 3).
+class HermiteLinkModel final : public SegmentModel {
+ public:
+  explicit HermiteLinkModel(const LinkMotion& m) : motion_(m), chain_(LinkModel::prepared(m.chain)) {
+    for (std::size_t j = 0; j < m.from.size(); ++j) exact_.push_back(link_joint_coefficients(m, j));
+    RoundingGuard guard;
+    for (const std::vector<Exact>& c : exact_) {
+      std::vector<Interval> row;
+      for (const Exact& x : c) row.push_back(to_interval(x));
+      coefficients_.push_back(std::move(row));
+    }
+  }
+  PoseJet pose(const Jet& s) const override {
+    std::vector<Jet> q;
+    q.reserve(coefficients_.size());
+    for (const std::vector<Interval>& c : coefficients_) {
+      Jet v(c.back());
+      for (std::size_t k = c.size() - 1; k-- > 0;) v = v * s + Jet(c[k]);
+      q.push_back(v);
+    }
+    return chain_->pose(q);
+  }
+  std::optional<Mat34E> exact_pose(const Exact& s) const override {
+    std::vector<Exact> q;
+    q.reserve(exact_.size());
+    for (const std::vector<Exact>& c : exact_) {
+      Exact v = c.back();
+      for (std::size_t k = c.size() - 1; k-- > 0;) v = v * s + c[k];
+      q.push_back(v);
+    }
+    return chain_->exact_pose(q);
+  }
+
+ private:
+  LinkMotion motion_;
+  std::shared_ptr<const LinkChain> chain_;
+  std::vector<std::vector<Exact>> exact_;
+  std::vector<std::vector<Interval>> coefficients_;
+};
+
 }  // namespace
 
-std::unique_ptr<SegmentModel> make_link_model(const LinkMotion& motion) { return std::make_unique<LinkModel>(motion); }
+std::unique_ptr<SegmentModel> make_link_model(const LinkMotion& motion) {
+  if (motion.degree() > 1) return std::make_unique<HermiteLinkModel>(motion);
+  return std::make_unique<LinkModel>(motion);
+}
 
 }  // namespace tmcert

@@ -58,7 +58,30 @@ class KeyframeKind final : public VerifiedSegmentKind {
 class RobotLinkKind final : public VerifiedSegmentKind {
  public:
   std::string_view name() const override { return "robot_link"; }
-  bool holds(const MotionSegment& seg) const override { return !seg.rational && seg.link != nullptr; }
+  bool holds(const MotionSegment& seg) const override {
+    return !seg.rational && seg.link != nullptr && seg.link->degree() == 1;
+  }
+  const Motion* rational(const MotionSegment&) const override { return nullptr; }
+  std::optional<Mat34E> exact_end(const MotionSegment& seg, bool last) const override {
+    return make_link_model(*seg.link)->exact_pose(Exact(last ? 1 : 0));
+  }
+  std::unique_ptr<SegmentModel> model(const MotionSegment& seg) const override {
+    return make_link_model(*seg.link);
+  }
+  PoseInterval enclosed_end(const MotionSegment& seg, bool last) const override {
+    return enclose_pose(*make_link_model(*seg.link), Exact(last ? 1 : 0));
+  }
+};
+
+// A robot link whose joints follow cubic or quintic Hermite polynomials in
+// time (a trajectory as controllers execute it, src/model/chain.h
+// LinkMotion): exact at a waypoint where its chain is; never rational.
+class RobotLinkHermiteKind final : public VerifiedSegmentKind {
+ public:
+  std::string_view name() const override { return "robot_link_hermite"; }
+  bool holds(const MotionSegment& seg) const override {
+    return !seg.rational && seg.link != nullptr && seg.link->degree() > 1;
+  }
   const Motion* rational(const MotionSegment&) const override { return nullptr; }
   std::optional<Mat34E> exact_end(const MotionSegment& seg, bool last) const override {
     return make_link_model(*seg.link)->exact_pose(Exact(last ? 1 : 0));
@@ -74,9 +97,10 @@ class RobotLinkKind final : public VerifiedSegmentKind {
 const RationalBezierKind kRationalBezier;
 const KeyframeKind kKeyframe;
 const RobotLinkKind kRobotLink;
+const RobotLinkHermiteKind kRobotLinkHermite;
 
 const std::vector<const VerifiedSegmentKind*>& verified_kinds() {
-  static const std::vector<const VerifiedSegmentKind*> kinds = {&kRationalBezier, &kRobotLink, &kKeyframe};
+  static const std::vector<const VerifiedSegmentKind*> kinds = {&kRationalBezier, &kRobotLink, &kRobotLinkHermite, &kKeyframe};
   return kinds;
 }
 

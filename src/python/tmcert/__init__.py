@@ -632,9 +632,20 @@ class Robot:
         return self
 
     def path(self, joints: Sequence[str], times: Iterable[NumberLike], positions: Any) -> "Robot":
-        """Linear in joint space: ``positions`` one row per time, columns in the order of ``joints``."""
+        """Linear in joint space (unless :meth:`interpolation` says otherwise): ``positions`` one row per time, columns in the order of ``joints``."""
         rows = [list(row) for row in positions]
         self._raw.path(list(joints), list(times), rows)
+        return self
+
+    def interpolation(self, how: str, velocities: Any = None, accelerations: Any = None) -> "Robot":
+        """The path as a controller executes a time-parameterised trajectory:
+        ``"cubic"`` splines in time with ``velocities`` (dq/dt), ``"quintic"``
+        with also ``accelerations``, one row per time like the positions;
+        ``"linear"`` (the default) takes neither.  Limits hold on the whole
+        polynomial."""
+        vel = [list(row) for row in velocities] if velocities is not None else []
+        acc = [list(row) for row in accelerations] if accelerations is not None else []
+        self._raw.interpolation(str(how), vel, acc)
         return self
 
     def self_collision(self, value: bool = True) -> "Robot":
