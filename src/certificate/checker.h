@@ -26,6 +26,9 @@ namespace tmcert::certificate::check_internal {
 // vertex lists are recomputed on each use (slower, bounded memory).
 constexpr std::size_t kGroupCacheBudget = 50'000'000;
 
+// Saturation of the expanded sizes of proofs (shared nodes counted per use).
+constexpr std::uint64_t kMaxExpanded = std::uint64_t{1} << 62;
+
 struct WitnessSide {
   bool interior = false;
   std::size_t element = 0;
@@ -59,6 +62,12 @@ struct CheckContext {
   std::string verdict;
   GroupSet groups[2];
   const json* pieces = nullptr;
+  // Shared proof nodes ("nodes", empty when absent) and each entry's
+  // expanded size (nodes judged per use, saturated at kMaxExpanded) and
+  // depth in splits.
+  const json* nodes = nullptr;
+  std::vector<std::uint64_t> expanded;
+  std::vector<int> node_depth;
   std::vector<std::pair<Exact, Exact>> pt;          // piece intervals
   std::vector<std::pair<Exact, Exact>> undecided;   // undecided intervals
   std::optional<std::pair<Exact, Exact>> first_contact;
@@ -140,7 +149,10 @@ class Checker {
 
   void read_check(CheckContext& ctx);
 
-  void validate_proof(const json& root, const std::string& root_path);
+  std::pair<std::uint64_t, int> validate_proof(const json& root, const std::string& root_path, std::size_t bound,
+                               const CheckContext& ctx);
+
+  void validate_root(const json& root, const std::string& path, const CheckContext& ctx);
 
   void read_groups(const json& c, CheckContext& ctx);
 

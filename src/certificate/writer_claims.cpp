@@ -335,10 +335,10 @@ void CheckWriter::before_witness(const Prover& prover, const Exact& from, json& 
   const PieceImages im = prover.images(enclose(piece));
   const std::function<const CurveE&()> exact_of = [&]() -> const CurveE& { return piece; };
   set_no_contact(prover, u0, u1, &root);
-  std::optional<json> proof = prover.prove(im, exact_of, 0, 0);
+  const std::optional<int> proof = prover.prove(im, exact_of, 0, 0);
   prover.no_contact = nullptr;
   if (!proof) return;
-  out["before_witness"] = {{"from", rational(from)}, {"proof", std::move(*proof)}};
+  out["before_witness"] = {{"from", rational(from)}, {"proof", *proof}};
   if (w.root) {
     const Exact lo = interval.first + root.lo * length, hi = interval.first + root.hi * length;
     out["witness"]["t"]["interval"] = json::array({rational(lo), rational(hi)});

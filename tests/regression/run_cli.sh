@@ -360,8 +360,9 @@ done
 # The same certificate with its first separation direction negated (which
 # can never separate) is rejected.
 run 60 "$tmcert" verify "$examples/octagons-near.json" --certificate "$work/cert.json"
-sed -E '0,/"sep":\[/s/"sep":\["([^"]*)","([^"]*)","([^"]*)"\]/"sep":["-\1","-\2","-\3"]/' "$work/cert.json" |
-  sed 's/"--/"/g' >"$work/tampered.json"
+# (tmcert-certificate/2 writes directions as JSON integers.)
+sed -E '0,/"sep":\[/s/"sep":\[(-?[0-9]+),(-?[0-9]+),(-?[0-9]+)\]/"sep":[-\1,-\2,-\3]/' "$work/cert.json" |
+  sed -E 's/([[,])--/\1/g' >"$work/tampered.json"
 if cmp -s "$work/cert.json" "$work/tampered.json"; then fail "the tampering did not change the certificate"; fi
 expect_check 1 "separation fails" "$work/tampered.json" "$examples/octagons-near.json"
 # Exact "no contact" claims (docs/certificate-format.md): the hover at 1e-17

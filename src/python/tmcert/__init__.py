@@ -333,7 +333,7 @@ class Result:
         return str(self._raw.summary())
 
     def certificate(self) -> str:
-        """The tmcert-certificate/1 document; needs ``verify(..., certificate=True)``."""
+        """The tmcert-certificate/2 document; needs ``verify(..., certificate=True)``."""
         return str(self._raw.certificate())
 
     def write_certificate(self, path: PathLike) -> None:
@@ -939,7 +939,7 @@ def check(certificate: Union[PathLike, Result, Mapping[str, Any]], scene: SceneL
     """Re-verifies a certificate against ``scene`` in exact arithmetic (as ``tmcert check``).
 
     certificate: a file path, a Result of ``verify(..., certificate=True)``,
-        or the tmcert-certificate/1 document as a dict.
+        or the tmcert-certificate/2 document as a dict.
     A malformed certificate raises InputError; one whose claims fail gives
     a false CertificateCheck whose ``message`` names the failing claim.
     """
