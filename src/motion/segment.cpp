@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <mutex>
 
 namespace tmcert {
 
@@ -81,7 +82,18 @@ bool same_rotation(const Rotation& a, const Rotation& b) {
   if (a.kind == Rotation::Kind::Rpy && b.kind == Rotation::Kind::Rpy) return a.rpy == b.rpy;
   const auto qa = exact_quaternion(a), qb = exact_quaternion(b);
   if (!qa || !qb) return false;
-  // Proportional quaternions (either sign): every 2x2 minor vanishes.
+  // Proportional quaternions (either sign): every 2x2 minor vanishes.  A
+  // minor whose interval enclosure excludes 0 is not zero (the common
+  // case of two different rotations, decided without rational products);
+  // the others are decided exactly (proofs/enclosures.md section 3b).
+  {
+    RoundingGuard guard;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const Interval m = to_interval((*qa)[i]) * to_interval((*qb)[j]) - to_interval((*qa)[j]) * to_interval((*qb)[i]);
+        if (m.inf() > 0 || m.sup() < 0) return false;
+      }
+  }
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j)
       if ((*qa)[i] * (*qb)[j] != (*qa)[j] * (*qb)[i]) return false;
@@ -203,8 +215,13 @@ Motion translation_motion(const Mat34E& from, const Vec3E& to, const Exact& t0, 
 
 std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, Interpolation how, const Exact& t0,
                                                 const Exact& t1) {
-  const auto pa = exact_pose(a), pb = exact_pose(b);
-  if (same_rotation(a.rotation, b.rotation) && pa) return translation_motion(*pa, b.translation, t0, t1);
+  // Different rotations under slerp or screw: no rational segment, and no
+  // exact pose is needed to say so.
+  const bool same = same_rotation(a.rotation, b.rotation);
+  if (!same && how != Interpolation::Nlerp) return std::nullopt;
+  const auto pa = exact_pose(a);
+  if (same && pa) return translation_motion(*pa, b.translation, t0, t1);
+  const auto pb = exact_pose(b);
   if (how != Interpolation::Nlerp || !pa || !pb) return std::nullopt;
   // q(s) = (1 - s) q0 + s q1 (q1 negated when q0 . q1 < 0): the rotation
   // form R(q(s)) is quadratic with Bernstein controls B(q0,q0), B(q0,q1),
@@ -364,7 +381,7 @@ class BezierModel final : public SegmentModel {
 class KeyframeModel final : public SegmentModel {
  public:
   KeyframeModel(const Pose& a, const Pose& b, Interpolation how)
-      : how_(how), exact_from_(tmcert::exact_pose(a)), exact_to_(tmcert::exact_pose(b)) {
+      : how_(how), from_(a), to_(b) {
     RoundingGuard guard;
     // nlerp interpolates the quaternions as written (a matrix's: the
     // rational multiple exact_quaternion gives); slerp and screw the unit ones.
@@ -522,9 +539,18 @@ class KeyframeModel final : public SegmentModel {
     return out;
   }
 
+  // The end poses exactly, computed when first asked (a planner's edge
+  // often needs neither: its sampled and start tests use the enclosures
+  // unless a candidate pair is left; proofs/enclosures.md section 3b).
   std::optional<Mat34E> exact_pose(const Exact& s) const override {
-    if (s == 0) return exact_from_;
-    if (s == 1) return exact_to_;
+    if (s == 0) {
+      std::call_once(from_once_, [this] { exact_from_ = tmcert::exact_pose(from_); });
+      return exact_from_;
+    }
+    if (s == 1) {
+      std::call_once(to_once_, [this] { exact_to_ = tmcert::exact_pose(to_); });
+      return exact_to_;
+    }
     return std::nullopt;
   }
 
@@ -534,7 +560,9 @@ class KeyframeModel final : public SegmentModel {
   }
 
   Interpolation how_;
-  std::optional<Mat34E> exact_from_, exact_to_;
+  Pose from_, to_;
+  mutable std::once_flag from_once_, to_once_;
+  mutable std::optional<Mat34E> exact_from_, exact_to_;
   bool constant_ = false;
   Quat<Interval> p0_, p1_;
   std::array<Interval, 3> t0_, t1_;
