@@ -486,14 +486,99 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
   // Per mover, its segments' models, built once per motion (the slices,
   // the start pose and the sampled poses).
   std::vector<std::vector<std::unique_ptr<SegmentModel>>> models(bodies_.size());
+  const Exact t1 = motions.front().t1();
+  // A mover's witness from a hit of the static test at parameter t.
+  auto mover_witness = [&](int a, const StaticOutcome& o, const Exact& t) {
+    Witness w{t,
+              {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,
+               bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
+              o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+    if (o.box) {
+      std::array<std::array<Exact, 2>, 3> box;
+      for (int c = 0; c < 3; ++c) box[c] = {Exact((*o.box)[c].inf()), Exact((*o.box)[c].sup())};
+      w.point_box = box;
+    }
+    return w;
+  };
+  // decide(): the end configuration of every mover against the
+  // environment first, before any slice is enclosed (proofs/sample-first.md
+  // section 3): t1 is the first sampled parameter, and a mover-environment
+  // pair comes before every mover pair, so a hit here is the one the sample
+  // pass below would find first.  A mover whose coarse box at t1 (its pose's
+  // interval map applied to the box of its vertex enclosures), or else the
+  // box of its placed vertex enclosures, meets no environment simplex's box
+  // has no candidate pair there (the static test would come out free) and
+  // is skipped.
+  // Only for one mover (a rigid body, e.g. OMPL's SE(3) states): with
+  // several (a robot's links) the pose of each at t1 costs about as much
+  // as its slices' first boxes, and an edge rarely ends in contact; the
+  // sample pass below then tests t1 where the slices do not clear it.
+  std::vector<char> end_tested(bodies_.size(), 0);
+  if (decide && bodies_.size() == 2 && kSampledParameters > 0 && t0 < t1) {
+    std::uint64_t configurations = 0;
+    for (std::size_t k = 1; k < bodies_.size(); ++k) {
+      const int a = static_cast<int>(k);
+      if (enlarged_pair(bodies_[a], bodies_[0])) continue;
+      end_tested[a] = 1;
+      const StartPose p = pose_at(motions[a - 1], t1, &models[a]);
+      // Two gates, each a box holding every placed simplex's box of the
+      // static test: the coarse box (the map applied to the box of the
+      // vertex enclosures), then the box of the placed vertex enclosures.
+      auto clears = [&](const std::array<Interval, 3>& x, std::array<double, 3>& lo, std::array<double, 3>& hi,
+                        bool first) {
+        bool finite = true;
+        for (int i = 0; i < 3; ++i) {
+          const Interval y = p.map[4 * i] * x[0] + p.map[4 * i + 1] * x[1] + p.map[4 * i + 2] * x[2] + p.map[4 * i + 3];
+          lo[i] = first ? y.inf() : std::min(lo[i], y.inf());
+          hi[i] = first ? y.sup() : std::max(hi[i], y.sup());
+          finite = finite && std::isfinite(y.inf()) && std::isfinite(y.sup()) && y.inf() <= y.sup();
+        }
+        return finite;
+      };
+      bool gate = false;
+      {
+        RoundingGuard guard;
+        std::array<double, 3> lo, hi;
+        gate = clears(bounds_[a], lo, hi, true) && !index_->any(lo, hi);
+        if (!gate && !enclosed_[a].empty()) {
+          bool finite = true;
+          for (std::size_t v = 0; v < enclosed_[a].size(); ++v) finite = clears(enclosed_[a][v], lo, hi, v == 0) && finite;
+          gate = finite && !index_->any(lo, hi);
+        }
+      }
+      if (gate) continue;
+      ++configurations;
+      const StaticOutcome o =
+          static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true);
+      if (o.kind != StaticOutcome::Kind::Hit) continue;
+      // As the sample pass's hit below: record(0), then finish().
+      out.checks.push_back(sampled_collision({a, 0}, t0, t1, mover_witness(a, o, t1), configurations));
+      record(0);
+      CheckResult& r = out.checks.back();
+      r.epsilon = *options_.epsilon;
+      r.interval = {t0, t1};
+      out.witness = r.witness;
+      out.first_contact = r.first_contact;
+      return out;
+    }
+  }
   for (std::size_t k = 1; k < bodies_.size(); ++k) {
     const bool coarse = !in_pair[k] && !bodies_[k].solid && !bodies_[0].solid;
     if (coarse) filter.bounds = bounds_[k];
     slices[k] = edge_slices(motions[k - 1], enclosed_[k], kSlices, coarse ? &filter : nullptr, &models[k]);
     swept[k] = slices[k].whole;
-    start[k] = start_pose_of(motions[k - 1], models[k]);
   }
-  const Exact t1 = motions.front().t1();
+  // The start poses, computed when first needed (the solids' containment,
+  // the start test before a search): a prefiltered edge needs none.
+  std::vector<char> has_start(bodies_.size(), 0);
+  has_start[0] = 1;
+  auto start_of = [&](int k) -> const StartPose& {
+    if (!has_start[k]) {
+      start[k] = start_pose_of(motions[k - 1], models[k]);
+      has_start[k] = 1;
+    }
+    return start[k];
+  };
   // A check cleared by boxes alone, without a search.
   auto prefiltered = [&](int a, int b) {
     CheckResult r;
@@ -565,6 +650,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         return *at[body];
       };
       const auto [a, b] = pairs[sampled[i]];
+      // A mover's end configuration was tested above.
+      if (b == 0 && end_tested[a] && t == t1) return std::nullopt;
       // Only inside the slices the boxes do not clear: elsewhere nothing
       // touches (proofs/edge-slices.md).
       const auto& runs = pair_windows(sampled[i]);
@@ -578,16 +665,7 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         const StaticOutcome o =
             static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true);
         if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
-        Witness w{t,
-                  {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,
-                   bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
-                  o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
-        if (o.box) {
-          std::array<std::array<Exact, 2>, 3> box;
-          for (int c = 0; c < 3; ++c) box[c] = {Exact((*o.box)[c].inf()), Exact((*o.box)[c].sup())};
-          w.point_box = box;
-        }
-        return w;
+        return mover_witness(a, o, t);
       }
       // Two movers: the search's filtered static test with both poses.
       const StartPose& pa = pose(a);
@@ -639,7 +717,7 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       for (int side = 0; side < 2 && c.kind == Containment::Kind::Free; ++side) {
         const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
         if (bodies_[sb].solid)
-          c = start_containment(bodies_[sb], vertices_[sb], start[sb], bodies_[ob], representatives_[ob], start[ob],
+          c = start_containment(bodies_[sb], vertices_[sb], start_of(sb), bodies_[ob], representatives_[ob], start_of(ob),
                                 side == 0);
       }
       if (c.kind != Containment::Kind::Free) {
@@ -686,7 +764,7 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
     // when the first window starts at t0.
     const bool start_free =
         b == 0 && windows.front().first == t0 &&
-        static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts, &local_[a]).kind ==
+        static_test(prepared_[a]->parts, start_of(a).map, start_of(a).exact, *index_, prepared_[0]->parts, &local_[a]).kind ==
             StaticOutcome::Kind::Free;
     // VerifyOptions::time_limit bounds each check, as in Verifier::check.
     VerifyOptions options = options_;
