@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <tuple>
 
@@ -187,13 +188,26 @@ struct StaticOutcome {
 StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array<Interval, 12>& map,
                           const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
                           const std::vector<StaticPart>& environment,
-                          const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false) {
+                          const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false,
+                          const LocalVertices* shared = nullptr) {
   struct Candidate {
     int pi, pj, si, sj;
     SimplexI x, y;
   };
   std::vector<Candidate> candidates;
   StaticOutcome out;
+  // With `shared` (the same enclosures as `local`, one per distinct
+  // vertex): each vertex placed once, when a simplex first needs it; the
+  // same interval operations on the same intervals, so the same placed
+  // simplices (proofs/sample-first.md section 2b).
+  std::vector<std::array<Interval, 3>> placed;
+  std::vector<char> done;
+  if (shared && local) {
+    placed.resize(shared->vertices.size());
+    done.assign(shared->vertices.size(), 0);
+  } else {
+    shared = nullptr;
+  }
   {
     RoundingGuard guard;
     for (std::size_t i = 0; i < parts.size() && out.kind == StaticOutcome::Kind::Free; ++i)
@@ -202,6 +216,17 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
         EnvironmentIndex::Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
         it.s.count = x.count;
         for (int v = 0; v < x.count; ++v) {
+          if (shared) {
+            const std::uint32_t id = shared->index[i][k][v];
+            if (!done[id]) {
+              const std::array<Interval, 3>& p = shared->vertices[id];
+              for (int c = 0; c < 3; ++c)
+                placed[id][c] = map[4 * c] * p[0] + map[4 * c + 1] * p[1] + map[4 * c + 2] * p[2] + map[4 * c + 3];
+              done[id] = 1;
+            }
+            it.s.p[v] = placed[id];
+            continue;
+          }
           // The simplex's own coordinates enclosed (once per body when
           // `local` holds them: the same intervals).
           const std::array<Interval, 3> p =
@@ -416,6 +441,25 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
       parts.push_back(std::move(list));
     }
     local_.push_back(std::move(parts));
+    // The distinct vertices of its simplices, and each simplex corner's
+    // index among them (static_test places each vertex once).
+    LocalVertices shared;
+    std::map<Vec3E, std::uint32_t> ids;
+    for (const StaticPart& part : p->parts) {
+      std::vector<std::array<std::uint32_t, 3>> list;
+      for (const Simplex& x : part.simplices) {
+        std::array<std::uint32_t, 3> corner{0, 0, 0};
+        for (int v = 0; v < x.count; ++v) {
+          const auto [at, fresh] = ids.emplace(x.p[v], static_cast<std::uint32_t>(shared.vertices.size()));
+          if (fresh)
+            shared.vertices.push_back({to_interval(x.p[v][0]), to_interval(x.p[v][1]), to_interval(x.p[v][2])});
+          corner[v] = at->second;
+        }
+        list.push_back(corner);
+      }
+      shared.index.push_back(std::move(list));
+    }
+    shared_.push_back(std::move(shared));
   }
 }
 
@@ -549,7 +593,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       if (gate) continue;
       ++configurations;
       const StaticOutcome o =
-          static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true);
+          static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
+                      &shared_[a]);
       if (o.kind != StaticOutcome::Kind::Hit) continue;
       // As the sample pass's hit below: record(0), then finish().
       out.checks.push_back(sampled_collision({a, 0}, t0, t1, mover_witness(a, o, t1), configurations));
@@ -663,7 +708,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         // A certain crossing of the enclosures first, also at an exact
         // pose (cheaper than the exact tests; its witness is a box).
         const StaticOutcome o =
-            static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true);
+            static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
+                      &shared_[a]);
         if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
         return mover_witness(a, o, t);
       }
@@ -764,7 +810,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
     // when the first window starts at t0.
     const bool start_free =
         b == 0 && windows.front().first == t0 &&
-        static_test(prepared_[a]->parts, start_of(a).map, start_of(a).exact, *index_, prepared_[0]->parts, &local_[a]).kind ==
+        static_test(prepared_[a]->parts, start_of(a).map, start_of(a).exact, *index_, prepared_[0]->parts, &local_[a],
+                    false, &shared_[a]).kind ==
             StaticOutcome::Kind::Free;
     // VerifyOptions::time_limit bounds each check, as in Verifier::check.
     VerifyOptions options = options_;
@@ -816,7 +863,7 @@ std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const StaticOutcome o =
         static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts,
-                    &local_[k + 1]);
+                    &local_[k + 1], false, &shared_[k + 1]);
     if (o.kind == StaticOutcome::Kind::Hit)
       return Witness{Exact(0),
                      {bodies_[k + 1].name + " " + prepared_[k + 1]->parts[o.part_mover].name,
