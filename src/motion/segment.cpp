@@ -539,6 +539,43 @@ class KeyframeModel final : public SegmentModel {
     return out;
   }
 
+  // The value parts of pose(Jet(s)) without the derivatives, for slerp
+  // away from angle 0, nlerp and equal rotations: the same interval
+  // operations on the values, in the same order (a constant jet's value
+  // part of a * b is a.v * b.v, of sin(a) validated::sin(a.v), of a / b
+  // a.v / b.v), so the same intervals bit for bit (proofs/enclosures.md
+  // section 2, "Value parts").  Screw and slerp near angle 0: the jets'.
+  PoseInterval pose_values(const Interval& s) const override {
+    const bool slerp = how_ == Interpolation::Slerp && !constant_;
+    if ((how_ == Interpolation::Screw && !constant_) || small_screw_ || (slerp && !(theta_.inf() > 0x1p-10)))
+      return SegmentModel::pose_values(s);
+    Quat<Interval> q;
+    bool unit = true;
+    if (constant_) {
+      q = p0_;
+      unit = false;
+    } else if (slerp) {
+      const Interval r = Interval(1) - s;
+      const Interval a = validated::sin(theta_ * r), b = validated::sin(theta_ * s);
+      const Interval inv = Interval(1) / validated::sin(theta_);
+      for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
+    } else {  // nlerp
+      for (int i = 0; i < 4; ++i) q[i] = p0_[i] + (p1_[i] - p0_[i]) * s;
+      unit = false;
+    }
+    std::array<Interval, 9> R = rotation_form(q);
+    if (!unit) {
+      const Interval n2 = qdot(q, q);
+      for (Interval& x : R) x = x / n2;
+    }
+    PoseInterval out;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
+      out[4 * r + 3] = t0_[r] + (t1_[r] - t0_[r]) * s;
+    }
+    return out;
+  }
+
   // The end poses exactly, computed when first asked (a planner's edge
   // often needs neither: its sampled and start tests use the enclosures
   // unless a candidate pair is left; proofs/enclosures.md section 3b).

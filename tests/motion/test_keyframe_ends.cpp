@@ -78,4 +78,28 @@ BOOST_AUTO_TEST_CASE(the_models_exact_ends_are_the_keyframes) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(value_parts_are_the_jets_values_bit_for_bit) {
+  // The model's value-only pose_values (slerp away from angle 0, nlerp,
+  // equal rotations) against the value parts of pose(Jet(s)), at points
+  // and over intervals; screw and a tiny slerp angle use the jets.
+  const Pose a = quaternion_pose(0.5, 0.25, -0.125, 1.0 / 3.0, 0.1);
+  const Pose b = quaternion_pose(-0.75, 0.5, 0.0625, 0.2, 2.5);
+  const Pose same = quaternion_pose(1.0, 0.5, -0.25, 2.0 / 3.0, -1);  // 2a: the same rotation
+  const Pose tiny = quaternion_pose(0.5, 0.25, -0.125, 1.0 / 3.0 + 1e-9, 3);
+  const std::pair<Pose, Pose> ends[] = {{a, b}, {a, same}, {a, tiny}};
+  for (const auto& [p, q] : ends)
+    for (Interpolation how : {Interpolation::Slerp, Interpolation::Nlerp, Interpolation::Screw}) {
+      const auto model = make_keyframe_model(p, q, how);
+      RoundingGuard guard;
+      for (const Interval& s : {Interval(0), Interval(1), Interval(0.375), Interval(0.25, 0.3125), Interval(0, 1)}) {
+        const PoseInterval v = model->pose_values(s);
+        const PoseJet j = model->pose(Jet(s));
+        for (int e = 0; e < 12; ++e) {
+          BOOST_TEST(v[e].inf() == j[e].v.inf());
+          BOOST_TEST(v[e].sup() == j[e].v.sup());
+        }
+      }
+    }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
