@@ -189,7 +189,8 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
                           const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
                           const std::vector<StaticPart>& environment,
                           const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false,
-                          const LocalVertices* shared = nullptr) {
+                          const LocalVertices* shared = nullptr,
+                          std::vector<std::array<Interval, 3>>* preplaced = nullptr) {
   struct Candidate {
     int pi, pj, si, sj;
     SimplexI x, y;
@@ -202,7 +203,11 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
   // simplices (proofs/sample-first.md section 2b).
   std::vector<std::array<Interval, 3>> placed;
   std::vector<char> done;
-  if (shared && local) {
+  if (shared && local && preplaced && preplaced->size() == shared->vertices.size()) {
+    // Every vertex already placed by the caller, by the same operations.
+    placed = std::move(*preplaced);
+    done.assign(shared->vertices.size(), 1);
+  } else if (shared && local) {
     placed.resize(shared->vertices.size());
     done.assign(shared->vertices.size(), 0);
   } else {
@@ -580,13 +585,27 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         return finite;
       };
       bool gate = false;
+      // The vertices placed for the second gate, by static_test's
+      // operations: handed to it (section 2b).
+      std::vector<std::array<Interval, 3>> placed;
       {
         RoundingGuard guard;
         std::array<double, 3> lo, hi;
         gate = clears(bounds_[a], lo, hi, true) && !index_->any(lo, hi);
-        if (!gate && !enclosed_[a].empty()) {
+        const std::vector<std::array<Interval, 3>>& corners = shared_[a].vertices;
+        if (!gate && !corners.empty()) {
+          placed.resize(corners.size());
           bool finite = true;
-          for (std::size_t v = 0; v < enclosed_[a].size(); ++v) finite = clears(enclosed_[a][v], lo, hi, v == 0) && finite;
+          for (std::size_t v = 0; v < corners.size(); ++v) {
+            const std::array<Interval, 3>& x = corners[v];
+            for (int i = 0; i < 3; ++i) {
+              const Interval y = p.map[4 * i] * x[0] + p.map[4 * i + 1] * x[1] + p.map[4 * i + 2] * x[2] + p.map[4 * i + 3];
+              placed[v][i] = y;
+              lo[i] = v == 0 ? y.inf() : std::min(lo[i], y.inf());
+              hi[i] = v == 0 ? y.sup() : std::max(hi[i], y.sup());
+              finite = finite && std::isfinite(y.inf()) && std::isfinite(y.sup()) && y.inf() <= y.sup();
+            }
+          }
           gate = finite && !index_->any(lo, hi);
         }
       }
@@ -594,7 +613,7 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       ++configurations;
       const StaticOutcome o =
           static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
-                      &shared_[a]);
+                      &shared_[a], &placed);
       if (o.kind != StaticOutcome::Kind::Hit) continue;
       // As the sample pass's hit below: record(0), then finish().
       out.checks.push_back(sampled_collision({a, 0}, t0, t1, mover_witness(a, o, t1), configurations));
