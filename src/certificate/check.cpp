@@ -403,8 +403,9 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
     in_.array(*pts, pp, 2);
     ctx.points = std::array<Vec3E, 2>{in_.vec3((*pts)[0], idx(pp, 0)), in_.vec3((*pts)[1], idx(pp, 1))};
   }
-  if ((ctx.witness_root || ctx.enclosed_witness) && (ctx.displacement || ctx.points))
-    in_.bad(wp, "a witness at an irrational time or an enclosed pose has no displacement and no points");
+  if (ctx.witness_root && (ctx.displacement || ctx.points))
+    in_.bad(wp, "a witness at an irrational time has no displacement and no points");
+  if (ctx.enclosed_witness && ctx.points) in_.bad(wp, "a witness at an enclosed pose has no points");
   for (int s = 0; s < 2; ++s) {
     WitnessSide& side = ctx.side[s];
     const std::string sp = mem(wp, s == 0 ? "a" : "b");

@@ -194,8 +194,24 @@ void Checker::check_algebraic_witness(const CheckContext& ctx) {
     reject(L + ": the two sub-features do not meet at the root of t in (" + str(claim.lo) + ", " + str(claim.hi) + ")");
 }
 
+// A witness's displacement (if any) is a translation within the tolerance
+// of the body it moves: a translation by v has norm |v| sqrt(sum w) in the
+// body's metric.
+void Checker::check_displacement(const CheckContext& ctx) {
+  if (!ctx.displacement) return;
+  const Body& body = *ctx.body[ctx.displaced];
+  const Vec3E& v = *ctx.displacement;
+  Exact w = 0;
+  for (const Exact& x : body.mass.weights) w += x;
+  const Exact norm2 = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * w;
+  if (norm2 > body.tolerance * body.tolerance)
+    reject(ctx.label + ": witness.displacement: " + str(v) + " is not within the tolerance " + str(body.tolerance) + " of " +
+           quote_text(body.name) + " (its norm squared in the body's metric is " + str(norm2) + ")");
+}
+
 // A witness at an enclosed pose: an edge of one body crosses a triangle
-// of the other transversally for every pose in the two pose boxes at t.
+// of the other transversally for every pose in the two pose boxes at t
+// (the displaced body's box translated by the displacement, when given).
 void Checker::check_enclosed_witness(const CheckContext& ctx) {
   const std::string L = ctx.label + ": witness";
   const Exact& t = ctx.witness_t;
@@ -203,8 +219,10 @@ void Checker::check_enclosed_witness(const CheckContext& ctx) {
     reject(L + ": t = " + str(t) + " is outside the check's interval [" + str(ctx.t0) + ", " + str(ctx.t1) + "]");
   std::vector<RBox> placed_vertices[2];
   for (int s = 0; s < 2; ++s) {
-    const std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
+    std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
     if (!box) reject(L + ": the pose of " + quote_text(ctx.body[s]->name) + " at t = " + str(t) + " has no finite enclosure");
+    if (ctx.displacement && ctx.displaced == s)
+      for (int r = 0; r < 3; ++r) box->center[4 * r + 3] += (*ctx.displacement)[r];
     for (std::size_t v : ctx.side[s].vertices)
       placed_vertices[s].push_back(place_box(*box, ctx.data[s]->elems[ctx.side[s].element][v]));
   }
@@ -213,6 +231,7 @@ void Checker::check_enclosed_witness(const CheckContext& ctx) {
   const std::vector<RBox>& tri = placed_vertices[1 - e];
   if (edge.size() != 2 || tri.size() != 3)
     reject(L + ": an enclosed witness needs an edge (two vertices) on one side and a triangle (three) on the other");
+  check_displacement(ctx);
   if (!certain_crossing(edge[0], edge[1], tri[0], tri[1], tri[2]))
     reject(L + ": the edge's crossing of the triangle at t = " + str(t) +
            " is not certain over the enclosed poses (grazing, or not crossing)");
@@ -227,17 +246,7 @@ void Checker::check_witness(const CheckContext& ctx) {
   const std::string L = ctx.label + ": witness";
   if (t < ctx.t0 || t > ctx.t1)
     reject(L + ": t = " + str(t) + " is outside the check's interval [" + str(ctx.t0) + ", " + str(ctx.t1) + "]");
-  if (ctx.displacement) {
-    // A translation by v has norm |v| sqrt(sum w) in the body's metric.
-    const Body& body = *ctx.body[ctx.displaced];
-    const Vec3E& v = *ctx.displacement;
-    Exact w = 0;
-    for (const Exact& x : body.mass.weights) w += x;
-    const Exact norm2 = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * w;
-    if (norm2 > body.tolerance * body.tolerance)
-      reject(L + ".displacement: " + str(v) + " is not within the tolerance " + str(body.tolerance) + " of " +
-             quote_text(body.name) + " (its norm squared in the body's metric is " + str(norm2) + ")");
-  }
+  check_displacement(ctx);
   if (ctx.points) {
     const Vec3E d = sub((*ctx.points)[0], (*ctx.points)[1]);
     if (dot(d, d) > ctx.clearance * ctx.clearance)

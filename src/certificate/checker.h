@@ -177,6 +177,7 @@ class Checker {
   void check_algebraic_witness(const CheckContext& ctx);
 
   void check_enclosed_witness(const CheckContext& ctx);
+  void check_displacement(const CheckContext& ctx);
 
   void check_witness(const CheckContext& ctx);
 

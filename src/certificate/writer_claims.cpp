@@ -161,6 +161,8 @@ json CheckWriter::enclosed_witness(const Witness& w) const {
   for (int k = 0; k < 2; ++k) {
     box[k] = pose_box_at(*bodies[k], w.t);
     if (!box[k]) fail("the pose of " + bodies[k]->name + " at the witness's t = " + to_string(w.t) + " has no finite enclosure");
+    if (w.displacement && w.displaced == k)  // a toleranced contact: that body translated
+      for (int r = 0; r < 3; ++r) box[k]->center[4 * r + 3] += (*w.displacement)[r];
   }
   const std::vector<std::vector<Vec3E>> el[2] = {elements(a), elements(b)};
   for (int ea : named_elements(a, w.features[0]))
@@ -186,7 +188,12 @@ json CheckWriter::enclosed_witness(const Witness& w) const {
                   json sides[2];
                   sides[edge_side] = {{"element", e[edge_side]}, {"vertices", json::array({i, j})}};
                   sides[1 - edge_side] = {{"element", e[1 - edge_side]}, {"vertices", json::array({x, y, z})}};
-                  return json{{"t", rational(w.t)}, {"point_box", box_json}, {"a", sides[0]}, {"b", sides[1]}};
+                  json out{{"t", rational(w.t)}, {"point_box", box_json}, {"a", sides[0]}, {"b", sides[1]}};
+                  if (w.displacement) {
+                    out["displacement"] = vec(*w.displacement);
+                    out["displaced"] = w.displaced == 0 ? "a" : "b";
+                  }
+                  return out;
                 }
       }
     }

@@ -9,6 +9,7 @@
 #include "src/verify/search_check.h"
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <set>
@@ -215,6 +216,86 @@ Apartness Check<B>::interior_witness(const Exact& u) {
   return Apartness::Free;
 }
 
+// Tolerance at an enclosed pose (a transcendental motion at u, where the
+// poses are known only as boxes): a translation v of one body within its
+// tolerance (|v|^2 <= reach2, exact) after which an edge of one body
+// crosses a triangle of the other for every pose in the boxes (the certain
+// crossings of filtered_first_hit, kernels/robust_crossing.h).  v is
+// aimed by the exact closest points at a rational pose near the boxes'
+// centres, and made longer than their distance so that the displaced
+// bodies interpenetrate by a depth that the boxes' width does not undo:
+// the full reach first, then half way (a thin body must not be crossed
+// through).  The witness is the crossing's point box and v
+// (proofs/enclosures.md section 6).
+template <int B>
+bool displaced_crossing(Check<B>& c, const Exact& u, const std::set<std::pair<int, int>>* only) {
+  const CheckExtras<B>& x = c.extras;
+  const int k = x.reach2[1] > x.reach2[0] ? 1 : 0;  // the body translated: the longer reach
+  if (!(x.reach2[k] > 0)) return false;
+  std::array<PoseInterval, B> maps = x.enclosed->poses(u);
+  std::array<Mat34E, B> near;
+  for (int b = 0; b < B; ++b)
+    for (int e = 0; e < 12; ++e) {
+      const double lo = maps[b][e].inf(), hi = maps[b][e].sup();
+      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+      near[b][e] = Exact(lo) + (Exact(hi) - Exact(lo)) / 2;
+    }
+  const auto hit = closest_within(c.moving.parts, &near[0], c.other.parts, B == 2 ? &near[B - 1] : nullptr, x.reach2[k], only,
+                                  c.result.stats);
+  if (!hit || !(hit->points.d2 > 0)) return false;
+  // The direction of the moving body's translation (relative to the other).
+  const Vec3E& pa = hit->points.a;
+  const Vec3E& pb = hit->points.b;
+  const std::array<double, 3> dir = {CGAL::to_double(pb[0] - pa[0]), CGAL::to_double(pb[1] - pa[1]),
+                                     CGAL::to_double(pb[2] - pa[2])};
+  const double full = std::sqrt(CGAL::to_double(x.reach2[k] / hit->points.d2));
+  if (!(full > 1)) return false;
+  // Decimals with 1/1000 of the reach as their last digit (short witnesses).
+  double scale = 1;
+  CGAL::Gmpz scale_exact(1);
+  for (const double reach = std::sqrt(CGAL::to_double(x.reach2[k])); scale * reach < 1000 && scale < 1e15; scale *= 10)
+    scale_exact *= 10;
+  for (double s : {full, (1 + full) / 2}) {
+    for (int attempt = 0; attempt < 8; ++attempt, s *= 0.999) {
+      Vec3E v;  // the moving body's relative translation, in decimals short of the reach
+      for (int i = 0; i < 3; ++i) v[i] = Exact(CGAL::Gmpz(static_cast<long>(std::llround(dir[i] * s * scale))), scale_exact);
+      if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > x.reach2[k]) continue;  // rounded past the reach: shorter
+      std::array<PoseInterval, B> shifted = maps;
+      {
+        RoundingGuard guard;
+        for (int i = 0; i < 3; ++i) shifted[0][4 * i + 3] += to_interval(v[i]);
+      }
+      if constexpr (B == 2)
+        if (k == 1) {  // translate the other body by -v instead (the same relative motion)
+          shifted = maps;
+          RoundingGuard guard;
+          for (int i = 0; i < 3; ++i) shifted[1][4 * i + 3] -= to_interval(v[i]);
+        }
+      const std::optional<StaticHit> crossing = filtered_first_hit(
+          c.moving.parts, &shifted[0], c.other.parts, B == 2 ? &shifted[B - 1] : nullptr, only,
+          []() -> std::optional<std::pair<std::optional<Mat34E>, std::optional<Mat34E>>> { return std::nullopt; },
+          c.result.stats);
+      ++c.result.stats.static_configurations;
+      if (!crossing || !crossing->box) break;  // try the shallower depth
+      c.set_witness(u, *crossing);
+      Witness& w = *c.result.witness;
+      Vec3E applied = v;  // the translation of body k that the witness states
+      if (k == 1) {
+        for (int i = 0; i < 3; ++i) applied[i] = -v[i];
+        if constexpr (B == 1)  // the fixed body moved by -v: every point by -v from the configuration tested
+          for (int i = 0; i < 3; ++i) {
+            (*w.point_box)[i][0] += applied[i];
+            (*w.point_box)[i][1] += applied[i];
+          }
+      }
+      w.displacement = applied;
+      w.displaced = c.swapped ? 1 - k : k;
+      return true;
+    }
+  }
+  return false;
+}
+
 // Tolerance and clearance (SCENE_FORMAT.md): at curve parameter u, where
 // the poses are exact, the exact closest points of the two bodies; they
 // prove a clearance violation when no farther apart than the clearance,
@@ -227,7 +308,7 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
   std::optional<Mat34E> m2;
   if (extras.enclosed) {
     const auto exact = extras.enclosed->exact_poses(u);
-    if (!exact) return false;
+    if (!exact) return displaced_crossing(*this, u, only);
     m1 = (*exact)[0];
     if constexpr (B == 2) m2 = (*exact)[1];
   } else {

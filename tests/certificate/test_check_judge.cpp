@@ -1,6 +1,8 @@
 // The checker's judging (src/certificate/check_judge.cpp): each tampering
 // with a tiling, a verdict, a witness or a start claim is rejected with the
 // claim it breaks.
+#include "src/certificate/writer.h"
+#include "src/verify/verify.h"
 #include "tests/certificate/check_support.h"
 
 using namespace check_test;
@@ -216,6 +218,38 @@ BOOST_AUTO_TEST_CASE(pieces_after_an_undecided_interval_need_start_claims_there)
   Case f = load("solid-crossing", "solid-crossing-undecided");
   check0(f)["start"][1]["t"] = "0";
   expect_malformed(f, "start[1].solid: a second entry for \"b\"");
+}
+
+// A toleranced contact at an enclosed pose (proofs/enclosures.md section
+// 6): the plate, turning by slerp, is translated within its tolerance into
+// the post; the checker translates its own pose box of the plate by the
+// displacement and re-decides the tolerance (W = 6, r = 1/10).
+BOOST_AUTO_TEST_CASE(enclosed_witness_with_displacement) {
+  Case c;
+  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-plate-post-slerp-collision.json");
+  tmcert::VerifyOptions options;
+  options.record_cover = true;
+  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  const json& w = check0(c)["witness"];
+  BOOST_REQUIRE(w.contains("point_box"));
+  BOOST_REQUIRE(w.contains("displacement"));
+  BOOST_TEST(w["displaced"] == "a");
+  BOOST_TEST(check(c).ok, check(c).message);
+  {
+    Case d = c;
+    check0(d)["witness"]["displacement"] = json::array({"0", "0", "0"});  // the nominal poses do not touch
+    expect_rejected(d, "is not certain over the enclosed poses");
+  }
+  {
+    Case d = c;
+    check0(d)["witness"]["displacement"] = json::array({"0", "1/24", "0"});  // (1/24)^2 * 6 > 1/100
+    expect_rejected(d, "witness.displacement: (0, 1/24, 0) is not within the tolerance 1/10 of \"plate\"");
+  }
+  {
+    Case d = c;
+    check0(d)["witness"]["points"] = json::array({json::array({"0", "0", "0"}), json::array({"0", "0", "0"})});
+    expect_malformed(d, "a witness at an enclosed pose has no points");
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
