@@ -512,7 +512,7 @@ class UrdfReader {
       // surfaces.
       Body closed, open;
       std::vector<int> closed_elements, open_elements = other_element;
-      split_shells(all, polygon_element, closed, closed_elements, open, open_elements);
+      split_shells(all, polygon_element, elements, closed, closed_elements, open, open_elements);
       for (Body* b : {&closed, &open}) {
         if (b->polygons.empty() && b->segments.empty() && b->points.empty()) continue;
         std::vector<int>& els = b == &closed ? closed_elements : open_elements;
@@ -543,19 +543,43 @@ class UrdfReader {
   // The closed shells of `all` (polygon_shells: every edge of the shell in
   // exactly two of its polygons, and no self-intersection) into `closed`,
   // everything else into `open` (which has `all`'s segments and points
-  // already); the elements of their polygons appended to the lists.
-  static void split_shells(const Body& all, const std::vector<int>& polygon_element, Body& closed,
-                           std::vector<int>& closed_elements, Body& open, std::vector<int>& open_elements) {
+  // already); the elements of their polygons appended to the lists.  A
+  // shell that closes but intersects itself is a surface, and the result
+  // says so (a note naming its element).
+  void split_shells(const Body& all, const std::vector<int>& polygon_element, const std::vector<Element>& elements,
+                    Body& closed, std::vector<int>& closed_elements, Body& open, std::vector<int>& open_elements) const {
     open.segments = all.segments;
     open.points = all.points;
     if (all.polygons.empty()) return;
     const std::vector<int> shell = polygon_shells(all);
     const int shells = *std::max_element(shell.begin(), shell.end()) + 1;
+    // Each shell on its own, with its convex pieces (which the
+    // self-intersection test reads), renumbered to the shell's polygons.
     std::vector<Body> each(shells);
-    for (std::size_t p = 0; p < all.polygons.size(); ++p) each[shell[p]].polygons.push_back(all.polygons[p]);
+    std::vector<int> index_in_shell(all.polygons.size());
+    for (std::size_t p = 0; p < all.polygons.size(); ++p) {
+      index_in_shell[p] = static_cast<int>(each[shell[p]].polygons.size());
+      each[shell[p]].polygons.push_back(all.polygons[p]);
+    }
+    for (const ConvexPiece& piece : all.pieces) {
+      ConvexPiece q = piece;
+      q.polygon = index_in_shell[piece.polygon];
+      each[shell[piece.polygon]].pieces.push_back(std::move(q));
+    }
+    std::vector<int> first_polygon(shells, -1);
+    for (std::size_t p = 0; p < all.polygons.size(); ++p)
+      if (first_polygon[shell[p]] < 0) first_polygon[shell[p]] = static_cast<int>(p);
     std::vector<char> is_closed(shells, 0);
-    for (int k = 0; k < shells; ++k)
-      is_closed[k] = solid_problem(each[k]).empty() && shell_intersection_problem(each[k]).empty();
+    for (int k = 0; k < shells; ++k) {
+      if (!solid_problem(each[k]).empty()) continue;
+      if (shell_intersection_problem(each[k]).empty()) {
+        is_closed[k] = 1;
+        continue;
+      }
+      notes_.push_back(source_ + ": " + elements[polygon_element[first_polygon[k]]].where + ": a closed shell of " +
+                       std::to_string(each[k].polygons.size()) +
+                       " polygons intersects itself: it counts as a surface (its inside is not part of the link's solid)");
+    }
     std::vector<int> new_index(all.polygons.size());
     for (std::size_t p = 0; p < all.polygons.size(); ++p) {
       const bool c = is_closed[shell[p]];

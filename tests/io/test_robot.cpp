@@ -556,6 +556,49 @@ BOOST_AUTO_TEST_CASE(closed_shells_keep_their_insides_beside_open_surfaces) {
   BOOST_TEST(result.verdict == Verdict::Collision);
 }
 
+BOOST_AUTO_TEST_CASE(self_intersecting_closed_shells_are_surfaces_with_a_note) {
+  // Published meshes (the UR3's base, TIAGo's arm, the Bravo 7's link 4)
+  // hold shells that close but intersect themselves.  Such a shell has no
+  // inside the solid rule can use: it is a surface, the result says so in
+  // a note, and the link loads (the self-intersection test read no convex
+  // pieces here once, so the shell passed as closed and the scene was then
+  // refused: "solid: shell 0 intersects itself").  Here a flat
+  // "tetrahedron" (four coplanar vertices: every edge in two faces, the
+  // faces overlapping) beside a closed tetrahedron in one mesh.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tmcert_robot_folded";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "folded.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                       "v 5 0 0\nv 6 0 0\nv 5 1 0\nv 6 1 0\n"
+                                       "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n"
+                                       "f 5 6 7\nf 5 6 8\nf 5 7 8\nf 6 7 8\n";
+  const std::string urdf = R"(<robot name="m"><link name="a">
+    <collision><geometry><mesh filename="folded.obj"/></geometry></collision></link></robot>)";
+  std::ofstream(dir / "m.urdf") << urdf;
+  const auto model = load_urdf_text(urdf, "m.urdf", dir.string());
+  const std::vector<LinkPart>& a = model->links[0].parts;
+  BOOST_REQUIRE(a.size() == 2u);
+  BOOST_TEST(a[0].geometry.solid);
+  BOOST_TEST(a[0].geometry.polygons.size() == 4u);
+  BOOST_TEST(a[1].suffix == "/collision[0]/open");
+  BOOST_TEST(!a[1].geometry.solid);
+  BOOST_TEST(a[1].geometry.polygons.size() == 4u);
+  BOOST_REQUIRE(model->notes.size() == 1u);
+  BOOST_TEST(model->notes[0].find("collision[0] (") != std::string::npos, model->notes[0]);
+  BOOST_TEST(model->notes[0].find("a closed shell of 4 polygons intersects itself: it counts as a surface") !=
+                 std::string::npos,
+             model->notes[0]);
+  // The scene loads and is verified: a point crossing the flat shell's
+  // plane inside it is a collision with the surface.
+  const std::string scene = R"({"format": "tmcert-scene/1",
+    "robots": [{"name": "r", "urdf": ")" + (dir / "m.urdf").string() + R"(", "joints": [], "path": {"times": [0, 1], "positions": [[], []]}}],
+    "bodies": [{"name": "speck", "points": [["5.6", "0.5", "-0.5"]],
+                "motion": {"type": "rational_bezier", "control_points": [[[1,0,0,0],[0,1,0,0],[0,0,1,0]], [[1,0,0,0],[0,1,0,0],[0,0,1,1]]], "weights": [1, 1]}}]})";
+  const Scene s = scene_of(scene, "folded.json");
+  VerifyOptions options;
+  const SceneResult result = verify_scene(s, options);
+  BOOST_TEST(result.verdict == Verdict::Collision);
+}
+
 BOOST_AUTO_TEST_CASE(package_uris_resolve_through_package_folders) {
   // package://NAME/...: the folder whose package.xml names NAME (here
   // gripper_pkg/ holds tiny_gripper), searched below the given folders up
