@@ -499,7 +499,7 @@ int main(int argc, char** argv) {
     const double arm_prepare = since(t);
     jcertified->setup();
     std::printf("\narm: 6 revolute joints, %zu box links; preparing once: %.1f ms; joint-space extent %.4g, OMPL "
-                "resolution %.3g\n", arm_validator->environment().bodies().size() - 1, arm_prepare * 1e3,
+                "resolution %.3g\n", arm_validator->pool().labels().size() - 1, arm_prepare * 1e3,
                 jspace->getMaximumExtent(), jdiscrete->getStateValidityCheckingResolution());
     const double jrange = 0.2 * jspace->getMaximumExtent();
     const auto jedges = planner_edges(jdiscrete, n_edges, jrange, [&](const ob::State* s) {

@@ -16,7 +16,8 @@
 // recomputed exactly otherwise.
 #include "kernels/containment.h"
 
-#include <CGAL/Uncertain.h>
+#include "kernels/uncertain.h"
+#include "kernels/vec3.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,31 +32,15 @@ namespace {
 template <class T>
 using V3 = std::array<T, 3>;
 
-template <class T>
-V3<T> sub(const V3<T>& a, const V3<T>& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-template <class T>
-V3<T> cross(const V3<T>& a, const V3<T>& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-template <class T>
-T dot(const V3<T>& a, const V3<T>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+using vec3::cross;
+using vec3::dot;
+using vec3::sub;
 
 int sign(const Exact& x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
-// The sign of an interval, or 2 when it is not certain.
-constexpr int kUnsure = 2;
-int sign(const Interval& x) {
-  if (x.inf() > 0) return 1;
-  if (x.sup() < 0) return -1;
-  if (x.inf() == 0 && x.sup() == 0) return 0;
-  return kUnsure;
-}
+UncertainSign sign(const Interval& x) { return uncertain_sign(x); }
 
-bool is_zero(const V3<Exact>& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+using vec3::is_zero;
 
 // Is p on the closed segment ef (e == f allowed)?
 bool on_segment(const Vec3E& p, const Vec3E& e, const Vec3E& f) {
@@ -121,9 +106,9 @@ ClosedSurface::ClosedSurface(std::vector<std::array<Vec3E, 3>> triangles, std::v
       xmax_ = i == 0 ? xhi_[i] : std::max(xmax_, xhi_[i]);
       const V3<Interval> a{c[0], c[1], c[2]}, b{c[3], c[4], c[5]}, e{c[6], c[7], c[8]};
       const V3<Interval> normal = cross(sub(b, a), sub(e, a));
-      if (sign(normal[0]) != 0 && sign(normal[0]) != kUnsure) continue;
-      if (sign(normal[1]) != 0 && sign(normal[1]) != kUnsure) continue;
-      if (sign(normal[2]) != 0 && sign(normal[2]) != kUnsure) continue;
+      if (certainly_not(sign(normal[0]), CGAL::ZERO)) continue;
+      if (certainly_not(sign(normal[1]), CGAL::ZERO)) continue;
+      if (certainly_not(sign(normal[2]), CGAL::ZERO)) continue;
       unsure.push_back(i);
     }
   }
@@ -194,8 +179,7 @@ bool ClosedSurface::contains(const Vec3E& p, int& directions_tried) const {
       if (!flat_[i]) {
         const auto& c = intervals_[i];
         const V3<Interval> a{c[0], c[1], c[2]}, b{c[3], c[4], c[5]}, e{c[6], c[7], c[8]};
-        const int s = sign(dot(cross(sub(b, a), sub(e, a)), sub(pi, a)));
-        if (s == 1 || s == -1) continue;
+        if (certainly_not(sign(dot(cross(sub(b, a), sub(e, a)), sub(pi, a))), CGAL::ZERO)) continue;
       }
       exact.push_back(i);
     }
@@ -232,22 +216,26 @@ bool ClosedSurface::contains(const Vec3E& p, int& directions_tried) const {
         const auto& c = intervals_[i];
         const V3<Interval> a{c[0], c[1], c[2]}, b{c[3], c[4], c[5]}, e{c[6], c[7], c[8]};
         const V3<Interval> normal = cross(sub(b, a), sub(e, a));
-        const int op = sign(dot(normal, sub(pi, a))), nd = sign(dot(normal, di));
-        if (op == kUnsure || nd == kUnsure || nd == 0) {
-          if (nd == 0 && op != 0 && op != kUnsure) continue;  // parallel, off the plane
+        const UncertainSign op = sign(dot(normal, sub(pi, a))), nd = sign(dot(normal, di));
+        if (!op.is_certain() || !certainly_not(nd, CGAL::ZERO)) {
+          if (certainly_is(nd, CGAL::ZERO) && certainly_not(op, CGAL::ZERO)) continue;  // parallel, off the plane
           exact.push_back(i);
           continue;
         }
-        if (op == 0 || op == nd) continue;
+        if (certainly_is(op, CGAL::ZERO) || op.inf() == nd.inf()) continue;  // both certain here
         const V3<Interval> ra = sub(a, pi), rb = sub(b, pi), rc = sub(e, pi);
-        const int o[3] = {sign(dot(di, cross(ra, rb))), sign(dot(di, cross(rb, rc))), sign(dot(di, cross(rc, ra)))};
-        const bool pos = o[0] == 1 || o[1] == 1 || o[2] == 1, neg = o[0] == -1 || o[1] == -1 || o[2] == -1;
+        const UncertainSign o[3] = {sign(dot(di, cross(ra, rb))), sign(dot(di, cross(rb, rc))),
+                                    sign(dot(di, cross(rc, ra)))};
+        const bool pos = certainly_is(o[0], CGAL::POSITIVE) || certainly_is(o[1], CGAL::POSITIVE) ||
+                         certainly_is(o[2], CGAL::POSITIVE);
+        const bool neg = certainly_is(o[0], CGAL::NEGATIVE) || certainly_is(o[1], CGAL::NEGATIVE) ||
+                         certainly_is(o[2], CGAL::NEGATIVE);
         if (pos && neg) continue;  // certainly a miss
-        if (o[0] == kUnsure || o[1] == kUnsure || o[2] == kUnsure) {
+        if (!o[0].is_certain() || !o[1].is_certain() || !o[2].is_certain()) {
           exact.push_back(i);
           continue;
         }
-        if (o[0] != 0 && o[1] != 0 && o[2] != 0)
+        if (o[0].inf() != CGAL::ZERO && o[1].inf() != CGAL::ZERO && o[2].inf() != CGAL::ZERO)
           odd[shell_[i]] ^= 1;
         else
           degenerate = true;

@@ -1,11 +1,12 @@
 #include "kernels/distance.h"
 
+#include "kernels/vec3.h"
 namespace tmcert {
 
 namespace {
 
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using vec3::dot;
+using vec3::sub;
 Vec3E along(const Vec3E& a, const Vec3E& d, const Exact& t) { return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; }
 
 ClosestPoints pair(const Vec3E& a, const Vec3E& b) {

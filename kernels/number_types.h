@@ -42,7 +42,7 @@ using Mat34E = std::array<Exact, 12>;
 // mode.  Fast path: mpq_get_d truncates toward zero, so a normal result d
 // and its neighbour away from zero bracket q (a point when q is a double);
 // zero, subnormal and out-of-range values go through CGAL's MPFR rounding.
-// Both give the same interval (tests/unit/test_number_types.cpp).
+// Both give the same interval (tests/kernels/test_number_types.cpp).
 inline Interval to_interval(const Exact& q) {
   mpq_srcptr r = q.mpq();
   const int s = mpq_sgn(r);

@@ -1,22 +1,22 @@
 #include "kernels/robust_crossing.h"
 
+#include "kernels/uncertain.h"
+#include "kernels/vec3.h"
+
 namespace tmcert {
 
 namespace {
 
 using V = std::array<Interval, 3>;
 
-V sub(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+using vec3::sub;
 
-// The sign of det(b - a, c - a, d - a), when certain: +1, -1; 0 when not
-// certainly nonzero.
-int orient(const V& a, const V& b, const V& c, const V& d) {
+// The sign of det(b - a, c - a, d - a) over the intervals.
+UncertainSign orient(const V& a, const V& b, const V& c, const V& d) {
   const V u = sub(b, a), v = sub(c, a), w = sub(d, a);
   const Interval det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
                        u[2] * (v[0] * w[1] - v[1] * w[0]);
-  if (det.inf() > 0) return 1;
-  if (det.sup() < 0) return -1;
-  return 0;
+  return uncertain_sign(det);
 }
 
 Interval volume(const V& a, const V& b, const V& c, const V& d) {
@@ -26,10 +26,13 @@ Interval volume(const V& a, const V& b, const V& c, const V& d) {
 
 // Segment pq crossing triangle t's interior transversally, for certain.
 std::optional<V> crossing(const V& p, const V& q, const std::array<V, 3>& t) {
-  const int sp = orient(t[0], t[1], t[2], p), sq = orient(t[0], t[1], t[2], q);
-  if (sp == 0 || sq == 0 || sp == sq) return std::nullopt;
-  const int s0 = orient(p, q, t[0], t[1]), s1 = orient(p, q, t[1], t[2]), s2 = orient(p, q, t[2], t[0]);
-  if (s0 == 0 || s0 != s1 || s1 != s2) return std::nullopt;
+  // p and q certainly on opposite sides of the plane, off it.
+  const UncertainSign sp = orient(t[0], t[1], t[2], p), sq = orient(t[0], t[1], t[2], q);
+  if (!certainly_not(sp, CGAL::ZERO) || !certainly_not(sq, CGAL::ZERO) || sp.inf() == sq.inf()) return std::nullopt;
+  // The line pq certainly on the same side of the three edges, off them.
+  const UncertainSign s0 = orient(p, q, t[0], t[1]), s1 = orient(p, q, t[1], t[2]), s2 = orient(p, q, t[2], t[0]);
+  if (!certainly_not(s0, CGAL::ZERO) || !certainly_is(s1, s0.inf()) || !certainly_is(s2, s0.inf()))
+    return std::nullopt;
   // The crossing point p + (q - p) vp / (vp - vq), with vp, vq the signed
   // volumes (of certain, opposite signs: the denominator excludes 0).
   const Interval vp = volume(t[0], t[1], t[2], p), vq = volume(t[0], t[1], t[2], q);

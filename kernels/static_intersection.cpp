@@ -1,5 +1,7 @@
 #include "kernels/static_intersection.h"
 
+#include "kernels/vec3.h"
+
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
 
@@ -159,8 +161,8 @@ CGAL::Sign sign_of(const Interval& x) {
 }
 bool decided(const Interval& x) { return x.inf() > 0 || x.sup() < 0; }
 
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using vec3::dot;
+using vec3::sub;
 
 // det[b - a, c - a, d - a]: positive when d is on the positive side of the
 // plane abc (orientation).

@@ -4,7 +4,10 @@
 #include <arb.h>
 #include <flint/fmpq.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace tmcert::validated {
@@ -56,22 +59,58 @@ Interval get(const Ball& x) {
   return Interval(l, h);
 }
 
+// A small per-thread memo of a function's last results, keyed by the bits
+// of the argument's ends: Arb is deterministic, so the same argument gets
+// the same enclosure whether computed or remembered (an arm's joint angle
+// over one slice is the same interval in the chain of every link after
+// the joint).  Direct-mapped; a collision overwrites.
+class Memo {
+ public:
+  template <class F>
+  Interval get(const Interval& x, F&& compute) {
+    std::uint64_t lo, hi;
+    const double l = x.inf(), h = x.sup();
+    std::memcpy(&lo, &l, sizeof lo);
+    std::memcpy(&hi, &h, sizeof hi);
+    Entry& e = entries_[((lo * 0x9E3779B97F4A7C15ull) ^ (hi * 0xC2B2AE3D27D4EB4Full)) >> (64 - kBits)];
+    if (e.used && e.lo == lo && e.hi == hi) return e.value;
+    const Interval value = compute();
+    e = Entry{lo, hi, value, true};
+    return value;
+  }
+
+ private:
+  static constexpr int kBits = 8;
+  struct Entry {
+    std::uint64_t lo = 0, hi = 0;
+    Interval value = Interval(0);
+    bool used = false;
+  };
+  std::array<Entry, std::size_t{1} << kBits> entries_{};
+};
+
 }  // namespace
 
 Interval sin(const Interval& x) {
   if (!finite(x)) return Interval(-1, 1);
-  Ball a, s;
-  set(a, x);
-  arb_sin(s.v, a.v, kPrec);
-  return get(s);
+  thread_local Memo memo;
+  return memo.get(x, [&] {
+    Ball a, s;
+    set(a, x);
+    arb_sin(s.v, a.v, kPrec);
+    return get(s);
+  });
 }
 
 Interval cos(const Interval& x) {
   if (!finite(x)) return Interval(-1, 1);
-  Ball a, c;
-  set(a, x);
-  arb_cos(c.v, a.v, kPrec);
-  return get(c);
+  thread_local Memo memo;
+  return memo.get(x, [&] {
+    Ball a, c;
+    set(a, x);
+    arb_cos(c.v, a.v, kPrec);
+    return get(c);
+  });
 }
 
 Interval atan2(const Interval& y, const Interval& x) {

@@ -61,9 +61,17 @@ struct MotionResult {
   std::optional<Witness> witness;
 };
 
-// Per-call options of Environment::certify (room for more, e.g. stopping
-// at the first contact).
-struct CertifyOptions {};
+// Per-call options of Environment::certify.
+struct CertifyOptions {
+  // Only "safe or not", decided at the first proof of contact (what a
+  // planner's validator asks): the motion's configurations at sampled
+  // parameters and the slices of its segments are tested first, then the
+  // searches run up to the first that is not safe.  The verdict is safe
+  // exactly when it is without `decide`, and a collision is always proven;
+  // but safe_until may be lower and first_contact may start at the
+  // motion's start (proofs/sample-first.md, proofs/edge-slices.md).
+  bool decide = false;
+};
 
 class TMCERT_API Environment {
  public:
@@ -89,6 +97,10 @@ class TMCERT_API Environment {
   std::size_t prepared_copies() const;
 
   struct Impl;
+  // Internal (src/api/shared_environment.h: the OMPL validator's
+  // environments of several movers).
+  explicit Environment(std::unique_ptr<Impl> impl);
+  const Impl& impl() const { return *impl_; }
 
  private:
   std::unique_ptr<Impl> impl_;

@@ -116,6 +116,14 @@ class TMCERT_API RobotBuilder {
   // increasing, one row of positions per time, within the joints' limits.
   RobotBuilder& path(std::vector<std::string> joints, std::vector<Number> times,
                      std::vector<std::vector<Number>> positions);
+  // The path as the controller executes a time-parameterised trajectory
+  // (ros_control's joint_trajectory_controller): "cubic" splines in time
+  // through the positions with these `velocities` (dq/dt), or "quintic"
+  // with also `accelerations`, each one row per time like `positions`;
+  // "linear" (the default) takes neither.  Limits hold on the whole
+  // polynomial (docs/scene-format.md "Robots from URDF").
+  RobotBuilder& interpolation(std::string how, std::vector<std::vector<Number>> velocities = {},
+                              std::vector<std::vector<Number>> accelerations = {});
   // Check pairs of its own links (not parent and child, not allowed).
   RobotBuilder& self_collision(bool value = true);
   // A pair of links never checked against each other.
@@ -136,6 +144,8 @@ class TMCERT_API RobotBuilder {
   std::vector<std::string> joints_;
   std::vector<Number> times_;
   std::vector<std::vector<Number>> positions_;
+  std::optional<std::string> interpolation_;
+  std::vector<std::vector<Number>> velocities_, accelerations_;
   std::optional<bool> self_collision_;
   std::vector<std::pair<std::string, std::string>> allowed_;
   std::optional<std::string> srdf_;
@@ -178,6 +188,11 @@ class TMCERT_API SceneBuilder {
   std::string to_json() const;
 
  private:
+  // The document of to_json() as a JSON value (defined and instantiated in
+  // src/api/scene_builder.cpp alone).
+  template <typename Document>
+  Document document() const;
+
   struct Check {
     std::string a, b;
     std::optional<Number> clearance;

@@ -1,11 +1,15 @@
-// Environment (include/tmcert/environment.h): obstacles and a moving body
-// prepared once (src/verify/fixed_environment.h), motions certified
-// against them from any number of threads.  The obstacles' rules and the
+// Environment (include/tmcert/environment.h): obstacles and movers
+// prepared once (src/verify/fixed_environment.h) in a pool of copies
+// (src/api/shared_environment.h), motions certified against them from any
+// number of threads; the certified OMPL validator (src/ompl/) certifies its
+// edges through the same pool.  The obstacles' rules and the
 // options are the OMPL adapter's (src/ompl/public_ompl.cpp uses the
 // helpers here), in each one's words.
+#include "kernels/vec3.h"
 #include "src/io/parse.h"
 #include "src/verify/fixed_environment.h"
 #include "src/verify/options.h"
+#include "src/api/shared_environment.h"
 
 #include "src/api/internal.h"
 #include "tmcert/environment.h"
@@ -16,14 +20,6 @@
 namespace tmcert::api {
 
 namespace {
-
-// A fixed body's geometry placed by its one-pose motion, if any (x -> A x + a
-// for the control point [A | a]), exactly.
-tmcert::Vec3E placed(const tmcert::Mat34E& m, const tmcert::Vec3E& x) {
-  tmcert::Vec3E out;
-  for (int r = 0; r < 3; ++r) out[r] = m[4 * r] * x[0] + m[4 * r + 1] * x[1] + m[4 * r + 2] * x[2] + m[4 * r + 3];
-  return out;
-}
 
 const ObstacleWords kEnvironment{"an Environment", "an Environment", "every body but the moving one",
                                  "an Environment certifies motions only with a certified kernel"};
@@ -52,7 +48,7 @@ tmcert::Body obstacle_body(const tmcert::Scene& scene, const std::vector<std::si
     if (b.trajectory)  // a one-pose trajectory does not occur (keyframes of one pose reduce to a motion)
       throw InputError(field(i) + must_be_fixed);
     const tmcert::Mat34E pose = posed ? b.motion->control_points.front() : tmcert::Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-    const auto at = [&](const tmcert::Vec3E& x) { return posed ? placed(pose, x) : x; };
+    const auto at = [&](const tmcert::Vec3E& x) { return posed ? tmcert::vec3::apply(pose, x) : x; };  // exactly
     const int offset = static_cast<int>(out.polygons.size());
     for (const auto& polygon : b.polygons) {
       std::vector<tmcert::Vec3E> p;
@@ -106,53 +102,41 @@ tmcert::VerifyOptions environment_options(const tmcert::Scene& scene, const Veri
   return options;
 }
 
+// An Environment is its pool of prepared copies.
+struct Environment::Impl {
+  Impl(tmcert::Body obstacles, std::vector<tmcert::Body> movers, std::vector<std::pair<int, int>> pairs,
+       const tmcert::VerifyOptions& options)
+      : pool(std::move(obstacles), std::move(movers), std::move(pairs), options) {}
+  tmcert::EnvironmentPool pool;
+};
+
+}  // namespace tmcert::api
+
+const tmcert::EnvironmentPool& tmcert::pool_of(const tmcert::api::Environment& environment) {
+  return environment.impl().pool;
+}
+
+std::shared_ptr<const tmcert::api::Environment> tmcert::shared_environment(
+    tmcert::Body obstacles, std::vector<tmcert::Body> movers, std::vector<std::pair<int, int>> mover_pairs,
+    const tmcert::VerifyOptions& options) {
+  return std::make_shared<const tmcert::api::Environment>(std::make_unique<tmcert::api::Environment::Impl>(
+      std::move(obstacles), std::move(movers), std::move(mover_pairs), options));
+}
+
+namespace tmcert::api {
+
 // ---------------------------------------------------------------- Environment
 
-struct Environment::Impl {
-  tmcert::Body obstacles, mover;
-  tmcert::VerifyOptions options;
-  // Prepared copies not in use; certify() takes one (or prepares one when
-  // none is free) and gives it back.
-  mutable std::mutex mutex;
-  mutable std::vector<std::unique_ptr<tmcert::FixedEnvironment>> idle;
-  mutable std::size_t copies = 0;
-
-  std::unique_ptr<tmcert::FixedEnvironment> prepare() const {
-    return std::make_unique<tmcert::FixedEnvironment>(obstacles, std::vector<tmcert::Body>{mover},
-                                                      std::vector<std::pair<int, int>>{}, options);
-  }
-  std::unique_ptr<tmcert::FixedEnvironment> take() const {
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!idle.empty()) {
-        std::unique_ptr<tmcert::FixedEnvironment> e = std::move(idle.back());
-        idle.pop_back();
-        return e;
-      }
-    }
-    std::unique_ptr<tmcert::FixedEnvironment> e = prepare();  // outside the lock: others go on
-    std::lock_guard<std::mutex> lock(mutex);
-    ++copies;
-    return e;
-  }
-  void give_back(std::unique_ptr<tmcert::FixedEnvironment> e) const {
-    std::lock_guard<std::mutex> lock(mutex);
-    idle.push_back(std::move(e));
-  }
-};
+Environment::Environment(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 Environment::Environment(const Scene& scene, const std::string& moving_body, const VerifyOptions& options) {
   impl_ = public_errors([&] {
     const tmcert::Scene& s = *scene.impl().scene;
     require_no_clearance(s, kEnvironment);
     const MoverAndObstacles split = split_mover(s, moving_body, kEnvironment);
-    auto impl = std::make_unique<Impl>();
-    impl->obstacles = obstacle_body(s, split.obstacles, kEnvironment);
-    impl->mover = s.bodies[split.mover];
-    impl->options = environment_options(s, options, kEnvironment);
-    impl->idle.push_back(impl->prepare());  // the first copy, which also checks the bodies
-    impl->copies = 1;
-    return impl;
+    return std::make_unique<Impl>(obstacle_body(s, split.obstacles, kEnvironment),
+                                  std::vector<tmcert::Body>{s.bodies[split.mover]}, std::vector<std::pair<int, int>>{},
+                                  environment_options(s, options, kEnvironment));
   });
 }
 
@@ -160,12 +144,9 @@ Environment::~Environment() = default;
 Environment::Environment(Environment&&) noexcept = default;
 Environment& Environment::operator=(Environment&&) noexcept = default;
 
-std::size_t Environment::prepared_copies() const {
-  std::lock_guard<std::mutex> lock(impl_->mutex);
-  return impl_->copies;
-}
+std::size_t Environment::prepared_copies() const { return impl_->pool.copies(); }
 
-MotionResult Environment::certify(const Motion& motion, const CertifyOptions&) const {
+MotionResult Environment::certify(const Motion& motion, const CertifyOptions& certify_options) const {
   return public_errors([&] {
     // The motion read as a batch request's (the scene reader's motion
     // objects, checks and messages: "Environment: motion...").
@@ -184,20 +165,14 @@ MotionResult Environment::certify(const Motion& motion, const CertifyOptions&) c
     } else {
       throw InputError("Environment: motion: no motion");
     }
-    // A prepared copy for this call alone, given back however the call ends.
-    struct Lease {
-      const Impl& impl;
-      std::unique_ptr<tmcert::FixedEnvironment> prepared;
-      ~Lease() { impl.give_back(std::move(prepared)); }
-    } lease{*impl_, impl_->take()};
-    const tmcert::MotionCheck check = lease.prepared->check({trajectory});
+    const tmcert::MotionCheck check = impl_->pool.check({trajectory}, certify_options.decide);
     MotionResult out;
     out.verdict = static_cast<Verdict>(static_cast<int>(check.verdict));  // same order (src/api/verify.cpp)
     if (check.safe_until) out.safe_until = to_rational(*check.safe_until);
     if (check.first_contact)
       out.first_contact = std::array{to_rational(check.first_contact->first), to_rational(check.first_contact->second)};
     if (check.witness) {
-      const std::vector<tmcert::Body>& bodies = lease.prepared->bodies();  // 0 the obstacles, 1 the moving body
+      const std::vector<tmcert::Body>& bodies = impl_->pool.labels();  // 0 the obstacles, 1 the moving body
       for (const tmcert::CheckResult& c : check.checks)
         if (c.verdict == tmcert::Verdict::Collision) {
           out.bodies = {bodies[c.bodies[0]].name, bodies[c.bodies[1]].name};

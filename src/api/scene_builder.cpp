@@ -1,10 +1,13 @@
-// SceneBuilder (include/tmcert/scene_builder.h): the builder writes the
-// tmcert-scene/1 document of what it was given, every number as its exact
-// text, and build() reads that document with the scene reader.  So a scene
-// built in code is validated by exactly the checks of a scene file, and
-// its errors name the same fields; there is no second validator.
+// SceneBuilder (include/tmcert/scene_builder.h): the builder holds the
+// tmcert-scene/1 document of what it was given as a JSON value, every
+// number as its exact text, and build() hands that value to the scene
+// reader's tree (src/io/json_tree.h) directly: no JSON text is written or
+// parsed on the way.  So a scene built in code is validated by exactly the
+// checks of a scene file, and its errors name the same fields; there is
+// no second validator.  to_json() prints the same document.
 #include "kernels/number_types.h"
 #include "src/io/parse.h"
+#include "src/io/scene_document.h"
 
 #include "src/api/internal.h"
 #include "tmcert/scene_builder.h"
@@ -291,6 +294,14 @@ RobotBuilder& RobotBuilder::path(std::vector<std::string> joints, std::vector<Nu
   return *this;
 }
 
+RobotBuilder& RobotBuilder::interpolation(std::string how, std::vector<std::vector<Number>> velocities,
+                                          std::vector<std::vector<Number>> accelerations) {
+  interpolation_ = std::move(how);
+  velocities_ = std::move(velocities);
+  accelerations_ = std::move(accelerations);
+  return *this;
+}
+
 RobotBuilder& RobotBuilder::self_collision(bool value) {
   self_collision_ = value;
   return *this;
@@ -344,7 +355,8 @@ SceneBuilder& SceneBuilder::package_path(std::string folder) {
   return *this;
 }
 
-std::string SceneBuilder::to_json() const {
+template <>
+Json SceneBuilder::document<Json>() const {
   Json doc = Json::object();
   doc["format"] = "tmcert-scene/1";
   if (epsilon_) doc["epsilon"] = number(*epsilon_);
@@ -399,6 +411,13 @@ std::string SceneBuilder::to_json() const {
       Json positions = Json::array();
       for (const std::vector<Number>& row : r.positions_) positions.push_back(numbers(row));
       robot["path"] = Json{{"times", numbers(r.times_)}, {"positions", std::move(positions)}};
+      if (r.interpolation_) robot["path"]["interpolation"] = *r.interpolation_;
+      for (const auto& [key, rows] : {std::pair{"velocities", &r.velocities_}, std::pair{"accelerations", &r.accelerations_}}) {
+        if (rows->empty()) continue;
+        Json list = Json::array();
+        for (const std::vector<Number>& row : *rows) list.push_back(numbers(row));
+        robot["path"][key] = std::move(list);
+      }
       if (r.self_collision_) robot["self_collision"] = *r.self_collision_;
       if (!r.allowed_.empty()) {
         Json pairs = Json::array();
@@ -419,14 +438,16 @@ std::string SceneBuilder::to_json() const {
     }
     doc["checks"] = std::move(checks);
   }
-  return doc.dump(1) + "\n";
+  return doc;
 }
 
+std::string SceneBuilder::to_json() const { return document<Json>().dump(1) + "\n"; }
+
 Scene SceneBuilder::build() const {
-  const std::string text = to_json();
+  const Json doc = document<Json>();
   try {
     std::vector<tmcert::SceneRobot> robots;  // URDF files are absolute (add_robot)
-    tmcert::Scene scene = tmcert::parse_scene_text(text, kSource, "", robots);
+    tmcert::Scene scene = tmcert::parse_scene_document(doc, kSource, "", robots);
     return Scene(std::make_shared<const Scene::Impl>(
         Scene::Impl{std::make_shared<const tmcert::Scene>(std::move(scene)), std::move(robots)}));
   } catch (const tmcert::InputError& e) {

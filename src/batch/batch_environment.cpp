@@ -32,7 +32,7 @@ Trajectory as_trajectory(const std::optional<Motion>& motion, const std::optiona
 // "path.positions[1][2]" for a JointPathError of a request's path.
 std::string path_field(const JointPathError& e) {
   std::string field = "path." + e.field;
-  if (e.field == "joints") field = "path";  // the environment's joints do not fit this path
+  if (e.field == "joints" || e.field == "path") field = "path";  // the environment's joints do not fit this path; a limit between waypoints
   for (std::size_t i : e.index) field += "[" + std::to_string(i) + "]";
   return field;
 }
@@ -160,7 +160,8 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
     std::vector<std::pair<int, int>> self_pairs;  // pairs of links (indices into moved.bodies)
     if (robot >= 0) {
       const SceneRobot& r = env.robots_list_[robot];
-      const JointPath path{r.joints, request.path_times, request.path_positions};
+      const JointPath path{r.joints,           request.path_times,      request.path_positions,
+                           request.path_interpolation, request.path_velocities, request.path_accelerations};
       RobotBodies links;
       try {
         links = add_robot(moved, *r.robot, path);

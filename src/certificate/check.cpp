@@ -57,10 +57,11 @@ BodyData& Checker::body_data(std::size_t i) {
 void Checker::check_document(const json& doc, CheckOutcome& outcome) {
   in_.object(doc, "");
   const json& format = in_.member(doc, "format", "");
-  if (!format.is_string() || format.get_ref<const std::string&>() != kFormat)
+  if (!format.is_string() ||
+      (format.get_ref<const std::string&>() != kFormat && format.get_ref<const std::string&>() != kFormatV1))
     in_.bad("format", std::string("unknown format ") + (format.is_string() ? quote_text(format.get<std::string>())
                                                                          : std::string(describe(format))) +
-                          ", expected \"" + kFormat + "\"");
+                          ", expected \"" + kFormat + "\" (or \"" + kFormatV1 + "\")");
 
   const json& sb = in_.array(in_.member(doc, "scene_bodies", ""), "scene_bodies");
   if (sb.size() != scene_.bodies.size())
@@ -131,6 +132,7 @@ std::unique_ptr<CheckContext> Checker::bind_check(const json& c, std::size_t ci)
            str(ctx->t0) + ", " + str(ctx->t1) + "] (the certificate belongs to another scene)");
   ctx->data[0] = &body_data(ia);
   ctx->data[1] = &body_data(ib);
+  bind_levels(c, *ctx, ia, ib);
   const Body& A = *ctx->body[0];
   const Body& Bb = *ctx->body[1];
   ctx->clearance = scene_.clearance_of(ci);
@@ -156,6 +158,16 @@ void Checker::read_check(CheckContext& ctx) {
 
   read_groups(c, ctx);
 
+  // Shared proof nodes (optional): each entry refers only to earlier ones.
+  static const json kNoNodes = json::array();
+  ctx.nodes = &kNoNodes;
+  if (const json* nodes = in_.find(c, "nodes"); nodes && !nodes->is_null())
+    ctx.nodes = &in_.array(*nodes, mem(P, "nodes"));
+  ctx.expanded.resize(ctx.nodes->size());
+  ctx.node_depth.resize(ctx.nodes->size());
+  for (std::size_t k = 0; k < ctx.nodes->size(); ++k)
+    std::tie(ctx.expanded[k], ctx.node_depth[k]) = validate_proof((*ctx.nodes)[k], idx(mem(P, "nodes"), k), k, ctx);
+
   ctx.pieces = &in_.array(in_.member(c, "pieces", P), mem(P, "pieces"));
   const json& pieces = *ctx.pieces;
   ctx.pt.reserve(pieces.size());
@@ -163,7 +175,7 @@ void Checker::read_check(CheckContext& ctx) {
     const std::string pp = idx(mem(P, "pieces"), k);
     in_.object(pieces[k], pp);
     ctx.pt.push_back(in_.pair(in_.member(pieces[k], "t", pp), mem(pp, "t")));
-    validate_proof(in_.member(pieces[k], "proof", pp), mem(pp, "proof"));
+    validate_root(in_.member(pieces[k], "proof", pp), mem(pp, "proof"), ctx);
   }
 
   const json* witness = in_.find(c, "witness");
@@ -201,29 +213,41 @@ void Checker::read_check(CheckContext& ctx) {
       reject(ctx.label + ": before_witness is not part of certificates of planner motions, tolerances or clearances");
     in_.object(*bw, bp);
     ctx.before_from = in_.rational(in_.member(*bw, "from", bp), mem(bp, "from"));
-    validate_proof(in_.member(*bw, "proof", bp), mem(bp, "proof"));
+    validate_root(in_.member(*bw, "proof", bp), mem(bp, "proof"), ctx);
     ctx.before_witness = bw;
   }
   read_start(c, ctx);
 }
 
 // The shape of a proof tree (iteratively, depth-limited), so a malformed
-// tree is bad input whatever the claims before it.
-void Checker::validate_proof(const json& root, const std::string& root_path) {
+// tree is bad input whatever the claims before it.  References to shared
+// nodes (integers) must be below `bound` (an entry of nodes refers only to
+// earlier entries, so references never loop); each is counted with its
+// entry's expanded size and depth.  Returns the tree's expanded size (nodes
+// judged, saturated at kMaxExpanded) and its depth in splits, references
+// followed.
+std::pair<std::uint64_t, int> Checker::validate_proof(const json& root, const std::string& root_path, std::size_t bound,
+                                      const CheckContext& ctx) {
   struct Item {
     const json* node;
     std::size_t parent;  // index into `items`, or npos
-    std::size_t part;
+    std::size_t part;    // index of the node in its parent's JSON array
+    bool array_form;     // the parent is a split written [s, P1, ..., Pm]
     int depth;
   };
   constexpr std::size_t npos = std::numeric_limits<std::size_t>::max();
-  std::vector<Item> items{{&root, npos, 0, 0}};
+  std::vector<Item> items{{&root, npos, 0, false, 0}};
   std::vector<std::size_t> todo{0};
+  std::uint64_t expanded = 0;
+  int deepest = 0;
+  auto add = [&](std::uint64_t n) { expanded = std::min(kMaxExpanded, expanded + std::min(n, kMaxExpanded)); };
   auto path = [&](std::size_t i) {
     std::vector<std::size_t> parts;
-    for (std::size_t k = i; items[k].parent != npos; k = items[k].parent) parts.push_back(items[k].part);
+    for (std::size_t k = i; items[k].parent != npos; k = items[k].parent) parts.push_back(k);
     std::string s = root_path;
-    for (auto it = parts.rbegin(); it != parts.rend(); ++it) s += ".parts[" + std::to_string(*it) + "]";
+    for (auto it = parts.rbegin(); it != parts.rend(); ++it)
+      s += items[*it].array_form ? "[" + std::to_string(items[*it].part) + "]"
+                                 : ".parts[" + std::to_string(items[*it].part) + "]";
     return s;
   };
   while (!todo.empty()) {
@@ -232,31 +256,66 @@ void Checker::validate_proof(const json& root, const std::string& root_path) {
     const json& node = *items[i].node;
     if (items[i].depth > kMaxProofDepth)
       in_.bad(path(i), "proof tree deeper than " + std::to_string(kMaxProofDepth) + " splits");
-    if (!node.is_object()) in_.object(node, path(i));
-    const json* sep = in_.find(node, "sep");
-    const json* split_side = in_.find(node, "split");
-    if (const json* exact = in_.find(node, "exact")) {  // an exact no-contact claim (exact_claims.h)
-      validate_exact_leaf(node, *exact, sep || split_side, path(i));
+    if (node.is_number_integer()) {  // a shared node
+      const std::size_t k = in_.index(node, path(i), bound,
+                                      bound == ctx.nodes->size() ? "an index into nodes" : "an earlier entry of nodes");
+      add(ctx.expanded[k]);
+      if (items[i].depth + ctx.node_depth[k] > kMaxProofDepth)
+        in_.bad(path(i), "proof tree deeper than " + std::to_string(kMaxProofDepth) + " splits (nodes[" +
+                             std::to_string(k) + "] included)");
+      deepest = std::max(deepest, items[i].depth + ctx.node_depth[k]);
       continue;
     }
-    if ((sep != nullptr) == (split_side != nullptr))
-      in_.bad(path(i), "expected exactly one of \"sep\", \"split\" and \"exact\"");
-    if (sep) {
-      if (!sep->is_array() || sep->size() != 3) in_.vec3(*sep, path(i) + ".sep");  // throws
-      for (int r = 0; r < 3; ++r)
-        in_.rational_at((*sep)[r], [&] { return idx(path(i) + ".sep", static_cast<std::size_t>(r)); });
-      continue;
+    deepest = std::max(deepest, items[i].depth);
+    add(1);
+    const json* parts = nullptr;
+    std::size_t first = 0;
+    if (node.is_array()) {  // a split [s, P1, ..., Pm]
+      if (node.empty() || !(node[0].is_number_integer() && (node[0] == 0 || node[0] == 1)))
+        in_.index(node.empty() ? json() : node[0], path(i) + "[0]", 2, "0 or 1");  // throws
+      parts = &node;
+      first = 1;
+    } else {
+      if (!node.is_object()) in_.object(node, path(i));
+      const json* sep = in_.find(node, "sep");
+      const json* split_side = in_.find(node, "split");
+      if (const json* exact = in_.find(node, "exact")) {  // an exact no-contact claim (exact_claims.h)
+        validate_exact_leaf(node, *exact, sep || split_side, path(i));
+        continue;
+      }
+      if ((sep != nullptr) == (split_side != nullptr))
+        in_.bad(path(i), "expected exactly one of \"sep\", \"split\" and \"exact\"");
+      if (sep) {
+        if (!sep->is_array() || sep->size() != 3) in_.vec3(*sep, path(i) + ".sep");  // throws
+        for (int r = 0; r < 3; ++r)
+          in_.rational_at((*sep)[r], [&] { return idx(path(i) + ".sep", static_cast<std::size_t>(r)); });
+        continue;
+      }
+      if (!(split_side->is_number_integer() && (*split_side == 0 || *split_side == 1)))
+        in_.index(*split_side, path(i) + ".split", 2, "0 or 1");  // throws
+      parts = in_.find(node, "parts");
+      if (!parts) in_.member(node, "parts", path(i));  // throws
+      if (!parts->is_array()) in_.array(*parts, path(i) + ".parts");
     }
-    if (!(split_side->is_number_integer() && (*split_side == 0 || *split_side == 1)))
-      in_.index(*split_side, path(i) + ".split", 2, "0 or 1");  // throws
-    const json* parts = in_.find(node, "parts");
-    if (!parts) in_.member(node, "parts", path(i));  // throws
-    if (!parts->is_array()) in_.array(*parts, path(i) + ".parts");
-    for (std::size_t k = 0; k < parts->size(); ++k) {
-      items.push_back({&(*parts)[k], i, k, items[i].depth + 1});
+    for (std::size_t k = first; k < parts->size(); ++k) {
+      items.push_back({&(*parts)[k], i, k, first == 1, items[i].depth + 1});
       todo.push_back(items.size() - 1);
     }
   }
+  return {expanded, deepest};
+}
+
+// A piece's (or before_witness's) proof: valid, and judging it takes at
+// most 2 (groups of a) (groups of b) + 64 nodes (a proof over the writer's
+// group trees has each pair of groups at most once; the slack keeps small
+// tampered trees rejections, not bad input).
+void Checker::validate_root(const json& root, const std::string& path, const CheckContext& ctx) {
+  const std::uint64_t n = validate_proof(root, path, ctx.nodes->size(), ctx).first;
+  const std::uint64_t ga = ctx.groups[0].items.size(), gb = ctx.groups[1].items.size();
+  const std::uint64_t limit = ga != 0 && gb > (kMaxExpanded / 4) / ga ? kMaxExpanded : 2 * ga * gb + 64;
+  if (n > limit)
+    in_.bad(path, "the proof expands to more than " + std::to_string(limit) +
+                      " nodes (twice the groups of a times the groups of b, and 64)");
 }
 
 void Checker::read_groups(const json& c, CheckContext& ctx) {
@@ -310,6 +369,7 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
   const std::string wp = mem(ctx.path, "witness");
   in_.object(w, wp);
   ctx.has_witness = true;
+  if (has_true_shape_side(w)) return read_true_shape_witness(w, ctx);
   const json& t = in_.member(w, "t", wp);
   if (t.is_object()) {  // {"root_of": [...], "interval": [lo, hi]}
     const std::string tp = mem(wp, "t");

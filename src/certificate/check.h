@@ -1,6 +1,6 @@
 // The independent certificate checker (docs/certificate-format.md,
 // proofs/certificates.md): re-verifies every claim of a
-// tmcert-certificate/1 document in exact rational arithmetic.
+// tmcert-certificate/2 document in exact rational arithmetic.
 //
 // Independence: this code shares the scene reader (src/io, src/model) and the exact
 // number type (kernels/number_types.h) with the verifier and nothing else:

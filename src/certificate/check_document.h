@@ -20,7 +20,10 @@ namespace tmcert::certificate::check_internal {
 
 using json = nlohmann::json;
 
-inline constexpr const char* kFormat = "tmcert-certificate/1";
+// The format written (docs/certificate-format.md); the checker also reads
+// kFormatV1, whose documents are /2 documents without shared proof nodes.
+inline constexpr const char* kFormat = "tmcert-certificate/2";
+inline constexpr const char* kFormatV1 = "tmcert-certificate/1";
 
 // "null", "a boolean", "an integer", ...: a JSON value's type in messages.
 const char* describe(const json& v);

@@ -219,6 +219,8 @@ void Checker::check_enclosed_witness(const CheckContext& ctx) {
 }
 
 void Checker::check_witness(const CheckContext& ctx) {
+  require_true_shape_sides(ctx);
+  if (ctx.true_shape_witness) return check_true_shape_witness(ctx);
   if (ctx.witness_root) return check_algebraic_witness(ctx);
   if (ctx.enclosed_witness) return check_enclosed_witness(ctx);
   const Exact& t = ctx.witness_t;
@@ -243,7 +245,6 @@ void Checker::check_witness(const CheckContext& ctx) {
              " are farther apart than the clearance " + str(ctx.clearance));
   }
   for (int s = 0; s < 2; ++s) {
-    const WitnessSide& side = ctx.side[s];
     const char* key = s == 0 ? "a" : "b";
     const Body& body = *ctx.body[s];
     const Vec3E& point = ctx.points ? (*ctx.points)[s] : ctx.witness_point;
@@ -259,6 +260,17 @@ void Checker::check_witness(const CheckContext& ctx) {
     } else {
       pose = pose_at(body, t);
     }
+    check_side_at(ctx, s, pose, point);
+  }
+}
+
+void Checker::check_side_at(const CheckContext& ctx, int s, const Mat34E& pose, const Vec3E& point) {
+  const Exact& t = ctx.witness_t;
+  const std::string L = ctx.label + ": witness";
+  const WitnessSide& side = ctx.side[s];
+  const char* key = s == 0 ? "a" : "b";
+  const Body& body = *ctx.body[s];
+  {
     if (side.interior) {
       if (!body.solid) reject(L + "." + key + ": " + quote_text(body.name) + " is not solid, it has no interior");
       if (sgn(determinant(pose)) == 0)

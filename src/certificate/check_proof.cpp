@@ -140,66 +140,81 @@ std::string Checker::trail_path(const std::vector<int>& trail) {
   return s;
 }
 
-// The proof tree was validated in phase 2 (shape, rationals, depth); the
-// checks below repeat only what guards memory safety.
-void Checker::prove(const json& node, std::uint32_t g, std::uint32_t h, std::vector<int>& trail, const PieceContext& pc,
-           CheckContext& ctx) {
+// The proof tree was validated in phase 2 (shape, rationals, depth,
+// references); the checks below repeat only what guards memory safety.  A
+// shared node (an integer) is judged where it is used, for the pair of
+// groups there, like the same tree written out.
+void Checker::prove(const json& node_in, std::uint32_t g, std::uint32_t h, std::vector<int>& trail,
+                    const PieceContext& pc, CheckContext& ctx) {
   auto path = [&] { return pc.path + "." + trail_path(trail); };
   if (trail.size() > static_cast<std::size_t>(kMaxProofDepth))
     in_.bad(path(), "proof tree deeper than " + std::to_string(kMaxProofDepth) + " splits");
-  if (!node.is_object()) in_.object(node, path());
-  const json* sep = in_.find(node, "sep");
-  const json* split_side = in_.find(node, "split");
+  const json* resolved = &node_in;
+  while (resolved->is_number_integer())  // validated: each entry refers to earlier ones only
+    resolved = &(*ctx.nodes)[in_.index(*resolved, path(), ctx.nodes->size(), "an index into nodes")];
+  const json& node = *resolved;
   auto here = [&] {
     return pc.label + ": " + trail_path(trail) + " (groups " + std::to_string(g) + ", " + std::to_string(h) + ")";
   };
-  if (const json* exact = in_.find(node, "exact")) {
-    validate_exact_leaf(node, *exact, sep || split_side, path());
-    if (ctx.general)  // exact claims decide the check's one rational curve, which a general check has not
-      reject(here() + ": exact no-contact claims are not part of certificates of planner motions, tolerances or "
-                      "clearances");
-    ++ctx.exact_claims;
-    if (const std::string error = exact_leaf_error(g, h, pc, ctx); !error.empty())
-      reject(here() + ": exact no-contact claim fails: " + error);
-    return;
+  const json* parts = nullptr;
+  std::size_t first = 0, side = 0;
+  if (node.is_array()) {  // a split [s, P1, ..., Pm]
+    if (node.empty()) in_.index(json(), path() + "[0]", 2, "0 or 1");  // throws
+    side = in_.index(node[0], path() + "[0]", 2, "0 or 1");
+    parts = &node;
+    first = 1;
+  } else {
+    if (!node.is_object()) in_.object(node, path());
+    const json* sep = in_.find(node, "sep");
+    const json* split_side = in_.find(node, "split");
+    if (const json* exact = in_.find(node, "exact")) {
+      validate_exact_leaf(node, *exact, sep || split_side, path());
+      if (ctx.general)  // exact claims decide the check's one rational curve, which a general check has not
+        reject(here() + ": exact no-contact claims are not part of certificates of planner motions, tolerances or "
+                        "clearances");
+      ++ctx.exact_claims;
+      if (const std::string error = exact_leaf_error(g, h, pc, ctx); !error.empty())
+        reject(here() + ": exact no-contact claim fails: " + error);
+      return;
+    }
+    if ((sep != nullptr) == (split_side != nullptr))
+      in_.bad(path(), "expected exactly one of \"sep\", \"split\" and \"exact\"");
+    if (sep) {
+      if (!sep->is_array() || sep->size() != 3) in_.vec3(*sep, path() + ".sep");  // throws
+      Vec3E n;
+      for (int r = 0; r < 3; ++r)
+        n[r] = in_.rational_at((*sep)[r], [&] { return idx(path() + ".sep", static_cast<std::size_t>(r)); });
+      ++ctx.separations;
+      if (const std::optional<std::size_t> fails = separation_fails_at(n, g, h, pc, ctx))
+        reject(here() + ": separation fails at control point " + std::to_string(*fails));
+      return;
+    }
+    side = split_side->is_number_integer() && (*split_side == 0 || *split_side == 1)
+               ? (*split_side == 0 ? 0 : 1)
+               : in_.index(*split_side, path() + ".split", 2, "0 or 1");
+    parts = in_.find(node, "parts");
+    if (!parts) in_.member(node, "parts", path());  // throws
+    if (!parts->is_array()) in_.array(*parts, path() + ".parts");
   }
-  if ((sep != nullptr) == (split_side != nullptr))
-    in_.bad(path(), "expected exactly one of \"sep\", \"split\" and \"exact\"");
-  if (sep) {
-    if (!sep->is_array() || sep->size() != 3) in_.vec3(*sep, path() + ".sep");  // throws
-    Vec3E n;
-    for (int r = 0; r < 3; ++r)
-      n[r] = in_.rational_at((*sep)[r], [&] { return idx(path() + ".sep", static_cast<std::size_t>(r)); });
-    ++ctx.separations;
-    const int fails = separation_fails_at(n, g, h, pc, ctx);
-    if (fails >= 0) reject(here() + ": separation fails at control point " + std::to_string(fails));
-    return;
-  }
-  const std::size_t side =
-      split_side->is_number_integer() && (*split_side == 0 || *split_side == 1)
-          ? (*split_side == 0 ? 0 : 1)
-          : in_.index(*split_side, path() + ".split", 2, "0 or 1");
-  const json* parts = in_.find(node, "parts");
-  if (!parts) in_.member(node, "parts", path());  // throws
-  if (!parts->is_array()) in_.array(*parts, path() + ".parts");
+  const std::size_t count = parts->size() - first;
   const GroupSet& gs = ctx.groups[side];
   const std::uint32_t split_group = side == 0 ? g : h;
   if (gs.leaf[split_group])
     reject(here() + ": split " + std::to_string(side) + " of group " + std::to_string(split_group) +
            ", which has no children");
   const std::vector<std::uint32_t>& children = gs.items[split_group];
-  if (parts->size() != children.size())
-    reject(here() + ": split " + std::to_string(side) + " has " + std::to_string(parts->size()) +
-           " parts, group " + std::to_string(split_group) + " has " + std::to_string(children.size()) + " children");
-  for (std::size_t i = 0; i < parts->size(); ++i) {
+  if (count != children.size())
+    reject(here() + ": split " + std::to_string(side) + " has " + std::to_string(count) + " parts, group " +
+           std::to_string(split_group) + " has " + std::to_string(children.size()) + " children");
+  for (std::size_t i = 0; i < count; ++i) {
     trail.push_back(static_cast<int>(i));
-    prove((*parts)[i], side == 0 ? children[i] : g, side == 1 ? children[i] : h, trail, pc, ctx);
+    prove((*parts)[first + i], side == 0 ? children[i] : g, side == 1 ? children[i] : h, trail, pc, ctx);
     trail.pop_back();
   }
 }
 
-// The first control point at which the separation claim fails, or -1.
-int Checker::separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
+// The first control point at which the separation claim fails, or nothing.
+std::optional<std::size_t> Checker::separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
                                  CheckContext& ctx) {
   const std::vector<std::uint32_t>& va = ctx.groups[0].vertices(g, scratch_a_, cache_budget_);
   const std::vector<std::uint32_t>& vb = ctx.groups[1].vertices(h, scratch_b_, cache_budget_);

@@ -2,6 +2,8 @@
 // integer evaluation of the linear forms of separation claims, no floating
 // point anywhere.
 #include "src/certificate/check_separation.h"
+
+#include <optional>
 #include "src/certificate/check.h"
 
 #include <algorithm>
@@ -191,7 +193,7 @@ PieceInts integer_control_points(const std::vector<CP>& c) {
 
 // ---------------------------------------------------------------- separations
 
-int separation_fails_at(const Vec3E& n, const std::vector<std::uint32_t>& va, const Coords& ca,
+std::optional<std::size_t> separation_fails_at(const Vec3E& n, const std::vector<std::uint32_t>& va, const Coords& ca,
                         const std::vector<std::uint32_t>& vb, const Coords& cb, const SeparationPiece& pc,
                         const Z& dadb, const Exact& margin, SeparationScratch& z) {
   // Integer direction: ñ = L n, L > 0.
@@ -239,7 +241,7 @@ int separation_fails_at(const Vec3E& n, const std::vector<std::uint32_t>& va, co
       mpz_mul(t.v, t.v, dadb.v);
       mpz_mul(t.v, t.v, pc.ints.qz[l].v);
       mpz_mul(f.v, lhs.v, pc.penalty_den.v);
-      if (mpz_cmp(f.v, t.v) <= 0) return static_cast<int>(l);
+      if (mpz_cmp(f.v, t.v) <= 0) return l;
       continue;
     }
     if (pc.margins) {
@@ -255,16 +257,16 @@ int separation_fails_at(const Vec3E& n, const std::vector<std::uint32_t>& va, co
         n2 += nr * nr;
       }
       const Exact gap = from_z(lhs.v, Z(1).v) - scale * pen;
-      if (sgn(gap) <= 0) return static_cast<int>(l);
+      if (sgn(gap) <= 0) return l;
       if (sgn(margin) > 0) {
         const Exact rhs = scale * pc.ints.w[l] * margin;
-        if (gap * gap <= rhs * rhs * n2) return static_cast<int>(l);
+        if (gap * gap <= rhs * rhs * n2) return l;
       }
       continue;
     }
-    if (mpz_sgn(lhs.v) <= 0) return static_cast<int>(l);
+    if (mpz_sgn(lhs.v) <= 0) return l;
   }
-  return -1;
+  return std::nullopt;
 }
 
 }  // namespace check_internal

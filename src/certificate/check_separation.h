@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace tmcert::certificate::check_internal {
@@ -140,9 +141,9 @@ struct SeparationScratch {
 
 // The first control point of the piece at which the claim "direction n
 // separates the vertices va of body a (coordinates ca) from the vertices vb
-// of body b (cb)" fails, or -1 when it holds at every control point.
+// of body b (cb)" fails, or nothing when it holds at every control point.
 // dadb = D_a D_b; margin as in SeparationPiece.
-int separation_fails_at(const Vec3E& n, const std::vector<std::uint32_t>& va, const Coords& ca,
+std::optional<std::size_t> separation_fails_at(const Vec3E& n, const std::vector<std::uint32_t>& va, const Coords& ca,
                         const std::vector<std::uint32_t>& vb, const Coords& cb, const SeparationPiece& pc,
                         const Z& dadb, const Exact& margin, SeparationScratch& z);
 

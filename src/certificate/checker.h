@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -25,12 +26,16 @@ namespace tmcert::certificate::check_internal {
 // vertex lists are recomputed on each use (slower, bounded memory).
 constexpr std::size_t kGroupCacheBudget = 50'000'000;
 
+// Saturation of the expanded sizes of proofs (shared nodes counted per use).
+constexpr std::uint64_t kMaxExpanded = std::uint64_t{1} << 62;
+
 struct WitnessSide {
   bool interior = false;
   std::size_t element = 0;
   std::vector<Exact> weights;
   Vec3E ray;
   std::vector<std::size_t> vertices;  // an algebraic witness: the sub-feature's vertices
+  bool true_shape = false;  // {"true_shape": true}: the point is in the body's URDF cylinder or sphere (check_primitive.h)
 };
 
 struct StartPoint {
@@ -57,6 +62,12 @@ struct CheckContext {
   std::string verdict;
   GroupSet groups[2];
   const json* pieces = nullptr;
+  // Shared proof nodes ("nodes", empty when absent) and each entry's
+  // expanded size (nodes judged per use, saturated at kMaxExpanded) and
+  // depth in splits.
+  const json* nodes = nullptr;
+  std::vector<std::uint64_t> expanded;
+  std::vector<int> node_depth;
   std::vector<std::pair<Exact, Exact>> pt;          // piece intervals
   std::vector<std::pair<Exact, Exact>> undecided;   // undecided intervals
   std::optional<std::pair<Exact, Exact>> first_contact;
@@ -84,6 +95,10 @@ struct CheckContext {
   int displaced = 0;
   std::optional<std::array<Vec3E, 2>> points;
   bool enclosed_witness = false;
+  // A witness with a {"true_shape": true} side (check_primitive.h); without
+  // `has_point`, the point is the other side's element point.
+  bool true_shape_witness = false;
+  bool has_point = false;
   std::size_t exact_claims = 0;
   std::unique_ptr<CheckMotions> motions;  // for exact claims, built when first needed
   // A collision's "before_witness": the part of the witness's piece before
@@ -104,6 +119,10 @@ class Checker {
   const Scene& scene_;
   Reader in_;
   std::vector<std::unique_ptr<BodyData>> bodies_;
+  // Bodies whose URDF cylinder or sphere polyhedron a check names at a
+  // finer level ("levels"), by scene index and level (check_primitive.cpp).
+  std::map<std::pair<std::size_t, int>, std::unique_ptr<Body>> refined_;
+  std::map<std::pair<std::size_t, int>, std::unique_ptr<BodyData>> refined_data_;
   std::size_t cache_budget_ = kGroupCacheBudget;
   std::vector<std::uint32_t> scratch_a_, scratch_b_;
   SeparationScratch z_;
@@ -122,11 +141,18 @@ class Checker {
 
   std::unique_ptr<CheckContext> bind_check(const json& c, std::size_t ci);
 
+  // A check's "levels": its bodies' URDF cylinders and spheres at a finer
+  // polyhedron (check_primitive.cpp).
+  void bind_levels(const json& c, CheckContext& ctx, std::size_t ia, std::size_t ib);
+
   // ------------------------------------------------------------ phase 2 (check.cpp)
 
   void read_check(CheckContext& ctx);
 
-  void validate_proof(const json& root, const std::string& root_path);
+  std::pair<std::uint64_t, int> validate_proof(const json& root, const std::string& root_path, std::size_t bound,
+                               const CheckContext& ctx);
+
+  void validate_root(const json& root, const std::string& path, const CheckContext& ctx);
 
   void read_groups(const json& c, CheckContext& ctx);
 
@@ -147,6 +173,21 @@ class Checker {
   void check_enclosed_witness(const CheckContext& ctx);
 
   void check_witness(const CheckContext& ctx);
+
+  // One side of a point witness at an exact pose: the element's weighted
+  // point placed at `point`, or `point` inside the solid by the ray.
+  void check_side_at(const CheckContext& ctx, int s, const Mat34E& pose, const Vec3E& point);
+
+  // Witnesses on the true shape of a URDF cylinder or sphere (check_primitive.cpp).
+  static bool has_true_shape_side(const json& w);
+
+  void read_true_shape_witness(const json& w, CheckContext& ctx);
+
+  void check_true_shape_witness(const CheckContext& ctx);
+
+  // A side of a witness whose body is a URDF cylinder or sphere must be a
+  // "true_shape" side (a point of the polyhedron is not one of the link).
+  void require_true_shape_sides(const CheckContext& ctx);
 
   static std::vector<std::vector<Vec3E>> placed(const BodyData& d, const Mat34E& pose);
 
@@ -189,8 +230,8 @@ class Checker {
   void prove(const json& node, std::uint32_t g, std::uint32_t h, std::vector<int>& trail, const PieceContext& pc,
              CheckContext& ctx);
 
-  // The first control point at which the separation claim fails, or -1.
-  int separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
+  // The first control point at which the separation claim fails, or nothing.
+  std::optional<std::size_t> separation_fails_at(const Vec3E& n, std::uint32_t g, std::uint32_t h, const PieceContext& pc,
                           CheckContext& ctx);
 };
 

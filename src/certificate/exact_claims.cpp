@@ -1,17 +1,18 @@
 #include "src/certificate/exact_claims.h"
 
+#include "src/certificate/check_numbers.h"
+
 #include <optional>
 
 namespace tmcert::certificate {
 
 namespace {
 
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3E cross(const Vec3E& a, const Vec3E& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+// The checker's vector vocabulary (check_numbers.h).
+using check_internal::cross;
+using check_internal::dot;
+using check_internal::is_zero;
+using check_internal::sub;
 
 // p on the closed segment [a, b] (a point when a = b).
 bool on_segment(const Vec3E& p, const Vec3E& a, const Vec3E& b) {

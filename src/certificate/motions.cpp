@@ -393,8 +393,7 @@ BallMat pose_matrix(const Pose& pose) {
 // constant the product of its poses, a revolute joint Rodrigues' rotation
 // I + sin(q) K + (1 - cos q) K^2 about the unit axis (K = [u]x), a
 // prismatic joint the translation q u.
-BallPose link_pose(const LinkMotion& link, const B& s) {
-  const ChainDescription& chain = *link.chain;
+BallPose chain_pose(const ChainDescription& chain, const std::vector<B>& values) {
   const auto& constants = chain.constant_poses();
   auto constant = [&](std::size_t k) {
     BallMat c{{B(1), B(0), B(0), B(0), B(1), B(0), B(0), B(0), B(1)}, {B(0), B(0), B(0)}};
@@ -404,7 +403,7 @@ BallPose link_pose(const LinkMotion& link, const B& s) {
   BallMat m = constant(0);
   for (std::size_t j = 0; j < chain.joint_count(); ++j) {
     const ChainJoint& joint = chain.joint(j);
-    const B q = B(link.from[j]) + (B(link.to[j]) - B(link.from[j])) * s;
+    const B& q = values[j];
     const B n = bsqrt(B(joint.axis[0]) * B(joint.axis[0]) + B(joint.axis[1]) * B(joint.axis[1]) +
                       B(joint.axis[2]) * B(joint.axis[2]));
     const V3 u{B(joint.axis[0]) / n, B(joint.axis[1]) / n, B(joint.axis[2]) / n};
@@ -422,6 +421,64 @@ BallPose link_pose(const LinkMotion& link, const B& s) {
     m = compose(compose(m, J), constant(j + 1));
   }
   return BallPose{m.r, m.p};
+}
+
+BallPose link_pose(const LinkMotion& link, const B& s) {
+  std::vector<B> q;
+  for (std::size_t j = 0; j < link.chain->joint_count(); ++j)
+    q.push_back(B(link.from[j]) + (B(link.to[j]) - B(link.from[j])) * s);
+  return chain_pose(*link.chain, q);
+}
+
+// The Hermite basis polynomials at s (or, with `derivative`, their
+// derivatives), each weighing one datum of a joint on a cubic or quintic
+// segment (LinkMotion), with the ends' derivatives in s (duration times the
+// rates, duration^2 times the accelerations):
+//   cubic   q = p0 + (3s^2 - 2s^3) h + (s^3 - 2s^2 + s) D0 + (s^3 - s^2) D1,
+//   quintic q = p0 + (10s^3 - 15s^4 + 6s^5) h + (s - 6s^3 + 8s^4 - 3s^5) D0
+//             + (s^2 - 3s^3 + 3s^4 - s^5)/2 A0 + (s^3 - 2s^4 + s^5)/2 A1
+//             + (-4s^3 + 7s^4 - 3s^5) D1,
+// h = p1 - p0 (the checker's own form: the verifier goes through the power
+// basis; proofs/trajectories.md section 4).  Order: h, D0, D1, A0, A1.
+std::array<B, 5> hermite_basis(const B& s, bool quintic, bool derivative) {
+  const B s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+  if (!quintic) {
+    if (derivative)
+      return {B(6) * s - B(6) * s2, B(3) * s2 - B(4) * s + B(1), B(3) * s2 - B(2) * s, B(0), B(0)};
+    return {B(3) * s2 - B(2) * s3, s3 - B(2) * s2 + s, s3 - s2, B(0), B(0)};
+  }
+  if (derivative)
+    return {B(30) * s2 - B(60) * s3 + B(30) * s4, B(1) - B(18) * s2 + B(32) * s3 - B(15) * s4,
+            B(28) * s3 - B(12) * s2 - B(15) * s4, (B(2) * s - B(9) * s2 + B(12) * s3 - B(5) * s4) / B(2),
+            (B(3) * s2 - B(8) * s3 + B(5) * s4) / B(2)};
+  return {B(10) * s3 - B(15) * s4 + B(6) * s5, s - B(6) * s3 + B(8) * s4 - B(3) * s5, B(7) * s4 - B(4) * s3 - B(3) * s5,
+          (s2 - B(3) * s3 + B(3) * s4 - s5) / B(2), (s3 - B(2) * s4 + s5) / B(2)};
+}
+
+// The link's pose on a cubic or quintic segment over the ball s: each q_j
+// in the mean value form q(m) + q'(s) (s - m) about the ball's midpoint m
+// (q' on the ball from the basis' derivatives), so that its radius is about
+// max|q'| times the ball's, as for linear joints; then the chain.
+BallPose hermite_link_pose(const LinkMotion& link, const B& s) {
+  const bool quintic = link.degree() == 5;
+  B m, offset;
+  arb_get_mid_arb(m.v, s.v);
+  offset = s - m;  // a ball about 0 holding s - m
+  const std::array<B, 5> at_m = hermite_basis(m, quintic, false), slope = hermite_basis(s, quintic, true);
+  const B T(link.duration), T2 = T * T;
+  std::vector<B> q;
+  for (std::size_t j = 0; j < link.chain->joint_count(); ++j) {
+    const B p0(link.from[j]);
+    const std::array<B, 5> data = {B(link.to[j]) - p0, T * B(link.from_rate[j]), T * B(link.to_rate[j]),
+                                   quintic ? T2 * B(link.from_accel[j]) : B(0), quintic ? T2 * B(link.to_accel[j]) : B(0)};
+    B value = p0, rate(0);
+    for (int k = 0; k < 5; ++k) {
+      value = value + at_m[k] * data[k];
+      rate = rate + slope[k] * data[k];
+    }
+    q.push_back(value + rate * offset);
+  }
+  return chain_pose(*link.chain, q);
 }
 
 // The box of a ball pose: the ends rounded outward to doubles, the center
@@ -625,11 +682,17 @@ const CheckerKind kCheckerKinds[] = {
        return evaluate(*seg.rational, last ? seg.t1 : seg.t0);
      },
      nullptr},
-    {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr; },
+    {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() == 1; },
      [](const MotionSegment& seg, bool last) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
      [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }},
+    {"robot_link_hermite",
+     [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() > 1; },
+     [](const MotionSegment& seg, bool last) {  // the waypoint's joint values, as for linear joints
+       return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
+     },
+     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(hermite_link_pose(*seg.link, s)); }},
     {"keyframe", [](const MotionSegment& seg) { return !seg.rational && !seg.link; },
      [](const MotionSegment& seg, bool last) { return exact_keyframe(last ? seg.to : seg.from); },
      [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }},
@@ -638,7 +701,7 @@ const CheckerKind kCheckerKinds[] = {
 const CheckerKind& checker_kind(const MotionSegment& seg) {
   for (const CheckerKind& kind : kCheckerKinds)
     if (kind.holds(seg)) return kind;
-  return kCheckerKinds[2];  // not reached: the keyframe kind holds what the others do not
+  return kCheckerKinds[3];  // not reached: the keyframe kind holds what the others do not
 }
 
 }  // namespace

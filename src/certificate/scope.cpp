@@ -28,14 +28,10 @@ std::string uncertifiable(const Scene& scene) {
           return "check [\"" + a.name + "\", \"" + b.name + "\"] has a solid body and the pose of \"" + body->name +
                  "\" at its start is neither exact nor enclosed";
     }
-    // A URDF cylinder or sphere: its collisions are proven on the true
-    // shape and its safe parts may rest on finer polyhedra than the
-    // scene's (proofs/robot-links.md section 6), which the format does not
-    // describe.
-    for (const Body* body : {&a, &b})
-      if (body->primitive)
-        return "check [\"" + a.name + "\", \"" + b.name + "\"] has the URDF " + body->enlarged.front() + " \"" +
-               body->name + "\" (proven on its true shape and finer polyhedra, which certificates do not describe yet)";
+    // A URDF cylinder or sphere is certified: its safe parts on the
+    // circumscribed polyhedron the checker rebuilds from the scene (the
+    // verifier does not refine it while recording), its collisions by a
+    // witness on the true shape (check_primitive.h, proofs/certificates.md §8).
   }
   return {};
 }

@@ -196,9 +196,9 @@ bool CheckWriter::prove_general(const Prover& prover, const Exact& ta, const Exa
   im.penalty = penalty;
   const std::function<const CurveE&()> exact_of =
       exact ? std::function<const CurveE&()>([&]() -> const CurveE& { return exact_curve; }) : nullptr;
-  if (std::optional<json> proof = prover.prove(im, exact_of, 0, 0)) {
+  if (const std::optional<int> proof = prover.prove(im, exact_of, 0, 0)) {
     ++stats.pieces;
-    pieces.push_back({{"t", json::array({rational(ta), rational(tb)})}, {"proof", std::move(*proof)}});
+    pieces.push_back({{"t", json::array({rational(ta), rational(tb)})}, {"proof", *proof}});
     return true;
   }
   return bisect("no separation proof for the cleared piece [" + to_string(ta) + ", " + to_string(tb) + "] (elements " +
@@ -224,10 +224,10 @@ void CheckWriter::prove_piece(const Prover& prover, const CurveI& piece, std::ui
     return *exact;
   };
   set_no_contact(prover, curve_u(index, depth), curve_u(index + 1, depth), nullptr);
-  if (std::optional<json> proof = prover.prove(im, exact_of, 0, 0)) {
+  if (const std::optional<int> proof = prover.prove(im, exact_of, 0, 0)) {
     ++stats.pieces;
     pieces.push_back({{"t", json::array({rational(scene_t(index, depth)), rational(scene_t(index + 1, depth))})},
-                      {"proof", std::move(*proof)}});
+                      {"proof", *proof}});
     return;
   }
   if (extra == 0) ++stats.bisections;
@@ -314,6 +314,12 @@ json CheckWriter::write() {
     out["first_contact"] = json::array({rational(clear_until), rational(r.first_contact->second)});
     if (r.first_contact_exact && !gen) before_witness(prover, clear_until, out);
   }
+  // The proof nodes the pieces and before_witness use, shared
+  // (docs/certificate-format.md "Shared proof nodes").
+  std::vector<json*> roots;
+  for (json& p : out["pieces"]) roots.push_back(&p["proof"]);
+  if (out.contains("before_witness")) roots.push_back(&out["before_witness"]["proof"]);
+  out["nodes"] = prover.nodes.compact(roots);
   json start_claims = json::array();
   if (!out["pieces"].empty() || out.contains("before_witness")) {
     if (starts.empty() || starts.front() != interval.first) {
@@ -339,17 +345,22 @@ std::string certificate_json(const Scene& scene, const SceneResult& result, Writ
   const auto started = std::chrono::steady_clock::now();
   WriteStats local;
   WriteStats& s = stats ? *stats : local;
-  json doc{{"format", "tmcert-certificate/1"}};
+  json doc{{"format", "tmcert-certificate/2"}};
   json bodies = json::array();
   for (const Body& body : scene.bodies)
     bodies.push_back({{"name", body.name}, {"elements", elements(body).size()}});
   doc["scene_bodies"] = std::move(bodies);
   json checks = json::array();
   for (const CheckResult& r : result.checks) {
-    const Body& a = scene.bodies[r.bodies[0]];
-    const Body& b = scene.bodies[r.bodies[1]];
+    // A URDF cylinder or sphere at the finer level the result was found
+    // on (writer_primitive.cpp).
+    const std::optional<Body> fa = at_level(scene.bodies[r.bodies[0]], r.levels[0]);
+    const std::optional<Body> fb = at_level(scene.bodies[r.bodies[1]], r.levels[1]);
+    const Body& a = fa ? *fa : scene.bodies[r.bodies[0]];
+    const Body& b = fb ? *fb : scene.bodies[r.bodies[1]];
     CheckWriter w{scene, r, a, b, s, check_interval(a, b), {}};
     checks.push_back(w.write());
+    if (fa || fb) checks.back()["levels"] = json::array({r.levels[0], r.levels[1]});
   }
   doc["checks"] = std::move(checks);
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

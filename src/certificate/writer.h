@@ -25,7 +25,7 @@ struct WriteStats {
   double seconds = 0;
 };
 
-// The tmcert-certificate/1 document of `result`, which verify_scene computed
+// The tmcert-certificate/2 document of `result`, which verify_scene computed
 // for `scene` with VerifyOptions::record_cover and a certified kernel.
 // Throws InputError for a result of the fast kernel and ResourceLimit when a
 // cleared piece cannot be proven within the bisection limit.

@@ -16,6 +16,10 @@
 
 namespace tmcert::certificate::writer_internal {
 
+// The body with its URDF cylinder or sphere polyhedron at `level`
+// (writer_primitive.cpp); nullopt at level 0 (the scene's body).
+std::optional<Body> at_level(const Body& body, int level);
+
 // ---------------------------------------------------------------- witness helpers (writer_claims.cpp)
 
 // Weights (one per vertex, >= 0, sum 1) placing the element's vertices
@@ -85,6 +89,10 @@ struct CheckWriter {
   json enclosed_witness(const Witness& w) const;
 
   json witness() const;
+
+  // A witness proven on the true shape of a URDF cylinder or sphere
+  // (writer_primitive.cpp, check_primitive.h).
+  json true_shape_witness(const Witness& w) const;
 
   json algebraic_witness(const Witness& w) const;
 

@@ -195,6 +195,7 @@ json CheckWriter::enclosed_witness(const Witness& w) const {
 
 json CheckWriter::witness() const {
   const Witness& w = *r.witness;
+  if (w.true_shape) return true_shape_witness(w);
   if (w.root) return algebraic_witness(w);
   if (w.point_box) return enclosed_witness(w);
   json out{{"t", rational(w.t)}, {"point", vec(w.point)}};
@@ -212,12 +213,7 @@ json CheckWriter::witness() const {
     if (w.displacement && w.displaced == k)
       for (int i = 0; i < 3; ++i) m[4 * i + 3] += (*w.displacement)[i];
     const Vec3E& target = w.points ? (*w.points)[k] : w.point;
-    // A point proven in a URDF cylinder or sphere lies in its body, the
-    // solid polyhedron around it: an interior claim.
-    const bool in_primitive = w.true_shape && body.primitive && feature.rfind(body.name + " ", 0) == 0 &&
-                              (feature.find(" cylinder", body.name.size()) != std::string::npos ||
-                               feature.find(" sphere", body.name.size()) != std::string::npos);
-    if (feature == body.name + " interior" || in_primitive) {
+    if (feature == body.name + " interior") {
       auto ray = ray_from(body, placed_pieces(body, m), target);
       if (!ray || !ray->second) fail("the interior witness could not be confirmed by a ray");
       out[keys[k]] = {{"interior", {{"ray", vec(ray->first)}}}};
@@ -339,10 +335,10 @@ void CheckWriter::before_witness(const Prover& prover, const Exact& from, json& 
   const PieceImages im = prover.images(enclose(piece));
   const std::function<const CurveE&()> exact_of = [&]() -> const CurveE& { return piece; };
   set_no_contact(prover, u0, u1, &root);
-  std::optional<json> proof = prover.prove(im, exact_of, 0, 0);
+  const std::optional<int> proof = prover.prove(im, exact_of, 0, 0);
   prover.no_contact = nullptr;
   if (!proof) return;
-  out["before_witness"] = {{"from", rational(from)}, {"proof", std::move(*proof)}};
+  out["before_witness"] = {{"from", rational(from)}, {"proof", *proof}};
   if (w.root) {
     const Exact lo = interval.first + root.lo * length, hi = interval.first + root.hi * length;
     out["witness"]["t"]["interval"] = json::array({rational(lo), rational(hi)});

@@ -205,7 +205,100 @@ std::optional<Vec3E> Prover::separate_exactly(const CurveE& piece, int g, int h,
   return std::nullopt;
 }
 
-std::optional<json> Prover::prove(const PieceImages& im, const std::function<const CurveE&()>& exact, int g, int h) const {
+namespace {
+
+template <class T>
+void append_bytes(std::string& key, const T& x) {
+  key.append(reinterpret_cast<const char*>(&x), sizeof x);
+}
+
+}  // namespace
+
+int ProofNodes::separation(const std::array<double, 3>& n) {
+  std::string key = "d";
+  for (double x : n) append_bytes(key, x + 0.0);  // -0 as 0
+  auto [it, fresh] = index.emplace(std::move(key), static_cast<int>(nodes.size()));
+  if (fresh) nodes.push_back({{"sep", integer_direction({Exact(n[0]), Exact(n[1]), Exact(n[2])})}});
+  return it->second;
+}
+
+int ProofNodes::separation(const Vec3E& n) {
+  json node{{"sep", integer_direction(n)}};
+  auto [it, fresh] = index.emplace("q" + node.dump(), static_cast<int>(nodes.size()));
+  if (fresh) nodes.push_back(std::move(node));
+  return it->second;
+}
+
+int ProofNodes::exact_claim() {
+  auto [it, fresh] = index.emplace("e", static_cast<int>(nodes.size()));
+  if (fresh) nodes.push_back({{"exact", "no_contact"}});
+  return it->second;
+}
+
+int ProofNodes::split(int side, const std::vector<int>& parts) {
+  std::string key = "s";
+  append_bytes(key, side);
+  for (int p : parts) append_bytes(key, p);
+  auto [it, fresh] = index.emplace(std::move(key), static_cast<int>(nodes.size()));
+  if (fresh) {
+    json node = json::array({side});
+    for (int p : parts) node.push_back(p);
+    nodes.push_back(std::move(node));
+  }
+  return it->second;
+}
+
+json ProofNodes::expand(int k) const {
+  const json& n = nodes.at(static_cast<std::size_t>(k));
+  if (!n.is_array()) return n;
+  json parts = json::array();
+  for (std::size_t i = 1; i < n.size(); ++i) parts.push_back(expand(n[i].get<int>()));
+  return {{"split", n[0]}, {"parts", std::move(parts)}};
+}
+
+json ProofNodes::compact(const std::vector<json*>& roots) const {
+  std::vector<char> used(nodes.size(), 0);
+  std::vector<int> todo;
+  for (const json* r : roots) todo.push_back(r->get<int>());
+  while (!todo.empty()) {
+    const int k = todo.back();
+    todo.pop_back();
+    if (used[k]) continue;
+    used[k] = 1;
+    if (nodes[k].is_array())
+      for (std::size_t i = 1; i < nodes[k].size(); ++i) todo.push_back(nodes[k][i].get<int>());
+  }
+  std::vector<int> renumber(nodes.size(), -1);
+  json out = json::array();
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    if (!used[k]) continue;
+    renumber[k] = static_cast<int>(out.size());
+    json n = nodes[k];
+    if (n.is_array())
+      for (std::size_t i = 1; i < n.size(); ++i) n[i] = renumber[n[i].get<int>()];  // parts are earlier
+    out.push_back(std::move(n));
+  }
+  for (json* r : roots) *r = renumber[r->get<int>()];
+  return out;
+}
+
+json integer_direction(const Vec3E& n) {
+  CGAL::Gmpz l(1), g(0), z[3];
+  for (const Exact& x : n) mpz_lcm(l.mpz(), l.mpz(), x.denominator().mpz());
+  for (int i = 0; i < 3; ++i) {
+    z[i] = n[i].numerator() * (l / n[i].denominator());
+    mpz_gcd(g.mpz(), g.mpz(), z[i].mpz());
+  }
+  json out = json::array();
+  for (int i = 0; i < 3; ++i) {
+    if (g > 1) z[i] /= g;
+    if (mpz_fits_slong_p(z[i].mpz()) && sizeof(long) == 8) out.push_back(static_cast<std::int64_t>(mpz_get_si(z[i].mpz())));
+    else out.push_back(to_string(Exact(z[i])));
+  }
+  return out;
+}
+
+std::optional<int> Prover::prove(const PieceImages& im, const std::function<const CurveE&()>& exact, int g, int h) const {
   const std::uint64_t key = static_cast<std::uint64_t>(g) << 32 | static_cast<std::uint32_t>(h);
   const auto remembered = memory.find(key);
   std::optional<std::array<double, 3>> n;
@@ -216,7 +309,7 @@ std::optional<json> Prover::prove(const PieceImages& im, const std::function<con
   if (n) memory[key] = n;
   if (n) {
     ++stats.separations;
-    return json{{"sep", vec({Exact((*n)[0]), Exact((*n)[1]), Exact((*n)[2])})}};
+    return nodes.separation(*n);
   }
   const BodyGroups& A = *groups[0];
   const BodyGroups& B = *groups[1];
@@ -226,23 +319,23 @@ std::optional<json> Prover::prove(const PieceImages& im, const std::function<con
     if (auto n = im.margins() || !exact ? std::nullopt : separate_exactly(exact(), g, h, std::nullopt)) {
       ++stats.separations;
       ++stats.exact_separations;
-      return json{{"sep", vec(*n)}};
+      return nodes.separation(*n);
     }
     if (no_contact && no_contact(A.element[g], B.element[h])) {
       ++stats.exact_claims;
-      return json{{"exact", "no_contact"}};
+      return nodes.exact_claim();
     }
     failed = {A.element[g], B.element[h]};
     return std::nullopt;
   }
   const int side = leaf_a ? 1 : leaf_b ? 0 : (A.vertices[g].size() >= B.vertices[h].size() ? 0 : 1);
-  json parts = json::array();
+  std::vector<int> parts;
   for (int c : side == 0 ? A.children[g] : B.children[h]) {
-    std::optional<json> p = side == 0 ? prove(im, exact, c, h) : prove(im, exact, g, c);
+    const std::optional<int> p = side == 0 ? prove(im, exact, c, h) : prove(im, exact, g, c);
     if (!p) return std::nullopt;
-    parts.push_back(std::move(*p));
+    parts.push_back(*p);
   }
-  return json{{"split", side}, {"parts", std::move(parts)}};
+  return nodes.split(side, parts);
 }
 
 }  // namespace tmcert::certificate::writer_internal

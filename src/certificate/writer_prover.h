@@ -31,6 +31,34 @@ struct PieceImages {
   bool margins() const { return margin > 0 || penalty[0] > 0 || penalty[1] > 0 || penalty[2] > 0; }
 };
 
+// The shared proof nodes of one check (docs/certificate-format.md "Shared
+// proof nodes"): each distinct node once, a separation {"sep": [n1, n2,
+// n3]} (integers), an exact claim, or a split [s, k1, ..., km] whose parts
+// are earlier nodes (children are added before their parent).
+struct ProofNodes {
+  std::vector<json> nodes;
+  std::unordered_map<std::string, int> index;  // keyed by a byte string of the node
+
+  // The number of a node (the existing one for an equal node): a
+  // separation with direction n (a double direction, or an exact one), an
+  // exact claim, a split.
+  int separation(const std::array<double, 3>& n);
+  int separation(const Vec3E& n);
+  int exact_claim();
+  int split(int side, const std::vector<int>& parts);
+
+  // Node k written out as a tree (object forms only).
+  json expand(int k) const;
+
+  // The nodes reachable from `roots` (node numbers, rewritten in place),
+  // renumbered in their order: the check's "nodes".
+  json compact(const std::vector<json*>& roots) const;
+};
+
+// A direction scaled to coprime integers (a positive multiple: the same
+// separation claim), JSON integers where they fit in 64 bits, else strings.
+json integer_direction(const Vec3E& n);
+
 struct Prover {
   const std::array<const BodyGroups*, 2> groups;
   std::array<std::vector<std::array<Interval, 3>>, 2> vertex_box;  // enclosures of the exact vertices
@@ -57,8 +85,12 @@ struct Prover {
   // pieces mostly share them).
   mutable std::unordered_map<std::uint64_t, std::optional<std::array<double, 3>>> memory;
 
-  // The proof of the pair (g, h) on the piece, or nothing.
-  std::optional<json> prove(const PieceImages& im, const std::function<const CurveE&()>& exact, int g, int h) const;
+  // The check's proof nodes (shared by all its pieces).
+  mutable ProofNodes nodes;
+
+  // The proof of the pair (g, h) on the piece (a node of `nodes`), or
+  // nothing.
+  std::optional<int> prove(const PieceImages& im, const std::function<const CurveE&()>& exact, int g, int h) const;
 };
 
 }  // namespace tmcert::certificate::writer_internal

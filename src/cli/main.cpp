@@ -343,7 +343,7 @@ int main(int argc, char** argv) {
   verify->add_option("--kernel", args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
-  CLI::Option* certificate_option = verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/1; re-check it with tmcert check)");
+  CLI::Option* certificate_option = verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/2; re-check it with tmcert check)");
   CLI::Option* report_option = verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   verify->add_option("--time-limit", args.time_limit,
@@ -358,7 +358,7 @@ int main(int argc, char** argv) {
   CLI::App* check = app.add_subcommand("check", "re-verify a certificate in exact arithmetic "
                                                 "(0 every claim holds, 1 rejected, 3 bad input)");
   std::string cert_file, cert_scene;
-  check->add_option("certificate", cert_file, "certificate file (tmcert-certificate/1)")->required();
+  check->add_option("certificate", cert_file, "certificate file (tmcert-certificate/2, or /1)")->required();
   check->add_option("scene", cert_scene, "the scene it certifies (tmcert-scene/1)")->required();
   std::vector<std::string> check_packages;
   check->add_option("--package-path", check_packages, package_help)->allow_extra_args(false);

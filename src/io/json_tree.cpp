@@ -333,6 +333,59 @@ Tree parse_json(const std::string& raw_text, const std::string& source) {
   return std::move(builder.tree());
 }
 
+namespace {
+
+// Feeds a JSON value to the tree builder as the SAX parser would feed its
+// text (quote_overflowing_numbers' marks included: a string that starts
+// with either mark gets kStringMark in front).  False when the builder
+// stopped (its error says why).
+bool feed(TreeBuilder& builder, const nlohmann::ordered_json& value) {
+  using Value = nlohmann::ordered_json::value_t;
+  const auto text = [](const std::string& s) {
+    (void)nlohmann::ordered_json(s).dump();  // invalid UTF-8 throws, as in dump()
+    std::string out;
+    if (!s.empty() && (s[0] == kNumberMark || s[0] == kStringMark)) out += kStringMark;
+    return out + s;
+  };
+  switch (value.type()) {
+    case Value::null:
+    case Value::discarded: return builder.null();
+    case Value::boolean: return builder.boolean(value.get<bool>());
+    case Value::number_integer: return builder.number_integer(value.get<std::int64_t>());
+    case Value::number_unsigned: return builder.number_unsigned(value.get<std::uint64_t>());
+    case Value::number_float: return builder.number_float(value.get<double>(), value.dump());
+    case Value::string: {
+      std::string s = text(value.get_ref<const std::string&>());
+      return builder.string(s);
+    }
+    case Value::binary: {
+      nlohmann::json::binary_t b;
+      return builder.binary(b);
+    }
+    case Value::array:
+      if (!builder.start_array(value.size())) return false;
+      for (const nlohmann::ordered_json& item : value)
+        if (!feed(builder, item)) return false;
+      return builder.end_array();
+    case Value::object:
+      if (!builder.start_object(value.size())) return false;
+      for (const auto& [k, item] : value.items()) {
+        std::string key = text(k);
+        if (!builder.key(key) || !feed(builder, item)) return false;
+      }
+      return builder.end_object();
+  }
+  return builder.null();
+}
+
+}  // namespace
+
+Tree tree_of(const nlohmann::ordered_json& value, const std::string& source) {
+  TreeBuilder builder(source);
+  if (!feed(builder, value)) throw InputError(builder.error().empty() ? source + ": invalid JSON" : builder.error());
+  return std::move(builder.tree());
+}
+
 // ---------------------------------------------------------------- typed reading
 
 void JsonReader::fail(const Path& path, const std::string& what) const {

@@ -10,6 +10,8 @@
 
 #include "src/model/model.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -111,6 +113,14 @@ bool quote_overflowing_numbers(const std::string& text, std::string& out);
 // invalid JSON at byte N: ..." or "<source>: <path>: <what>" (duplicate
 // key, nesting, value count, binary value, a number too large).
 Tree parse_json(const std::string& text, const std::string& source);
+
+// The tree of a document held as a JSON value (SceneBuilder's): the same
+// tree, limits and messages as parse_json(value.dump(), source), without
+// writing or parsing any text.  Numbers the value holds as integers keep
+// their decimal text; strings stay strings (the reader reads numbers
+// written as strings exactly).  A string that is not valid UTF-8 throws
+// nlohmann's type_error, as dump() does.
+Tree tree_of(const nlohmann::ordered_json& value, const std::string& source);
 
 // Typed reading of a Tree; every error names the source and the JSON path.
 class JsonReader {

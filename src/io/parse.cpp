@@ -14,6 +14,7 @@
 #include "src/io/mesh.h"
 #include "src/io/polygon.h"
 #include "src/io/read_file.h"
+#include "src/io/scene_document.h"
 #include "src/io/scene_reader.h"
 #include "src/metric/metric.h"
 #include "src/model/solid.h"
@@ -116,7 +117,7 @@ void SceneReader::read_request(RequestLine& out) const {
   const Path body_path = document.member("body");
   const Node* b = find(doc, "body");
   if (const Node* r = find(doc, "robot")) {
-    // A robot's path segment: {"robot": name, "path": {"times", "positions"}}.
+    // A robot's path segment: {"robot": name, "path": {"times", "positions", ...}}.
     const Path robot_path = document.member("robot");
     if (b) fail(body_path, "a request moves a body or a robot, not both");
     if (find(doc, "motion")) fail(document.member("motion"), "a robot moves along its \"path\", not a motion");
@@ -129,6 +130,9 @@ void SceneReader::read_request(RequestLine& out) const {
     joint_path_values(*p, path_path, jp);
     out.path_times = std::move(jp.times);
     out.path_positions = std::move(jp.positions);
+    out.path_interpolation = jp.interpolation;
+    out.path_velocities = std::move(jp.velocities);
+    out.path_accelerations = std::move(jp.accelerations);
     read_request_checks(out);
     return;
   }
@@ -488,6 +492,17 @@ Scene parse_scene_text(const std::string& text, const std::string& source, const
   const reader::Tree tree = reader::parse_json(text, source);
   const InputRecord record;
   reader::SceneReader scene_reader(source, base, tree, options);
+  scene_reader.robots_out_ = &robots;
+  Scene scene = scene_reader.read();
+  scene.input_files = record.files();
+  return scene;
+}
+
+Scene parse_scene_document(const nlohmann::ordered_json& document, const std::string& source, const std::string& base,
+                           std::vector<SceneRobot>& robots) {
+  const reader::Tree tree = reader::tree_of(document, source);
+  const InputRecord record;
+  reader::SceneReader scene_reader(source, base, tree);
   scene_reader.robots_out_ = &robots;
   Scene scene = scene_reader.read();
   scene.input_files = record.files();

@@ -13,6 +13,7 @@
 namespace tmcert {
 
 class PlacedRobot;
+enum class JointInterpolation;  // src/io/robot.h
 
 // A robot of a scene ("robots"), kept so that it can be moved along other
 // paths (batch runs, docs/scene-format.md "Batch runs").
@@ -72,6 +73,9 @@ struct RequestLine {
   std::string robot;
   std::vector<Exact> path_times;
   std::vector<std::vector<Exact>> path_positions;
+  // Its interpolation, velocities and accelerations (JointPath).
+  JointInterpolation path_interpolation{};  // linear
+  std::vector<std::vector<Exact>> path_velocities, path_accelerations;
   std::optional<Body> inline_body;  // the body itself, when the request gives it
   // A body's motion, as Body::motion and Body::trajectory hold one (it moves).
   std::optional<Motion> motion;

@@ -1,6 +1,7 @@
 // The scene reader's polygon checks (src/io/polygon.h).
 #include "src/io/polygon.h"
 
+#include "kernels/vec3.h"
 #include "src/io/parse.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -25,12 +26,10 @@ using Vec2E = std::array<Exact, 2>;
 
 int sign(const Exact& x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3E cross(const Vec3E& a, const Vec3E& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Exact dot(const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+using vec3::cross;
+using vec3::dot;
+using vec3::is_zero;
+using vec3::sub;
 
 // Twice the signed area of triangle abc: > 0 for a left turn.
 Exact orient(const Vec2E& a, const Vec2E& b, const Vec2E& c) {

@@ -1,6 +1,7 @@
 #include "src/io/robot.h"
 
 #include "kernels/decimal.h"
+#include "kernels/real_roots.h"
 
 #include "src/io/parse.h"
 
@@ -79,7 +80,33 @@ std::string mimic_text(const RobotModel& model, const RobotJoint& joint) {
 
 }  // namespace
 
+namespace {
+
+// The value of every joint from the named columns (joint_values), or with
+// `rates` their derivatives (a mimic joint's is m times its joint's: the
+// offset drops).
+std::vector<Exact> all_joints(const RobotModel& model, const std::vector<int>& columns, const std::vector<Exact>& row,
+                              bool rates);
+
+}  // namespace
+
 std::vector<Exact> joint_values(const RobotModel& model, const std::vector<int>& columns, const std::vector<Exact>& row) {
+  return all_joints(model, columns, row, false);
+}
+
+const char* interpolation_name(JointInterpolation how) {
+  switch (how) {
+    case JointInterpolation::Linear: return "linear";
+    case JointInterpolation::Cubic: return "cubic";
+    case JointInterpolation::Quintic: return "quintic";
+  }
+  return "linear";
+}
+
+namespace {
+
+std::vector<Exact> all_joints(const RobotModel& model, const std::vector<int>& columns, const std::vector<Exact>& row,
+                              bool rates) {
   std::vector<std::optional<Exact>> value(model.joints.size());
   for (std::size_t c = 0; c < columns.size(); ++c) value[columns[c]] = row[c];
   // Mimic joints follow their joint, which may follow another (no cycles:
@@ -89,7 +116,8 @@ std::vector<Exact> joint_values(const RobotModel& model, const std::vector<int>&
     for (std::size_t j = 0; j < model.joints.size(); ++j) {
       const RobotJoint& joint = model.joints[j];
       if (value[j] || !joint.moves() || !joint.mimic) continue;
-      if (const std::optional<Exact>& q = value[joint.mimic->joint]) value[j] = joint.mimic->multiplier * *q + joint.mimic->offset;
+      if (const std::optional<Exact>& q = value[joint.mimic->joint])
+        value[j] = joint.mimic->multiplier * *q + (rates ? Exact(0) : joint.mimic->offset);
       else open = true;
     }
     if (!open) break;
@@ -102,6 +130,64 @@ std::vector<Exact> joint_values(const RobotModel& model, const std::vector<int>&
   }
   return out;
 }
+
+// The degree of a path's joint polynomials: 1, 3 or 5.
+int path_degree(const JointPath& path) {
+  return path.interpolation == JointInterpolation::Quintic ? 5 : path.interpolation == JointInterpolation::Cubic ? 3 : 1;
+}
+
+// Every joint's values, rates and accelerations at waypoint k (zero where
+// the path has none).
+struct Waypoint {
+  std::vector<Exact> value, rate, accel;
+};
+
+Waypoint waypoint(const RobotModel& model, const std::vector<int>& columns, const JointPath& path, std::size_t k) {
+  Waypoint w;
+  w.value = all_joints(model, columns, path.positions[k], false);
+  const std::vector<Exact> zero(columns.size(), Exact(0));
+  w.rate = all_joints(model, columns, path.velocities.empty() ? zero : path.velocities[k], true);
+  w.accel = all_joints(model, columns, path.accelerations.empty() ? zero : path.accelerations[k], true);
+  return w;
+}
+
+// A rational s in [0, 1] with p(s) > 0, or nullopt when p <= 0 on all of
+// [0, 1], decided exactly (proofs/trajectories.md section 2): p has one
+// sign between consecutive distinct real roots, so the ends 0 and 1 and a
+// point between each two consecutive roots of p in [0, 1] (isolated
+// exactly on its square-free part) meet every part of [0, 1] where p is
+// not zero.  Throws ExactLimit when the isolation does not finish.
+std::optional<Exact> positive_point(PolyQ p) {
+  trim(p);
+  if (p.empty()) return std::nullopt;  // p = 0
+  const PolyZ z = primitive(p);        // a positive multiple: the same signs
+  std::vector<Exact> samples = {Exact(0), Exact(1)};
+  if (z.size() > 1) {
+    const std::vector<RealRoot> roots = real_roots(square_free(z), Exact(0), Exact(1));
+    for (std::size_t i = 0; i + 1 < roots.size(); ++i) samples.push_back((roots[i].hi + roots[i + 1].lo) / 2);
+  }
+  for (const Exact& x : samples)
+    if (sign_at(z, x) == CGAL::POSITIVE) return x;
+  return std::nullopt;
+}
+
+// A link segment with its joints linear between two waypoint values.
+std::shared_ptr<const LinkMotion> linear_link(std::shared_ptr<const ChainDescription> chain, std::vector<Exact> from,
+                                              std::vector<Exact> to) {
+  auto m = std::make_shared<LinkMotion>();
+  m->chain = std::move(chain);
+  m->from = std::move(from);
+  m->to = std::move(to);
+  return m;
+}
+
+// An exact rational as a short text: its decimal when it has one, else p/q.
+std::string exact_text(const Exact& q) {
+  const std::string d = decimal_text(q);
+  return d.rfind("about ", 0) == 0 || d.find("(a double)") != std::string::npos ? to_string(q) : d;
+}
+
+}  // namespace
 
 void validate_joint_path(const RobotModel& model, const JointPath& path) {
   std::map<std::string, std::size_t> columns;
@@ -155,6 +241,67 @@ void validate_joint_path(const RobotModel& model, const JointPath& path) {
                                                     decimal_text(*joint.upper) + "]");
     }
   }
+  // Rates and accelerations: of the shape of positions where the
+  // interpolation uses them, absent elsewhere.
+  const char* how = interpolation_name(path.interpolation);
+  auto shape = [&](const std::vector<std::vector<Exact>>& rows, const char* field, bool used) {
+    if (!used) {
+      if (!rows.empty())
+        throw JointPathError(field, {}, std::string(field) + " are not used by " + how +
+                                            " interpolation (velocities: cubic or quintic; accelerations: quintic)");
+      return;
+    }
+    if (rows.size() != path.times.size())
+      throw JointPathError(field, {}, "expected " + std::to_string(path.times.size()) + " rows (one per time), got " +
+                                          std::to_string(rows.size()));
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      if (rows[k].size() != path.joints.size())
+        throw JointPathError(field, {k}, "waypoint " + std::to_string(k) + ": expected " +
+                                             std::to_string(path.joints.size()) + " values (one per joint), got " +
+                                             std::to_string(rows[k].size()));
+  };
+  const int degree = path_degree(path);
+  shape(path.velocities, "velocities", degree > 1);
+  shape(path.accelerations, "accelerations", degree > 3);
+  if (degree == 1) return;
+  // Cubic and quintic: every joint with limits (mimic joints too) within
+  // them on the whole polynomial of every segment, decided exactly.
+  Waypoint a = waypoint(model, index, path, 0);
+  for (std::size_t k = 0; k + 1 < path.times.size(); ++k) {
+    Waypoint b = waypoint(model, index, path, k + 1);
+    const Exact T = path.times[k + 1] - path.times[k];
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const RobotJoint& joint = model.joints[j];
+      if (!joint.moves() || (joint.type != RobotJoint::Type::Revolute && joint.type != RobotJoint::Type::Prismatic)) continue;
+      const PolyQ q = hermite_coefficients(degree, a.value[j], b.value[j], a.rate[j], b.rate[j], a.accel[j], b.accel[j], T);
+      for (const bool upper : {true, false}) {
+        PolyQ p = q;
+        if (upper) p[0] -= *joint.upper;
+        else {
+          for (Exact& c : p) c = -c;
+          p[0] += *joint.lower;
+        }
+        std::optional<Exact> s;
+        try {
+          s = positive_point(p);
+        } catch (const ExactLimit&) {
+          throw JointPathError("path", {}, "segment from waypoint " + std::to_string(k) + " to " + std::to_string(k + 1) +
+                                               ": could not decide whether joint " + quoted(joint.name) +
+                                               " stays within its limits (exact root isolation did not finish)");
+        }
+        if (!s) continue;
+        Exact value = q.back();
+        for (std::size_t c = q.size() - 1; c-- > 0;) value = value * *s + q[c];
+        const std::string what = joint.mimic ? " (" + mimic_text(model, joint) + ")" : "";
+        throw JointPathError("path", {}, "segment from waypoint " + std::to_string(k) + " to " + std::to_string(k + 1) +
+                                             " (" + how + "): joint " + quoted(joint.name) + what + " at t = " +
+                                             exact_text(path.times[k] + *s * T) + " is at " + exact_text(value) +
+                                             ", outside its limits [" + decimal_text(*joint.lower) + ", " +
+                                             decimal_text(*joint.upper) + "]");
+      }
+    }
+    a = std::move(b);
+  }
 }
 
 RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& path) {
@@ -164,6 +311,10 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
   for (const std::string& name : path.joints) index.push_back(model.joint_index(name));
   std::vector<std::vector<Exact>> all;  // every joint's value at every waypoint (mimic joints included)
   for (const std::vector<Exact>& row : path.positions) all.push_back(joint_values(model, index, row));
+  const int degree = path_degree(path);
+  std::vector<Waypoint> ends;  // cubic and quintic: every joint's value, rate and acceleration at every waypoint
+  if (degree > 1)
+    for (std::size_t k = 0; k < path.times.size(); ++k) ends.push_back(waypoint(model, index, path, k));
   const Exact t_first = path.times.front(), t_last = path.times.back();
   RobotBodies out;
   out.body.assign(model.links.size(), -1);
@@ -177,9 +328,39 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
       for (int j : js) q.push_back(all[k][j]);
       return q;
     };
+    // Cubic and quintic: segment k's motion of this link, when its joints'
+    // polynomials are not all of degree <= 1 (then it is the linear motion
+    // between its waypoint values, exactly); null otherwise.
+    auto hermite = [&](std::size_t k, const std::shared_ptr<const LinkChain>& chain) -> std::shared_ptr<const LinkMotion> {
+      if (degree == 1) return nullptr;
+      const Exact T = path.times[k + 1] - path.times[k];
+      bool linear = true;
+      for (std::size_t c = 0; c < js.size() && linear; ++c) {
+        const int j = js[c];
+        const std::vector<Exact> q = hermite_coefficients(degree, ends[k].value[j], ends[k + 1].value[j], ends[k].rate[j],
+                                                          ends[k + 1].rate[j], ends[k].accel[j], ends[k + 1].accel[j], T);
+        for (std::size_t e = 2; e < q.size(); ++e) linear = linear && q[e] == 0;
+      }
+      if (linear) return nullptr;
+      auto m = std::make_shared<LinkMotion>();
+      m->chain = chain;
+      m->from = values(k);
+      m->to = values(k + 1);
+      m->duration = T;
+      for (int j : js) {
+        m->from_rate.push_back(ends[k].rate[j]);
+        m->to_rate.push_back(ends[k + 1].rate[j]);
+        if (degree == 5) {
+          m->from_accel.push_back(ends[k].accel[j]);
+          m->to_accel.push_back(ends[k + 1].accel[j]);
+        }
+      }
+      return m;
+    };
     bool still = true;
     const std::vector<Exact> first = values(0);
     for (std::size_t k = 1; k < path.times.size() && still; ++k) still = values(k) == first;
+    for (std::size_t k = 0; k + 1 < path.times.size() && still && degree > 1; ++k) still = !hermite(k, nullptr);
     for (std::size_t p = 0; p < link.parts.size(); ++p) {
       const std::shared_ptr<const LinkChain>& chain = robot.chain(static_cast<int>(l), p);
       Body b = link.parts[p].geometry;
@@ -196,7 +377,7 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
           MotionSegment seg;
           seg.t0 = t_first;
           seg.t1 = t_last;
-          seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, first, first});
+          seg.link = linear_link(chain, first, first);
           b.trajectory = Trajectory{{std::move(seg)}};
         }
       } else {
@@ -205,6 +386,11 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
           MotionSegment seg;
           seg.t0 = path.times[k];
           seg.t1 = path.times[k + 1];
+          if (std::shared_ptr<const LinkMotion> polynomial = hermite(k, chain)) {
+            seg.link = std::move(polynomial);  // never rational: a joint moves along a polynomial of degree >= 2
+            traj.segments.push_back(std::move(seg));
+            continue;
+          }
           std::vector<Exact> from = values(k), to = values(k + 1);
           if (chain->rational_between(from, to)) {
             Motion m;
@@ -215,7 +401,7 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
             seg.rational = std::move(m);
           }
           // Also beside a rational curve: the segment is known as a link's.
-          seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
+          seg.link = linear_link(chain, std::move(from), std::move(to));
           traj.segments.push_back(std::move(seg));
         }
         if (traj.segments.size() == 1 && traj.segments[0].rational) b.motion = traj.segments[0].rational;

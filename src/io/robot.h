@@ -134,16 +134,33 @@ std::vector<std::pair<std::string, std::string>> read_srdf(const std::string& fi
 // A joint-space path: `joints` names the columns (every moving joint of the
 // robot but the mimic joints, each once), `times` are strictly increasing (at least 2), and
 // `positions` holds one row per time with one value per column.  The motion
-// is linear in joint space between consecutive waypoints.
+// is linear in joint space between consecutive waypoints, or (SCENE_FORMAT.md
+// "Real robots as they ship") each joint follows the cubic Hermite
+// polynomial in time through its positions and `velocities` (dq/dt), or the
+// quintic one through its positions, velocities and `accelerations`
+// (d^2q/dt^2), as ros_control's joint_trajectory_controller executes a
+// trajectory; `velocities` and `accelerations` have the shape of
+// `positions` and are empty when not used.
+enum class JointInterpolation { Linear, Cubic, Quintic };
+
 struct JointPath {
   std::vector<std::string> joints;
   std::vector<Exact> times;
   std::vector<std::vector<Exact>> positions;
+  JointInterpolation interpolation = JointInterpolation::Linear;
+  std::vector<std::vector<Exact>> velocities;     // cubic and quintic
+  std::vector<std::vector<Exact>> accelerations;  // quintic
 };
 
-// What is wrong with a JointPath, and where: `field` is "joints", "times"
-// or "positions", `index` the element (row, then column for positions;
-// empty for the field itself).  The message names the joint and waypoint.
+// "linear", "cubic", "quintic".
+const char* interpolation_name(JointInterpolation how);
+
+// What is wrong with a JointPath, and where: `field` is "joints", "times",
+// "positions", "velocities", "accelerations" or "path" (a joint leaving its
+// limits between two waypoints: the message names the segment, the joint
+// and a time where it is outside), `index` the element (row, then column
+// for positions; empty for the field itself).  The message names the joint
+// and waypoint.
 class JointPathError : public InputError {
  public:
   JointPathError(std::string field, std::vector<std::size_t> index, const std::string& what)
@@ -180,7 +197,11 @@ class PlacedRobot {
 // once, at least 2 strictly increasing times, one row per time with one
 // value per column, and every value of a revolute or prismatic joint
 // within its <limit>, mimic joints included (their values are linear in
-// the others', so on the linear path between waypoints too).
+// the others', so on the linear path between waypoints too).  Cubic and
+// quintic paths: velocities (and accelerations) of the shape of positions,
+// none where not used, and each joint's polynomial within its limits on
+// the whole of every segment, decided exactly (proofs/trajectories.md
+// section 2).
 void validate_joint_path(const RobotModel& model, const JointPath& path);
 
 // The value of every joint of `model` (indexed like its joints; 0 for a

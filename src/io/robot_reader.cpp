@@ -32,11 +32,42 @@ UrdfOptions SceneReader::urdf_options() const {
   return out;
 }
 
-// A joint-space path's "times" and "positions" (exact numbers; their
-// meaning is checked by validate_joint_path).
+// A joint-space path's "times", "positions", "interpolation",
+// "velocities" and "accelerations" (exact numbers; their meaning is checked
+// by validate_joint_path).  Velocities belong to cubic and quintic paths,
+// accelerations to quintic ones: a missing one is "missing required field",
+// one the interpolation does not use is refused.
 void SceneReader::joint_path_values(const Node& node, const Path& path, JointPath& jp) const {
   const Members pobj = object(node, path);
-  reject_unknown_keys(pobj, path, {"times", "positions"});
+  reject_unknown_keys(pobj, path, {"times", "positions", "interpolation", "velocities", "accelerations"});
+  if (const Node* how = find(pobj, "interpolation")) {
+    const Path hpath = path.member("interpolation");
+    const std::string_view name = how->kind == Node::Kind::String ? text(*how) : std::string_view();
+    if (name == "linear") jp.interpolation = JointInterpolation::Linear;
+    else if (name == "cubic") jp.interpolation = JointInterpolation::Cubic;
+    else if (name == "quintic") jp.interpolation = JointInterpolation::Quintic;
+    else fail(hpath, "expected \"linear\", \"cubic\" or \"quintic\"");
+  }
+  auto rows_of = [&](const char* key, std::vector<std::vector<Exact>>& out, bool used) {
+    const Path rpath = path.member(key);
+    const Node* n = find(pobj, key);
+    if (!used) {
+      if (n)
+        fail(rpath, std::string("not used by \"") + interpolation_name(jp.interpolation) +
+                        "\" interpolation (velocities: cubic or quintic; accelerations: quintic)");
+      return;
+    }
+    if (!n) fail(rpath, std::string("missing required field (\"") + interpolation_name(jp.interpolation) + "\" interpolation)");
+    const std::span<const Node> rows = array(*n, rpath);
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const Path row_path = rpath.index(k);
+      std::vector<Exact> row;
+      for (std::size_t c = 0; const Node& v : array(rows[k], row_path)) row.push_back(number(v, row_path.index(c++)));
+      out.push_back(std::move(row));
+    }
+  };
+  rows_of("velocities", jp.velocities, jp.interpolation != JointInterpolation::Linear);
+  rows_of("accelerations", jp.accelerations, jp.interpolation == JointInterpolation::Quintic);
   const Path tpath = path.member("times"), qpath = path.member("positions");
   const Node* times_node = find(pobj, "times");
   if (!times_node) fail(tpath, "missing required field");
@@ -109,7 +140,12 @@ std::vector<SceneReader::RobotInScene> SceneReader::robots(Scene& scene, const N
     try {
       placed.bodies = add_robot(scene, *placed.robot, jp);
     } catch (const JointPathError& e) {
-      const Path& field = e.field == "joints" ? jpath : e.field == "times" ? tpath : qpath;
+      const Path field = e.field == "joints"          ? jpath
+                         : e.field == "times"         ? tpath
+                         : e.field == "path"          ? ppath
+                         : e.field == "velocities"    ? ppath.member("velocities")
+                         : e.field == "accelerations" ? ppath.member("accelerations")
+                                                      : qpath;
       if (e.index.empty()) fail(field, e.what());
       const Path first = field.index(e.index[0]);
       if (e.index.size() == 1) fail(first, e.what());

@@ -1,5 +1,6 @@
 #include "src/metric/metric.h"
 
+#include "kernels/vec3.h"
 #include "kernels/number_types.h"
 
 #include <algorithm>
@@ -131,11 +132,9 @@ Exact Metric::norm2(const Mat34E& m) const {
 
 namespace {
 
-Vec3E sub(const Vec3E& a, const Vec3E& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3E cross(const Vec3E& a, const Vec3E& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-bool is_zero(const Vec3E& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+using vec3::cross;
+using vec3::is_zero;
+using vec3::sub;
 Exact abs(const Exact& a) { return a < 0 ? -a : a; }
 
 // Index of the coordinate axis with the largest |component| of v.

@@ -45,9 +45,55 @@ class ChainDescription {
 // One segment of a link's motion: the chain, and the joint values (one per
 // chain joint, in chain order) at s = 0 and s = 1.  The verifier's chains
 // are LinkChains (src/motion/chain.h), prepared once per link.
+//
+// Linear (no rates): every q_j is linear in s between `from` and `to`.
+// Cubic (`from_rate`, `to_rate`) and quintic (also `from_accel`,
+// `to_accel`): every q_j follows the Hermite polynomial in scene time t
+// with these values, first derivatives dq/dt and second derivatives
+// d^2q/dt^2 at the segment's ends, over `duration` = t1 - t0 of the
+// segment, as ros_control's joint_trajectory_controller interpolates
+// (SCENE_FORMAT.md "Real robots as they ship"; proofs/trajectories.md).
 struct LinkMotion {
   std::shared_ptr<const ChainDescription> chain;
   std::vector<Exact> from, to;
+  std::vector<Exact> from_rate, to_rate;    // cubic and quintic: dq/dt, one per chain joint
+  std::vector<Exact> from_accel, to_accel;  // quintic: d^2q/dt^2, one per chain joint
+  Exact duration = 1;                       // cubic and quintic: t1 - t0 > 0
+  // 1 (linear), 3 (cubic) or 5 (quintic).
+  int degree() const { return !from_accel.empty() ? 5 : !from_rate.empty() ? 3 : 1; }
 };
+
+// The coefficients (constant first, degree() + 1 of them) in the segment
+// parameter s in [0, 1] of joint j's polynomial on a segment with values
+// p0, p1, rates v0, v1 and accelerations a0, a1 (zero for cubic) in time
+// over `duration`, exactly: with D = duration v and A = duration^2 a,
+//   cubic:   p0 + D0 s + (3 h - 2 D0 - D1) s^2 + (-2 h + D0 + D1) s^3,
+//   quintic: p0 + D0 s + A0/2 s^2 + (10 h - 6 D0 - 4 D1 - (3 A0 - A1)/2) s^3
+//            + (-15 h + 8 D0 + 7 D1 + (3 A0 - 2 A1)/2) s^4
+//            + (6 h - 3 D0 - 3 D1 - (A0 - A1)/2) s^5,
+// h = p1 - p0: the polynomial with these values and derivatives at s = 0
+// and s = 1 (tests/model/test_hermite.cpp checks both ends exactly).
+inline std::vector<Exact> hermite_coefficients(int degree, const Exact& p0, const Exact& p1, const Exact& v0,
+                                               const Exact& v1, const Exact& a0, const Exact& a1,
+                                               const Exact& duration) {
+  const Exact h = p1 - p0, D0 = duration * v0, D1 = duration * v1;
+  if (degree == 1) return {p0, h};
+  if (degree == 3) return {p0, D0, 3 * h - 2 * D0 - D1, -2 * h + D0 + D1};
+  const Exact A0 = duration * duration * a0, A1 = duration * duration * a1;
+  return {p0,
+          D0,
+          A0 / 2,
+          10 * h - 6 * D0 - 4 * D1 - (3 * A0 - A1) / 2,
+          -15 * h + 8 * D0 + 7 * D1 + (3 * A0 - 2 * A1) / 2,
+          6 * h - 3 * D0 - 3 * D1 - (A0 - A1) / 2};
+}
+
+// Joint j's coefficients on the segment (hermite_coefficients).
+inline std::vector<Exact> link_joint_coefficients(const LinkMotion& m, std::size_t j) {
+  const int d = m.degree();
+  const Exact zero(0);
+  return hermite_coefficients(d, m.from[j], m.to[j], d > 1 ? m.from_rate[j] : zero, d > 1 ? m.to_rate[j] : zero,
+                              d > 3 ? m.from_accel[j] : zero, d > 3 ? m.to_accel[j] : zero, m.duration);
+}
 
 }  // namespace tmcert

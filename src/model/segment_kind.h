@@ -3,7 +3,8 @@
 //
 // A segment of a body's trajectory (model.h MotionSegment) is of one kind:
 // a rational Bezier curve, a keyframe interpolation (slerp, screw, nlerp),
-// a robot link on a linear joint path.  Each kind implements SegmentKind;
+// a robot link on a linear joint path, a robot link on a cubic or quintic
+// joint trajectory (robot_link_hermite).  Each kind implements SegmentKind;
 // the registry lists them, and whatever depends on the kind asks it
 // instead of testing the segment's fields:
 //   * here (model/): its name, whether a segment is of it, its scene

@@ -38,6 +38,15 @@ class LinkChain : public ChainDescription {
   // Jets of the pose for joint values q_j = from_j + (to_j - from_j) s,
   // given as intervals (from, delta).  Call under RoundingGuard.
   PoseJet pose(const std::vector<Interval>& from, const std::vector<Interval>& delta, const Jet& s) const;
+  // The value parts of pose(from, delta, Jet(s)), bit for bit: the same
+  // interval operations in the same order, without the derivatives (a
+  // slice's box, a sampled pose).  Call under RoundingGuard.
+  PoseInterval pose_values(const std::vector<Interval>& from, const std::vector<Interval>& delta,
+                           const Interval& s) const;
+  // Jets of the pose for joint values given as jets (one per joint, each
+  // enclosing q_j and its derivatives in the segment parameter).  Call
+  // under RoundingGuard.
+  PoseJet pose(const std::vector<Jet>& values) const;
 
   // True when the pose is affine in the joint values of a segment from
   // `from` to `to` and exact at both ends (every revolute joint stays at 0):
@@ -61,7 +70,8 @@ class LinkChain : public ChainDescription {
   std::vector<Prepared> joints_;
 };
 
-// The model of a link segment.
+// The model of a link segment: linear joints, or cubic / quintic Hermite
+// polynomials (LinkMotion::degree()).
 std::unique_ptr<SegmentModel> make_link_model(const LinkMotion& motion);
 
 }  // namespace tmcert

@@ -17,10 +17,7 @@ double metric_norm_upper(const PoseInterval& x, const std::array<Interval, 16>& 
 
 PoseInterval enclose_pose(const SegmentModel& model, const Exact& s) {
   RoundingGuard guard;
-  const PoseJet j = model.pose(Jet(to_interval(s)));
-  PoseInterval out;
-  for (int e = 0; e < 12; ++e) out[e] = j[e].v;
-  return out;
+  return model.pose_values(to_interval(s));
 }
 
 PieceEnclosure enclose_piece(const SegmentModel& model, const Exact& s0, const Exact& s1,

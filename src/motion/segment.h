@@ -25,6 +25,18 @@ class SegmentModel {
   // result encloses the exact pose and its first two derivatives.  Call
   // under RoundingGuard.
   virtual PoseJet pose(const Jet& s) const = 0;
+  // The value parts of pose(Jet(s)) (a constant jet: s a point or an
+  // interval), the same intervals bit for bit, computed without the
+  // derivatives where a model overrides it (the link chains: the same
+  // interval operations in the same order).  An enclosure of the pose at
+  // every parameter in s.  Call under RoundingGuard.  proofs/enclosures.md
+  // section 2 ("Value parts"), proofs/robot-links.md section 4.
+  virtual PoseInterval pose_values(const Interval& s) const {
+    const PoseJet j = pose(Jet(s));
+    PoseInterval out;
+    for (int e = 0; e < 12; ++e) out[e] = j[e].v;
+    return out;
+  }
   // The exact pose at a rational s, when it is known exactly there (a
   // rational motion anywhere, a keyframe with an exact rotation at its
   // keyframe); nullopt otherwise.

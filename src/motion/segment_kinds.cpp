@@ -53,12 +53,11 @@ class KeyframeKind final : public VerifiedSegmentKind {
   }
 };
 
-// A robot link on a linear joint path (src/motion/chain.h) that is not
-// rational: exact at a waypoint where its chain is.
-class RobotLinkKind final : public VerifiedSegmentKind {
+// A robot link (src/motion/chain.h LinkMotion) that is not rational: exact
+// at a waypoint where its chain is.  The two kinds below differ only in
+// the degree of the joints' polynomials.
+class RobotLinkKindBase : public VerifiedSegmentKind {
  public:
-  std::string_view name() const override { return "robot_link"; }
-  bool holds(const MotionSegment& seg) const override { return !seg.rational && seg.link != nullptr; }
   const Motion* rational(const MotionSegment&) const override { return nullptr; }
   std::optional<Mat34E> exact_end(const MotionSegment& seg, bool last) const override {
     return make_link_model(*seg.link)->exact_pose(Exact(last ? 1 : 0));
@@ -71,12 +70,32 @@ class RobotLinkKind final : public VerifiedSegmentKind {
   }
 };
 
+// On a linear joint path.
+class RobotLinkKind final : public RobotLinkKindBase {
+ public:
+  std::string_view name() const override { return "robot_link"; }
+  bool holds(const MotionSegment& seg) const override {
+    return !seg.rational && seg.link != nullptr && seg.link->degree() == 1;
+  }
+};
+
+// On cubic or quintic Hermite polynomials in time (a trajectory as
+// controllers execute it); never rational.
+class RobotLinkHermiteKind final : public RobotLinkKindBase {
+ public:
+  std::string_view name() const override { return "robot_link_hermite"; }
+  bool holds(const MotionSegment& seg) const override {
+    return !seg.rational && seg.link != nullptr && seg.link->degree() > 1;
+  }
+};
+
 const RationalBezierKind kRationalBezier;
 const KeyframeKind kKeyframe;
 const RobotLinkKind kRobotLink;
+const RobotLinkHermiteKind kRobotLinkHermite;
 
 const std::vector<const VerifiedSegmentKind*>& verified_kinds() {
-  static const std::vector<const VerifiedSegmentKind*> kinds = {&kRationalBezier, &kRobotLink, &kKeyframe};
+  static const std::vector<const VerifiedSegmentKind*> kinds = {&kRationalBezier, &kRobotLink, &kRobotLinkHermite, &kKeyframe};
   return kinds;
 }
 

@@ -5,6 +5,7 @@
 //   rational_bezier  BezierModel (segment.cpp)
 //   keyframe         KeyframeModel (segment.cpp)
 //   robot_link       the link's chain model (chain.cpp)
+//   robot_link_hermite  the link's chain model on Hermite joint polynomials (chain.cpp)
 #pragma once
 
 #include "src/model/segment_kind.h"

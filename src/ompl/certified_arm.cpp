@@ -14,7 +14,7 @@ JointMotions::JointMotions(std::shared_ptr<const PlacedRobot> robot, std::vector
   if (!robot_) throw InputError("JointMotions: a robot is required");
   const RobotModel& model = robot_->model();
   // The column of each joint; validate_joint_path checks the names below.
-  JointPath names{joints_, {Exact(0), Exact(1)}, {}};
+  JointPath names{joints_, {Exact(0), Exact(1)}, {}, JointInterpolation::Linear, {}, {}};
   for (int k = 0; k < 2; ++k) {
     std::vector<Exact> row;
     for (const std::string& name : joints_) {
@@ -71,7 +71,7 @@ std::vector<Exact> JointMotions::values(const ob::State* s) const {
 
 std::vector<Trajectory> JointMotions::segment(const ob::State* s1, const ob::State* s2) const {
   const std::vector<Exact> a = values(s1), b = values(s2);
-  validate_joint_path(robot_->model(), JointPath{joints_, {Exact(0), Exact(1)}, {a, b}});  // limits
+  validate_joint_path(robot_->model(), JointPath{joints_, {Exact(0), Exact(1)}, {a, b}, JointInterpolation::Linear, {}, {}});  // limits
   const std::vector<Exact> qa = joint_values(robot_->model(), column_joints_, a);
   const std::vector<Exact> qb = joint_values(robot_->model(), column_joints_, b);
   std::vector<Trajectory> out;
@@ -96,7 +96,11 @@ std::vector<Trajectory> JointMotions::segment(const ob::State* s1, const ob::Sta
       r.weights = {Exact(1), Exact(1)};
       seg.rational = std::move(r);
     } else {
-      seg.link = std::make_shared<const LinkMotion>(LinkMotion{chain, std::move(from), std::move(to)});
+      auto link = std::make_shared<LinkMotion>();
+      link->chain = chain;
+      link->from = std::move(from);
+      link->to = std::move(to);
+      seg.link = std::move(link);
     }
     out.push_back(Trajectory{{std::move(seg)}});
   }
@@ -105,7 +109,7 @@ std::vector<Trajectory> JointMotions::segment(const ob::State* s1, const ob::Sta
 
 std::optional<std::vector<Mat34E>> JointMotions::exact_poses(const ob::State* s) const {
   const std::vector<Exact> q = values(s);
-  validate_joint_path(robot_->model(), JointPath{joints_, {Exact(0), Exact(1)}, {q, q}});  // limits
+  validate_joint_path(robot_->model(), JointPath{joints_, {Exact(0), Exact(1)}, {q, q}, JointInterpolation::Linear, {}, {}});  // limits
   const std::vector<Exact> all = joint_values(robot_->model(), column_joints_, q);
   std::vector<Mat34E> out;
   for (const auto& [l, p] : movers_) {
@@ -128,8 +132,8 @@ std::shared_ptr<CertifiedMotionValidator> use_certified_arm(
     throw InputError("use_certified_arm: the state space has " + std::to_string(space->getDimension()) +
                      " dimensions for " + std::to_string(joints.size()) + " joints");
   auto motions = std::make_shared<const JointMotions>(std::move(robot), std::move(joints));
-  auto environment = std::make_shared<const FixedEnvironment>(
-      std::move(obstacles), motions->link_bodies(), motions->self_pairs(self_collision, allowed_pairs), options);
+  auto environment = shared_environment(std::move(obstacles), motions->link_bodies(),
+                                        motions->self_pairs(self_collision, allowed_pairs), options);
   auto validator = std::make_shared<CertifiedMotionValidator>(si, environment, motions);
   si->setStateValidityChecker(std::make_shared<CertifiedStateValidityChecker>(si, validator));
   si->setMotionValidator(validator);

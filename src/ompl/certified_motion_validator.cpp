@@ -57,10 +57,14 @@ std::optional<std::vector<Mat34E>> SE3Motions::exact_poses(const ob::State* s) c
 // ---------------------------------------------------------------- validator
 
 CertifiedMotionValidator::CertifiedMotionValidator(const ob::SpaceInformationPtr& si,
-                                                   std::shared_ptr<const FixedEnvironment> environment,
+                                                   std::shared_ptr<const api::Environment> environment,
                                                    std::shared_ptr<const StateMotions> motions)
-    : ob::MotionValidator(si), environment_(std::move(environment)), motions_(std::move(motions)) {
-  if (!environment_ || !motions_) throw InputError("CertifiedMotionValidator: environment and motions are required");
+    : ob::MotionValidator(si),
+      environment_(environment ? std::move(environment)
+                               : throw InputError("CertifiedMotionValidator: environment and motions are required")),
+      pool_(pool_of(*environment_)),
+      motions_(std::move(motions)) {
+  if (!motions_) throw InputError("CertifiedMotionValidator: environment and motions are required");
 }
 
 EdgeCertificate CertifiedMotionValidator::certify(const ob::State* s1, const ob::State* s2) const {
@@ -82,7 +86,7 @@ EdgeCertificate CertifiedMotionValidator::run(const ob::State* s1, const ob::Sta
   // Whatever goes wrong is "not certified", never "safe".
   try {
     const std::vector<Trajectory> motions = motions_->segment(s1, s2);
-    out.check = decide ? environment_->decide(motions) : environment_->check(motions);
+    out.check = pool_.check(motions, decide);
   } catch (const std::exception& e) {
     not_certified(e.what());
   } catch (...) {
@@ -96,10 +100,10 @@ EdgeCertificate CertifiedMotionValidator::certify_state(const ob::State* s) cons
     // (With a URDF cylinder or sphere the static test sees its polyhedron:
     // the search below proves a collision on the true shape instead.)
     const std::optional<std::vector<Mat34E>> poses =
-        environment_->has_primitives() ? std::nullopt : motions_->exact_poses(s);
+        pool_.has_primitives() ? std::nullopt : motions_->exact_poses(s);
     if (poses) {
       EdgeCertificate out;
-      if (auto w = environment_->static_contact(*poses)) {
+      if (auto w = pool_.static_contact(*poses)) {
         out.check.verdict = Verdict::Collision;
         out.check.safe_until = Exact(0);
         out.check.first_contact = std::pair{Exact(0), Exact(0)};
@@ -174,8 +178,8 @@ std::shared_ptr<CertifiedMotionValidator> use_certified_se3(const ob::SpaceInfor
                                                             Body obstacles, const VerifyOptions& options) {
   if (!std::dynamic_pointer_cast<ob::SE3StateSpace>(si->getStateSpace()))
     throw InputError("use_certified_se3: the state space is not an ompl::base::SE3StateSpace");
-  auto environment = std::make_shared<const FixedEnvironment>(std::move(obstacles), std::vector<Body>{std::move(robot)},
-                                                              std::vector<std::pair<int, int>>{}, options);
+  auto environment = shared_environment(std::move(obstacles), std::vector<Body>{std::move(robot)},
+                                        std::vector<std::pair<int, int>>{}, options);
   auto validator = std::make_shared<CertifiedMotionValidator>(si, environment, std::make_shared<const SE3Motions>());
   si->setStateValidityChecker(std::make_shared<CertifiedStateValidityChecker>(si, validator));
   si->setMotionValidator(validator);

@@ -8,12 +8,17 @@
 // See README.md "Plugging tmcert into an OMPL planner" and
 // proofs/ompl-validator.md for what exactly is certified.
 //
-// Thread safety: the validator may be called from several threads; the
-// edges are then certified one at a time (FixedEnvironment::check is
-// serialized).  OMPL's own valid/invalid counters are plain integers.
+// The environment is a public tmcert::Environment (include/tmcert/
+// environment.h) made of the obstacles and the movers (src/api/
+// shared_environment.h: the public one of any movers and mover pairs).
+//
+// Thread safety: the validator may be called from several threads at once;
+// each call certifies on a prepared copy of the environment no other call
+// uses (as Environment::certify), with the results of sequential calls.
+// OMPL's own valid/invalid counters are plain integers.
 #pragma once
 
-#include "src/verify/fixed_environment.h"
+#include "src/api/shared_environment.h"
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
@@ -65,10 +70,11 @@ struct EdgeCertificate {
 
 class CertifiedMotionValidator final : public ompl::base::MotionValidator {
  public:
-  // `environment` holds the fixed obstacles and the movers' geometry;
-  // `motions` maps the states of si's space to the movers' motions.
+  // `environment` holds the fixed obstacles and the movers' geometry
+  // (shared_environment); `motions` maps the states of si's space to the
+  // movers' motions.
   CertifiedMotionValidator(const ompl::base::SpaceInformationPtr& si,
-                           std::shared_ptr<const FixedEnvironment> environment,
+                           std::shared_ptr<const api::Environment> environment,
                            std::shared_ptr<const StateMotions> motions);
 
   // True only when the segment from s1 to s2 is certified safe (both end
@@ -88,19 +94,22 @@ class CertifiedMotionValidator final : public ompl::base::MotionValidator {
   EdgeCertificate certify(const ompl::base::State* s1, const ompl::base::State* s2) const;
   // What checkMotion(s1, s2) runs: safe exactly when certify() is, but a
   // collision is decided at the first proof of contact
-  // (FixedEnvironment::decide: sampled configurations first), so its
+  // (CertifyOptions::decide: sampled configurations first), so its
   // first-contact bracket may start at 0 and its checks stop at the first
   // that is not safe.
   EdgeCertificate decide(const ompl::base::State* s1, const ompl::base::State* s2) const;
   // A state certified free (exact static test, or the segment to itself).
   EdgeCertificate certify_state(const ompl::base::State* s) const;
 
-  const FixedEnvironment& environment() const { return *environment_; }
+  const api::Environment& environment() const { return *environment_; }
+  // Its prepared copies (the bodies' names: pool().labels()).
+  const EnvironmentPool& pool() const { return pool_; }
 
  private:
   EdgeCertificate run(const ompl::base::State* s1, const ompl::base::State* s2, bool decide) const;
 
-  std::shared_ptr<const FixedEnvironment> environment_;
+  std::shared_ptr<const api::Environment> environment_;
+  const EnvironmentPool& pool_;  // environment_'s
   std::shared_ptr<const StateMotions> motions_;
 };
 

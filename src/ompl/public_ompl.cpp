@@ -100,7 +100,7 @@ EdgeResult certify_edge(const ompl::base::MotionValidator& validator, const ompl
   if (edge.check.first_contact)
     out.first_contact = std::array{to_rational(edge.check.first_contact->first), to_rational(edge.check.first_contact->second)};
   if (edge.check.witness) {
-    const std::vector<tmcert::Body>& bodies = certified->environment().bodies();
+    const std::vector<tmcert::Body>& bodies = certified->pool().labels();
     tmcert::CheckResult decided;  // the static test of a state has no check: its witness's features name the bodies
     for (const tmcert::CheckResult& c : edge.check.checks)
       if (c.verdict == tmcert::Verdict::Collision) {

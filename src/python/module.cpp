@@ -525,6 +525,7 @@ PYBIND11_MODULE(_tmcert, m) {
       .def_property_readonly("name", &RB::name)
       .def("base", &RB::base, self)
       .def("path", &RB::path, self)
+      .def("interpolation", &RB::interpolation, self)
       .def("self_collision", &RB::self_collision, self)
       .def("allow", &RB::allow, self)
       .def("srdf", &RB::srdf, self);

@@ -14,6 +14,8 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -35,12 +37,34 @@ struct EdgeSlices {
   std::size_t size() const { return lo.size(); }
 };
 
+// A first, coarse box per slice (proofs/edge-slices.md section 1b): the
+// interval map of the slice applied to `bounds`, an interval box holding
+// every vertex enclosure of the body (enclosed_bounds).  A slice whose
+// coarse box `clears` (the caller's own test of a slice box, e.g. "meets
+// no obstacle's box") keeps the coarse box; only the others get the box of
+// their vertices.  Since the vertex box lies inside the coarse box, a
+// caller whose test clears every sub-box of a box it clears decides every
+// slice as with the vertex boxes alone.
+struct SliceFilter {
+  std::array<Interval, 3> bounds;
+  std::function<bool(const std::array<double, 3>& lo, const std::array<double, 3>& hi)> clears;
+};
+
+// The interval hull of the vertex enclosures (empty: not valid, NaN ends).
+std::array<Interval, 3> enclosed_bounds(const std::vector<std::array<Interval, 3>>& vertices);
+
 // The slices of `motion` (a body's trajectory over [t0, t1]): `per_segment`
 // equal slices of each segment's parameter, every pose of a slice enclosed
-// by its segment model at the interval of the slice (SegmentModel::pose);
-// `vertices` from enclosed_vertices of the body.
+// by its segment model at the interval of the slice
+// (SegmentModel::pose_values); `vertices` from enclosed_vertices of the
+// body.  With `filter`, a slice whose coarse box the filter clears keeps
+// that box (the box of its vertices is not computed).  `models`, when
+// given, caches the segment models (one per segment, built when absent),
+// as pose_at does (src/verify/sample_first.h).
+class SegmentModel;
 EdgeSlices edge_slices(const Trajectory& motion, const std::vector<std::array<Interval, 3>>& vertices,
-                       int per_segment);
+                       int per_segment, const SliceFilter* filter = nullptr,
+                       std::vector<std::unique_ptr<SegmentModel>>* models = nullptr);
 
 // The maximal runs of slices for which `keep(k)` is true, as scene
 // parameter intervals [t[first], t[last + 1]], in order.

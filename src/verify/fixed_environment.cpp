@@ -178,20 +178,26 @@ struct StaticOutcome {
 // pose) in the order of parts and simplices, as filtered_first_hit does
 // (src/verify/search.h; proofs/static-test.md).  Without an exact pose a
 // hit must be a certain transversal crossing; a pair neither separated nor
-// crossing leaves the outcome Unknown.
+// crossing leaves the outcome Unknown.  `crossing_first`: each candidate
+// pair is tested for a certain crossing of the enclosures as it is found
+// (with an exact pose too), and the first one ends the test with its box
+// (no exact point); only without one, the exact tests in order
+// (proofs/sample-first.md section 2: a hit either way, the interval test
+// much cheaper, and the rest of the mover is not placed).
 StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array<Interval, 12>& map,
                           const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
                           const std::vector<StaticPart>& environment,
-                          const std::vector<std::vector<SimplexI>>* local = nullptr) {
+                          const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false) {
   struct Candidate {
     int pi, pj, si, sj;
     SimplexI x, y;
   };
   std::vector<Candidate> candidates;
+  StaticOutcome out;
   {
     RoundingGuard guard;
-    for (std::size_t i = 0; i < parts.size(); ++i)
-      for (std::size_t k = 0; k < parts[i].simplices.size(); ++k) {
+    for (std::size_t i = 0; i < parts.size() && out.kind == StaticOutcome::Kind::Free; ++i)
+      for (std::size_t k = 0; k < parts[i].simplices.size() && out.kind == StaticOutcome::Kind::Free; ++k) {
         const Simplex& x = parts[i].simplices[k];
         EnvironmentIndex::Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
         it.s.count = x.count;
@@ -206,15 +212,28 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
         }
         EnvironmentIndex::box(it);
         index.query(it.lo, it.hi, [&](const EnvironmentIndex::Item& e) {
-          if (!certainly_disjoint(it.s, e.s)) candidates.push_back({it.part, e.part, it.index, e.index, it.s, e.s});
+          if (out.kind != StaticOutcome::Kind::Free || certainly_disjoint(it.s, e.s)) return;
+          if (crossing_first)
+            if (const auto box = certain_crossing(it.s, e.s)) {
+              out.kind = StaticOutcome::Kind::Hit;
+              out.part_mover = it.part;
+              out.part_environment = e.part;
+              out.box = box;  // no exact point: the box of the certain crossing
+              return;
+            }
+          candidates.push_back({it.part, e.part, it.index, e.index, it.s, e.s});
         });
       }
   }
+  if (out.kind == StaticOutcome::Kind::Hit) return out;
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
     return std::tie(x.pi, x.pj, x.si, x.sj) < std::tie(y.pi, y.pj, y.si, y.sj);
   });
-  StaticOutcome out;
   if (candidates.empty()) return out;
+  if (!exact && crossing_first) {
+    out.kind = StaticOutcome::Kind::Unknown;  // every candidate tested above
+    return out;
+  }
   if (!exact) {
     RoundingGuard guard;
     for (const Candidate& c : candidates)
@@ -285,16 +304,19 @@ void require_usable(const Body& b, const char* role) {
 
 namespace {
 
-StartPose start_pose_of(const Trajectory& t) {
-  const std::unique_ptr<SegmentModel> model = make_segment_model(t.segments.front());
+// `models`: the motion's segment models, built when absent (shared with its
+// slices and sampled poses).
+StartPose start_pose_of(const Trajectory& t, std::vector<std::unique_ptr<SegmentModel>>& models) {
+  if (models.size() != t.segments.size()) models.resize(t.segments.size());
+  if (!models.front()) models.front() = make_segment_model(t.segments.front());
+  const SegmentModel* model = models.front().get();
   StartPose out;
   out.exact = model->exact_pose(Exact(0));
   if (out.exact) {
     out.map = enclose_map(*out.exact);
   } else {
     RoundingGuard guard;
-    const PoseJet j = model->pose(Jet(Interval(0)));
-    for (int e = 0; e < 12; ++e) out.map[e] = j[e].v;
+    out.map = model->pose_values(Interval(0));
   }
   return out;
 }
@@ -377,6 +399,7 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
   for (const Body& b : bodies_) {
     vertices_.push_back(every_vertex(b));
     enclosed_.push_back(enclosed_vertices(b));
+    bounds_.push_back(enclosed_bounds(enclosed_.back()));
     representatives_.push_back(component_representatives(b, identity));
   }
   for (const auto& p : prepared_) {
@@ -449,10 +472,26 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
   std::vector<EdgeSlices> slices(bodies_.size());
   std::vector<StartPose> start(bodies_.size());
   start[0] = fixed_start(bodies_[0]);
+  // A mover in no mover pair, neither it nor the environment solid: a
+  // slice whose coarse box (its map applied to the box of the mover's
+  // vertices) meets no environment simplex's box keeps that box, the box of
+  // its vertices is not computed (proofs/edge-slices.md section 1b: the
+  // slices' windows, and every check's result, are those of the vertex
+  // boxes).  Otherwise every slice gets its vertex box (the whole box then
+  // also orders the solids' start containment as before).
+  std::vector<char> in_pair(bodies_.size(), 0);
+  for (const auto& [i, j] : pairs_) in_pair[i] = in_pair[j] = 1;
+  SliceFilter filter;
+  filter.clears = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi) { return !index_->any(lo, hi); };
+  // Per mover, its segments' models, built once per motion (the slices,
+  // the start pose and the sampled poses).
+  std::vector<std::vector<std::unique_ptr<SegmentModel>>> models(bodies_.size());
   for (std::size_t k = 1; k < bodies_.size(); ++k) {
-    slices[k] = edge_slices(motions[k - 1], enclosed_[k], kSlices);
+    const bool coarse = !in_pair[k] && !bodies_[k].solid && !bodies_[0].solid;
+    if (coarse) filter.bounds = bounds_[k];
+    slices[k] = edge_slices(motions[k - 1], enclosed_[k], kSlices, coarse ? &filter : nullptr, &models[k]);
     swept[k] = slices[k].whole;
-    start[k] = start_pose_of(motions[k - 1]);
+    start[k] = start_pose_of(motions[k - 1], models[k]);
   }
   const Exact t1 = motions.front().t1();
   // A check cleared by boxes alone, without a search.
@@ -514,7 +553,6 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
     }
     const std::vector<Exact> times = sample_times(t0, t1, kSampledParameters);
     std::vector<std::optional<StartPose>> at(bodies_.size());
-    std::vector<std::vector<std::unique_ptr<SegmentModel>>> models(bodies_.size());  // per mover, built once
     const Exact* at_time = nullptr;
     std::uint64_t configurations = 0;
     const auto hit = first_sampled_contact(times, sampled.size(), [&](std::size_t i, const Exact& t) -> std::optional<Witness> {
@@ -535,7 +573,10 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       ++configurations;
       if (b == 0) {
         const StartPose& p = pose(a);
-        const StaticOutcome o = static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a]);
+        // A certain crossing of the enclosures first, also at an exact
+        // pose (cheaper than the exact tests; its witness is a box).
+        const StaticOutcome o =
+            static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true);
         if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
         Witness w{t,
                   {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,

@@ -114,6 +114,9 @@ class FixedEnvironment {
   // Per body, its distinct vertices enclosed once (the edge's slices,
   // src/verify/edge_slices.h).
   std::vector<std::vector<std::array<Interval, 3>>> enclosed_;
+  // Per body, the interval box of those enclosures (the slices' coarse
+  // boxes, edge_slices.h SliceFilter).
+  std::vector<std::array<Interval, 3>> bounds_;
   // Per body, per part, its simplices' coordinates enclosed once (the
   // static test places them by the pose's interval map).
   std::vector<std::vector<std::vector<SimplexI>>> local_;

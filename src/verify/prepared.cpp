@@ -441,10 +441,7 @@ SweptBox swept_box(const Body& body) {
       constexpr int kSlices = 8;
       RoundingGuard guard;
       for (int k = 0; k < kSlices; ++k) {
-        const PoseJet j = model->pose(Jet(Interval(static_cast<double>(k) / kSlices, static_cast<double>(k + 1) / kSlices)));
-        std::array<Interval, 12> im;
-        for (int e = 0; e < 12; ++e) im[e] = j[e].v;
-        imaps.push_back(im);
+        imaps.push_back(model->pose_values(Interval(static_cast<double>(k) / kSlices, static_cast<double>(k + 1) / kSlices)));
       }
     }
   SweptBox box;

@@ -36,8 +36,7 @@ StartPose pose_at(const Trajectory& motion, const Exact& t, std::vector<std::uni
   if (out.exact) {
     for (int e = 0; e < 12; ++e) out.map[e] = to_interval((*out.exact)[e]);
   } else {
-    const PoseJet j = model->pose(Jet(to_interval(s)));
-    for (int e = 0; e < 12; ++e) out.map[e] = j[e].v;
+    out.map = model->pose_values(to_interval(s));
   }
   return out;
 }

@@ -271,7 +271,10 @@ std::optional<TrueContact> against_features(const ShapeSide& p, const ShapeSide&
     TrueContact out;
     out.features = {primitive_name(*p.body), o.body->name + " " + parts[cand.part].name};
     if (w) out.point = *w;
-    else out.point_box = rational_box(box);
+    else {
+      out.point_box = rational_box(box);
+      out.local_point = y;
+    }
     return out;
   }
   // The primitive wholly inside a solid body: its centre (exact poses only).
@@ -368,6 +371,8 @@ Witness witness_of(const Exact& t, const TrueContact& c, bool swapped) {
   if (c.point) w.point = *c.point;
   w.point_box = c.point_box;
   w.true_shape = true;
+  w.local_point = c.local_point;
+  w.local_side = swapped ? 1 - c.local_side : c.local_side;
   return w;
 }
 
@@ -429,7 +434,10 @@ std::optional<TrueContact> true_contact(const ShapeSide& a, const ShapeSide& b, 
   if (pa) return against_features(a, b, stats);
   if (pb) {
     std::optional<TrueContact> c = against_features(b, a, stats);
-    if (c) std::swap(c->features[0], c->features[1]);
+    if (c) {
+      std::swap(c->features[0], c->features[1]);
+      c->local_side = 0;
+    }
     return c;
   }
   return std::nullopt;

@@ -50,6 +50,10 @@ struct TrueContact {
   std::array<std::string, 2> features;  // in the order of the two sides
   std::optional<Vec3E> point;           // exact, when proven so
   std::optional<std::array<std::array<Exact, 2>, 3>> point_box;  // else a box holding the common point
+  // With point_box: the point in the own frame of the side that is not
+  // the primitive (`local_side`, 0 or 1 in the order of the two sides).
+  std::optional<Vec3E> local_point;
+  int local_side = 1;
 };
 
 // A point of both true bodies, proven, when one is found: a body with a

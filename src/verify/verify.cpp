@@ -471,8 +471,8 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
     // A URDF cylinder or sphere: a collision only with a contact proven on
     // the true shapes; parts left undecided because the polyhedra touch are
     // searched again with finer polyhedra (src/io/primitives.h), up to
-    // the finest, on the same deadline (not for certificates, whose pieces
-    // are the scene's polyhedra).  proofs/robot-links.md section 6.
+    // the finest, on the same deadline (a certificate records the levels,
+    // CheckResult::levels).  proofs/robot-links.md section 6.
     const Exact t_end = x.moves() ? x.interval()->second : y.moves() ? y.interval()->second
                         : x.interval() ? x.interval()->second : y.interval() ? y.interval()->second : Exact(0);
     settle_enlarged(result, prepared(a), prepared(b), t_end);
@@ -485,7 +485,7 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
     finer.bodies = {x, y};
     finer.checks = {{0, 1}};
     CheckStats spent = result.stats;
-    while (!options.record_cover && result.verdict != Verdict::Collision && enlarged_parts(result) &&
+    while (result.verdict != Verdict::Collision && enlarged_parts(result) &&
            !past_deadline(options)) {
       const bool ra = refine_primitive(finer.bodies[0]), rb = refine_primitive(finer.bodies[1]);
       if (!ra && !rb) break;
@@ -493,6 +493,8 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
       CheckResult r = again.check_with(0, 1, clearance, options);
       settle_enlarged(r, again.prepared(0), again.prepared(1), t_end);
       r.bodies = {a, b};
+      for (int k = 0; k < 2; ++k)
+        r.levels[k] = finer.bodies[k].primitive ? finer.bodies[k].primitive->level : 0;
       r.stats.nodes += spent.nodes;
       r.stats.stops += spent.stops;
       r.stats.static_tests += spent.static_tests;

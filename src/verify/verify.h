@@ -129,6 +129,11 @@ struct Witness {
   // Proven on the true shape of a URDF cylinder or sphere (a body of the
   // check has Body::primitive; src/verify/true_shape.h).
   bool true_shape = false;
+  // With `true_shape` and `point_box` (the other body's pose only
+  // enclosed): the proven point in the frame of side `local_side` (the body
+  // that is not the primitive), exact; the certificate writer's witness.
+  std::optional<Vec3E> local_point;
+  int local_side = 1;
 };
 
 struct UndecidedInterval {
@@ -181,6 +186,10 @@ struct CheckResult {
   // part after the witness's time up to its end was not searched
   // ("not_searched" in tmcert-result/1).
   std::pair<Exact, Exact> interval{Exact(0), Exact(1)};
+  // The refinement level of each body's URDF cylinder or sphere polyhedron
+  // the result was found on (src/io/primitives.h; 0: the scene's, and for
+  // every other body).  A certificate records it ("levels").
+  std::array<int, 2> levels{0, 0};
   // The check's clearance (0: plain contact).  With clearance > 0 a
   // "collision" means the bodies come within it (clearance violated).
   Exact clearance = 0;

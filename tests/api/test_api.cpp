@@ -505,6 +505,35 @@ BOOST_AUTO_TEST_CASE(builder_errors_name_the_field) {
   }, {"body \"q\"", "polygons"});
 }
 
+// build() reads the builder's document as a JSON value, not as text: its
+// messages are the reader's for the text of to_json() (plus the body's or
+// robot's name), and a deep piecewise motion meets the same nesting limit.
+BOOST_AUTO_TEST_CASE(builder_errors_are_the_readers_of_its_document) {
+  auto message = [](const std::function<void()>& f) -> std::string {
+    try {
+      f();
+    } catch (const tmcert::InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  std::vector<tmcert::SceneBuilder> builders(4);
+  builders[0].add_body("wall").polygon({{1, 0, 0}, {1, 1, 0}, {2, 2, 0}, {1, 1, 1}});
+  builders[1].add_body("w").point({0, 0, 0}).tolerance(-1);
+  builders[2].epsilon("0").add_body("w").point({0, 0, 0});
+  tmcert::Motion deep = tmcert::Motion::translation({0, 0, 0}, {1, 0, 0});
+  for (int k = 0; k < 40; ++k) deep = tmcert::Piecewise{{deep}};
+  builders[3].add_body("deep").point({0, 0, 0}).motion(deep);
+  builders[3].add_body("fixed").point({1, 1, 1});
+  for (const tmcert::SceneBuilder& b : builders) {
+    const std::string built = message([&] { b.build(); });
+    const std::string read = message([&] { tmcert::Scene::from_json(b.to_json(), "SceneBuilder"); });
+    BOOST_TEST(!read.empty());
+    BOOST_TEST(built.rfind(read, 0) == 0, "\"" << built << "\" starts with \"" << read << "\"");
+  }
+  BOOST_TEST(message([&] { builders[3].build(); }).find("nesting deeper than") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(option_and_file_errors) {
   const tmcert::Scene scene = tmcert::Scene::from_file(kExamples + "/vertex-face-linear.json");
   tmcert::VerifyOptions o;

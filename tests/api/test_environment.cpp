@@ -46,6 +46,28 @@ std::string message_of(const std::function<void()>& f) {
 
 BOOST_AUTO_TEST_SUITE(environment)
 
+// CertifyOptions::decide (the OMPL validator's checkMotion): safe exactly
+// when certify() is, a collision with its witness, through the same
+// prepared copies.
+BOOST_AUTO_TEST_CASE(decide_agrees_on_safety) {
+  const tmcert::Environment env(environment_scene(), "probe");
+  tmcert::CertifyOptions decide;
+  decide.decide = true;
+  for (const auto& [x, to_z] : std::vector<std::pair<std::string, std::string>>{
+           {"0", "-1"}, {"0", "1/2"}, {"3", "-1"}, {"1/4", "-1/3"}, {"0", "0"}}) {
+    const tmcert::MotionResult full = env.certify(down(x, to_z));
+    const tmcert::MotionResult quick = env.certify(down(x, to_z), decide);
+    BOOST_TEST_CONTEXT("x " << x << " to z " << to_z) {
+      BOOST_TEST(static_cast<int>(quick.verdict) == static_cast<int>(full.verdict));
+      if (quick.verdict == tmcert::Verdict::Collision) {
+        BOOST_TEST(quick.witness.has_value());
+        BOOST_TEST(quick.bodies[0] == "probe");
+      }
+    }
+  }
+  BOOST_TEST(env.prepared_copies() == 1u);
+}
+
 BOOST_AUTO_TEST_CASE(motions_agree_with_verify) {
   const tmcert::Environment env(environment_scene(), "probe");
   for (const auto& [x, to_z] : std::vector<std::pair<std::string, std::string>>{

@@ -17,7 +17,32 @@ BOOST_AUTO_TEST_CASE(malformed_certificates_are_input_errors) {
     std::string what;
   };
   const std::vector<Mutation> mutations = {
-      {[](json& d) { d["format"] = "tmcert-certificate/2"; }, "format: unknown format"},
+      {[](json& d) { d["format"] = "tmcert-certificate/3"; }, "format: unknown format"},
+      // Shared proof nodes (docs/certificate-format.md "Shared proof nodes").
+      {[](json& d) { d["checks"][0]["nodes"] = 1; }, "checks[0].nodes: expected an array"},
+      {[](json& d) { d["checks"][0]["pieces"][0]["proof"] = 0; },
+       "checks[0].pieces[0].proof: 0 is out of range (an index into nodes)"},
+      {[](json& d) {
+         d["checks"][0]["nodes"] = json::array({{{"sep", {0, 0, 1}}}, 1});
+       },
+       "checks[0].nodes[1]: 1 is out of range (an earlier entry of nodes)"},
+      {[](json& d) { d["checks"][0]["nodes"] = json::array({json::array({0, 0})}); },
+       "checks[0].nodes[0][1]: 0 is out of range (an earlier entry of nodes)"},
+      {[](json& d) { d["checks"][0]["nodes"] = json::array({json::array({0, {{"sep", {0, 0, "x"}}}})}); },
+       "checks[0].nodes[0][1].sep[2]: not a rational"},
+      {[](json& d) { d["checks"][0]["pieces"][1]["proof"] = json::array({2, {{"sep", {0, 0, 1}}}}); },
+       "checks[0].pieces[1].proof[0]: 2 is out of range (0 or 1)"},
+      {[](json& d) { d["checks"][0]["pieces"][1]["proof"] = json::array(); },
+       "checks[0].pieces[1].proof[0]: expected a non-negative integer"},
+      // probe-safe has 3 x 1 groups: a proof judging 2^11 - 1 nodes (each
+      // node split into two copies of the one before) is not one over them.
+      {[](json& d) {
+         json nodes = json::array({{{"sep", {0, 0, 1}}}});
+         for (int k = 0; k < 10; ++k) nodes.push_back(json::array({0, k, k}));
+         d["checks"][0]["nodes"] = nodes;
+         d["checks"][0]["pieces"][1]["proof"] = 10;
+       },
+       "checks[0].pieces[1].proof: the proof expands to more than 70 nodes"},
       {[](json& d) { d.erase("format"); }, "format: missing required field"},
       {[](json& d) { d.erase("checks"); }, "checks: missing required field"},
       {[](json& d) { d = json::array(); }, "document: expected an object"},
@@ -84,7 +109,8 @@ BOOST_AUTO_TEST_CASE(malformed_certificates_are_input_errors) {
     Case d = base();
     check0(d)["pieces"][1]["t"][0] = "5/16";                          // a gap
     check0(d)["pieces"][1]["proof"]["parts"][1] = json::array();      // malformed
-    expect_malformed(d, "checks[0].pieces[1].proof.parts[1]: expected an object, got an array");
+    check0(d)["pieces"][1]["proof"]["parts"][1] = json::array({"x"});  // malformed
+    expect_malformed(d, "checks[0].pieces[1].proof.parts[1][0]: expected a non-negative integer, got a string");
   }
   // Witness and start shapes on their own scenes.
   {
@@ -124,6 +150,14 @@ BOOST_AUTO_TEST_CASE(deep_and_garbage_documents_are_input_errors) {
     check0(c)["groups"][0] = groups;
     check0(c)["pieces"][0]["proof"] = proof;
     expect_malformed(c, "proof tree deeper than 256 splits");
+    // The same chain through shared nodes (each a split of one group):
+    // bad input before any claim is judged.
+    json nodes = json::array({{{"sep", {"0", "0", "1"}}}});
+    for (int k = 0; k < depth; ++k) nodes.push_back(json::array({0, k, 0}));
+    check0(c)["nodes"] = nodes;
+    check0(c)["pieces"][0]["proof"] = depth;
+    check0(c)["pieces"][2]["proof"]["sep"][2] = "-1";  // a false claim judged before piece 0 would be
+    expect_malformed(c, "proof tree deeper than 256 splits (nodes[");
   }
   // Text: deep nesting, truncation, garbage bytes, big integers.
   BOOST_CHECK_THROW(cert::parse_certificate_text(std::string(100000, '[') + std::string(100000, ']'), "x"),

@@ -51,6 +51,45 @@ BOOST_AUTO_TEST_CASE(tampered_separations_are_rejected) {
   }
 }
 
+// Shared proof nodes (docs/certificate-format.md "Shared proof nodes"): a
+// node is judged at every use, for the groups and the piece there; a
+// tampered shared node is rejected where it is used.
+BOOST_AUTO_TEST_CASE(shared_proof_nodes_are_judged_at_each_use) {
+  auto shared = [] {
+    Case c = load("probe-safe", "probe-safe");
+    c.certificate["format"] = "tmcert-certificate/2";
+    check0(c)["nodes"] = json::array({{{"sep", {0, 0, 1}}}, {{"sep", {-1, 0, 1}}}, json::array({0, 0, 1})});
+    check0(c)["pieces"][0]["proof"] = 0;
+    check0(c)["pieces"][1]["proof"] = 2;
+    return c;
+  };
+  {
+    const Case c = shared();
+    BOOST_TEST(check(c).ok, check(c).message);
+    BOOST_TEST(check(c).proven.size() == 1u);
+  }
+  {
+    Case c = shared();
+    check0(c)["nodes"][1]["sep"][2] = "1/4";  // as in tampered_separations_are_rejected
+    expect_rejected(c, "pieces[1] [1/4, 1/2]: proof.parts[1] (groups 2, 0): separation fails at control point 0");
+  }
+  {
+    // (1, 0, 1) holds on piece 0 and fails on piece 2, both using it.
+    Case c = shared();
+    check0(c)["nodes"].push_back({{"sep", {1, 0, 1}}});
+    check0(c)["pieces"][0]["proof"] = 3;
+    BOOST_TEST(check(c).ok, check(c).message);
+    check0(c)["pieces"][2]["proof"] = 3;
+    expect_rejected(c, "pieces[2] [1/2, 1]: proof (groups 0, 0): separation fails at control point 0");
+  }
+  {
+    // A split of the triangle's group 0, which has no children.
+    Case c = shared();
+    check0(c)["nodes"][2] = json::array({1, 0});
+    expect_rejected(c, "pieces[1] [1/4, 1/2]: proof (groups 0, 0): split 1 of group 0, which has no children");
+  }
+}
+
 BOOST_AUTO_TEST_CASE(tampered_groups_and_proof_trees_are_rejected) {
   {
     Case c = load("probe-safe", "probe-safe");

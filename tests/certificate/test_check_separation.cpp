@@ -117,7 +117,7 @@ struct TwoBodies {
     piece.ints = ci::integer_control_points({c});
     mpz_mul(dadb.v, ca.D.v, cb.D.v);
   }
-  int fails(const Vec3E& n, const Exact& margin) {
+  std::optional<std::size_t> fails(const Vec3E& n, const Exact& margin) {
     piece.margins = margin > 0;
     return ci::separation_fails_at(n, ids, ca, ids, cb, piece, dadb, margin, scratch);
   }
@@ -125,15 +125,15 @@ struct TwoBodies {
 
 BOOST_AUTO_TEST_CASE(separation_claims_by_hand) {
   TwoBodies t;
-  BOOST_TEST(t.fails(v("1", "0", "0"), 0) == -1);        // min over a (2) > max over b (1)
-  BOOST_TEST(t.fails(v("1/1000", "0", "0"), 0) == -1);   // any positive multiple
-  BOOST_TEST(t.fails(v("-1", "0", "0"), 0) == 0);        // the wrong way
-  BOOST_TEST(t.fails(v("0", "1", "0"), 0) == 0);         // a gap of 0 is no separation
+  BOOST_TEST(!t.fails(v("1", "0", "0"), 0).has_value());        // min over a (2) > max over b (1)
+  BOOST_TEST(!t.fails(v("1/1000", "0", "0"), 0).has_value());   // any positive multiple
+  BOOST_TEST((t.fails(v("-1", "0", "0"), 0) == std::size_t{0}));        // the wrong way
+  BOOST_TEST((t.fails(v("0", "1", "0"), 0) == std::size_t{0}));         // a gap of 0 is no separation
   // With a margin: the gap (1 per unit direction) must exceed |n| margin.
-  BOOST_TEST(t.fails(v("1", "0", "0"), Exact(1, 2)) == -1);
-  BOOST_TEST(t.fails(v("1", "0", "0"), Exact(1)) == 0);   // strict
-  BOOST_TEST(t.fails(v("3", "4", "0"), Exact(1, 10)) == -1);  // gap 3 > 5 / 10
-  BOOST_TEST(t.fails(v("3", "4", "0"), Exact(3, 5)) == 0);    // gap 3 = 5 * 3/5
+  BOOST_TEST(!t.fails(v("1", "0", "0"), Exact(1, 2)).has_value());
+  BOOST_TEST((t.fails(v("1", "0", "0"), Exact(1)) == std::size_t{0}));   // strict
+  BOOST_TEST(!t.fails(v("3", "4", "0"), Exact(1, 10)).has_value());  // gap 3 > 5 / 10
+  BOOST_TEST((t.fails(v("3", "4", "0"), Exact(3, 5)) == std::size_t{0}));    // gap 3 = 5 * 3/5
 }
 
 BOOST_AUTO_TEST_CASE(separation_with_a_penalty_by_hand) {
@@ -146,10 +146,10 @@ BOOST_AUTO_TEST_CASE(separation_with_a_penalty_by_hand) {
   mpz_set_ui(t.piece.penalty_num[0].v, 1);
   mpz_set_ui(t.piece.penalty_num[1].v, 14);
   mpz_set_ui(t.piece.penalty_num[2].v, 14);
-  BOOST_TEST(ci::separation_fails_at(v("1", "0", "0"), t.ids, t.ca, t.ids, t.cb, t.piece, t.dadb, 0, t.scratch) == -1);
+  BOOST_TEST(!ci::separation_fails_at(v("1", "0", "0"), t.ids, t.ca, t.ids, t.cb, t.piece, t.dadb, 0, t.scratch).has_value());
   t.piece.penalty[0] = 1;
   mpz_set_ui(t.piece.penalty_num[0].v, 2);
-  BOOST_TEST(ci::separation_fails_at(v("1", "0", "0"), t.ids, t.ca, t.ids, t.cb, t.piece, t.dadb, 0, t.scratch) == 0);
+  BOOST_TEST((ci::separation_fails_at(v("1", "0", "0"), t.ids, t.ca, t.ids, t.cb, t.piece, t.dadb, 0, t.scratch) == std::size_t{0}));
 }
 
 BOOST_AUTO_TEST_CASE(components_by_hand) {

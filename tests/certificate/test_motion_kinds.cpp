@@ -9,6 +9,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <set>
 #include <string>
 
 BOOST_AUTO_TEST_SUITE(certificate_motion_kinds)
@@ -27,18 +28,26 @@ BOOST_AUTO_TEST_CASE(checker_and_verifier_agree_on_each_segments_kind) {
     "bodies": [{"name": "a", "points": [[0, 0, 0]], "motion": {"type": "keyframes", "times": [0, 1, 2], "poses": [
       {}, {"translation": [1, 0, 0]}, {"translation": [1, 0, 0], "rotation": {"rpy": [0, 0, 1]}}]}}],
     "robots": [{"name": "arm", "urdf": "chain.urdf", "joints": ["j1", "j2", "j3", "j4"],
-                "path": {"times": [0, 2], "positions": [[0, 0, 0, 0], [0.5, 0.1, 0.25, 1]]}}]})";
+                "path": {"times": [0, 2], "positions": [[0, 0, 0, 0], [0.5, 0.1, 0.25, 1]]}},
+               {"name": "arm2", "urdf": "chain.urdf", "joints": ["j1", "j2", "j3", "j4"],
+                "path": {"interpolation": "quintic", "times": [0, 1],
+                         "positions": [[0, 0, 0, 0], [0.5, 0.1, 0.25, 1]],
+                         "velocities": [[0, 0, 0, 0], [0.1, 0, 0, 0]],
+                         "accelerations": [[0, 0, 0, 0], [0, 0, 0, 0]]}}]})";
   std::vector<tmcert::SceneRobot> robots;
   const tmcert::Scene scene =
       tmcert::parse_scene_text(text, "kinds.json", std::string(TMCERT_TEST_DATA) + "/robots", robots);
   int segments = 0;
+  std::set<std::string> kinds;
   for (const tmcert::Body& b : scene.bodies)
     if (b.trajectory)
       for (const tmcert::MotionSegment& seg : b.trajectory->segments) {
         ++segments;
+        kinds.insert(std::string(tmcert::kind_of(seg).name()));
         BOOST_TEST(tmcert::certificate::checker_kind_name(seg) == tmcert::kind_of(seg).name());
       }
-  BOOST_TEST(segments >= 3);
+  BOOST_TEST(segments >= 4);
+  BOOST_TEST(kinds.size() == tmcert::segment_kinds().size());  // every kind met once at least
 }
 
 BOOST_AUTO_TEST_SUITE_END()

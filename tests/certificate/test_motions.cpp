@@ -118,6 +118,30 @@ BOOST_AUTO_TEST_CASE(link_enclosure_matches_the_verifiers) {
   for (const char* st : {"0", "1/3", "0.5", "0.77", "1"})
     compared += compare_pose_enclosures(body, *model, q(st), q(st), std::string("link s = ") + st);
   BOOST_TEST(compared == 5 * 12);
+  // Cubic and quintic joint polynomials (kind robot_link_hermite): the
+  // checker's Hermite basis form and the verifier's power basis on jets
+  // (proofs/trajectories.md sections 3 and 4), over a segment of 2 s.
+  for (const bool quintic : {false, true}) {
+    auto poly = std::make_shared<LinkMotion>(*link);
+    poly->duration = 2;
+    poly->from_rate = {q("0.3"), q("-0.2"), q("0.05")};
+    poly->to_rate = {q("-0.4"), q("0.1"), q("0")};
+    if (quintic) {
+      poly->from_accel = {q("0.5"), q("0"), q("-0.1")};
+      poly->to_accel = {q("-0.25"), q("0.2"), q("0.1")};
+    }
+    MotionSegment pseg = seg;
+    pseg.t1 = 2;
+    pseg.link = poly;
+    Body pbody = body;
+    pbody.trajectory = Trajectory{{pseg}};
+    const std::unique_ptr<SegmentModel> pmodel = make_segment_model(pseg);
+    int pcompared = 0;
+    for (const char* st : {"0", "1/3", "0.5", "0.77", "1"})
+      pcompared += compare_pose_enclosures(pbody, *pmodel, q(st) * 2, q(st),
+                                           std::string(quintic ? "quintic" : "cubic") + " link s = " + st);
+    BOOST_TEST(pcompared == 5 * 12);
+  }
 }
 
 // The checker's exact link pose at a waypoint (its own product of the

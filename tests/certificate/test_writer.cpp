@@ -61,8 +61,8 @@ bool accepted(const Verified& v, const json& certificate) {
 // Every scene with a known verdict: the certificate of its verification is
 // accepted, and says the same verdicts.
 // Scenes listed in tests/data/scenes/UNCERTIFIABLE ("<file><TAB><substring>"):
-// certificates do not cover them (a solid body whose start pose is not
-// exact); file name -> expected message.
+// certificates do not cover them (a solid body whose start pose is neither
+// exact nor enclosed); file name -> expected message.
 std::map<std::string, std::string> uncertifiable() {
   std::map<std::string, std::string> out;
   std::ifstream in(std::string(TMCERT_TEST_DATA) + "/scenes/UNCERTIFIABLE");
@@ -125,8 +125,9 @@ BOOST_AUTO_TEST_CASE(certificates_of_every_test_scene_are_accepted) {
 // The scenes certificates do not cover are refused with a message naming
 // the body or check (docs/scene-format.md), not certified wrongly.
 BOOST_AUTO_TEST_CASE(uncovered_scenes_get_no_certificate) {
+  // None at present (URDF cylinders and spheres are certified since
+  // check_primitive.h): whatever is listed must be refused.
   const auto listed = uncertifiable();
-  BOOST_TEST(listed.size() >= 2u);
   for (const auto& [file, substring] : listed) {
     BOOST_TEST_CONTEXT(file) {
       const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/" + file);
@@ -152,10 +153,27 @@ BOOST_AUTO_TEST_CASE(the_fast_kernel_gets_no_certificate) {
   BOOST_CHECK_THROW(certificate::certificate_json(scene, result), InputError);
 }
 
-// Visits every separation direction of a proof tree.
+// Visits every separation direction of a proof tree (an inline tree:
+// object forms only).
 void each_direction(json& proof, const std::function<void(json&)>& f) {
   if (proof.contains("sep")) return f(proof["sep"]);
   for (json& part : proof["parts"]) each_direction(part, f);
+}
+
+// A check's proof `node` written out inline (shared nodes resolved, splits
+// in the object form): the same claims without "nodes".
+json inline_proof(const json& nodes, const json& node) {
+  if (node.is_number_integer()) return inline_proof(nodes, nodes[node.get<std::size_t>()]);
+  if (!node.is_array()) return node;
+  json parts = json::array();
+  for (std::size_t i = 1; i < node.size(); ++i) parts.push_back(inline_proof(nodes, node[i]));
+  return {{"split", node[0]}, {"parts", std::move(parts)}};
+}
+
+json negated(const json& direction) {
+  json out = json::array();
+  for (const json& x : direction) out.push_back(to_string(-(x.is_string() ? rational_of(x) : Exact(x.get<long>()))));
+  return out;
 }
 
 // A witness at an irrational time (octagons-collision: the exact first
@@ -264,15 +282,37 @@ BOOST_AUTO_TEST_CASE(altered_certificates_are_rejected) {
   };
 
   // Each separation direction negated, one at a time (a negated separating
-  // direction can never separate).
+  // direction can never separate): in the shared nodes, and in each piece's
+  // proof written out inline (the same certificate without shared nodes,
+  // accepted as written).
   {
-    const json& pieces = clear.certificate["checks"][0]["pieces"];
-    for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const json& c = clear.certificate["checks"][0];
+    BOOST_TEST(clear.certificate["format"] == "tmcert-certificate/2");
+    int seps = 0;
+    for (std::size_t k = 0; k < c["nodes"].size(); ++k) {
+      if (!c["nodes"][k].contains("sep")) continue;
+      ++seps;
       json altered = clear.certificate;
+      json& n = altered["checks"][0]["nodes"][k]["sep"];
+      n = negated(n);
+      expect_rejected(clear, altered, "negated direction in nodes[" + std::to_string(k) + "]");
+    }
+    BOOST_TEST(seps >= 2);
+    json written_out = clear.certificate;
+    written_out["checks"][0].erase("nodes");
+    for (json& p : written_out["checks"][0]["pieces"]) p["proof"] = inline_proof(c["nodes"], p["proof"]);
+    BOOST_TEST(accepted(clear, written_out));
+    for (const char* format : {"tmcert-certificate/1", "tmcert-certificate/2"}) {
+      written_out["format"] = format;
+      BOOST_TEST(accepted(clear, written_out), format);
+    }
+    const json& pieces = written_out["checks"][0]["pieces"];
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      json altered = written_out;
       bool done = false;
       each_direction(altered["checks"][0]["pieces"][p]["proof"], [&](json& n) {
         if (done) return;
-        for (json& x : n) x = to_string(-rational_of(x));
+        n = negated(n);
         done = true;
       });
       expect_rejected(clear, altered, "negated direction in piece " + std::to_string(p));

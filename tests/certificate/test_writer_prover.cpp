@@ -32,7 +32,9 @@ struct Proof {
     prover.no_contact = [](int, int) { return false; };
     const wi::CurveE exact = fixed_curve();
     const wi::PieceImages im = prover.images(enclose(exact));
-    return prover.prove(im, [&]() -> const wi::CurveE& { return exact; }, 0, 0);
+    const std::optional<int> node = prover.prove(im, [&]() -> const wi::CurveE& { return exact; }, 0, 0);
+    if (!node) return std::nullopt;
+    return prover.nodes.expand(*node);
   }
 };
 

@@ -4,6 +4,7 @@
 #include "src/io/json_tree.h"
 
 #include <boost/test/unit_test.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
 
@@ -30,9 +31,49 @@ std::string error_of(F&& f) {
   return "";
 }
 
+// Two trees are the same: the same nodes, keys and text.
+void same_tree(const reader::Tree& a, const reader::Tree& b) {
+  auto same_node = [](const reader::Node& x, const reader::Node& y) {
+    return x.kind == y.kind && x.boolean == y.boolean && x.size == y.size && x.first == y.first &&
+           x.first_key == y.first_key && x.text == y.text && x.text_size == y.text_size;
+  };
+  BOOST_TEST(same_node(a.root, b.root));
+  BOOST_REQUIRE(a.nodes.size() == b.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) BOOST_TEST(same_node(a.nodes[i], b.nodes[i]), "node " << i);
+  BOOST_TEST(a.keys == b.keys, boost::test_tools::per_element());
+  BOOST_TEST(a.text == b.text);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(json_tree)
+
+// SceneBuilder's documents are read from their JSON value (tree_of): the
+// tree, and every limit's message, are those of parsing the value's text.
+BOOST_AUTO_TEST_CASE(tree_of_a_value_is_the_tree_of_its_text) {
+  using Json = nlohmann::ordered_json;
+  Json doc = Json::object();
+  doc["format"] = "tmcert-scene/1";
+  doc["max_depth"] = 12;
+  doc["big"] = std::uint64_t{18446744073709551615u};
+  doc["neg"] = -3;
+  doc["flag"] = true;
+  doc["none"] = nullptr;
+  // Strings that start with the number or string mark stay strings.
+  doc["names"] = Json::array({"0.1", std::string("\x01") + "1e400", std::string("\x02") + "x", "", "caf\xc3\xa9"});
+  doc[std::string("\x01") + "key"] = Json::array({Json::array(), Json::object()});
+  same_tree(reader::tree_of(doc, "doc"), reader::parse_json(doc.dump(1), "doc"));
+
+  // Nesting beyond the limit: the same message, naming the same path.
+  Json deep = Json::array();
+  for (std::size_t k = 0; k < reader::kMaxNesting + 2; ++k) deep = Json{{"pieces", Json::array({deep})}};
+  const std::string from_value = error_of([&] { reader::tree_of(deep, "SceneBuilder"); });
+  BOOST_TEST(from_value.find("nesting deeper than") != std::string::npos);
+  BOOST_TEST(from_value == error_of([&] { reader::parse_json(deep.dump(), "SceneBuilder"); }));
+
+  // Not UTF-8: nlohmann's type_error, as dump() throws it.
+  BOOST_CHECK_THROW(reader::tree_of(Json{{"name", "\xff"}}, "doc"), nlohmann::json::type_error);
+}
 
 BOOST_AUTO_TEST_CASE(tree_keeps_number_text_and_keys_side_by_side) {
   const reader::Tree tree = reader::parse_json(R"({"a": [0.1, 2, "x"], "b": {"c": null}})", "t.json");

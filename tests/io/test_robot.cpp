@@ -8,6 +8,7 @@
 #include "src/io/primitives.h"
 #include "src/io/robot.h"
 #include "src/io/parse.h"
+#include "src/model/segment_kind.h"
 #include "src/model/solid.h"
 #include "src/verify/verify.h"
 #include "tests/support/mp_reference.h"
@@ -294,7 +295,7 @@ BOOST_AUTO_TEST_CASE(exact_poses_where_they_exist) {
   Pose base;
   base.translation = {Exact(1), Exact(0), Exact(0)};
   const PlacedRobot robot(model, "p", base);
-  JointPath path{{"j"}, {0, 1}, {{Exact(0)}, {Exact(3, 5)}}};
+  JointPath path{{"j"}, {0, 1}, {{Exact(0)}, {Exact(3, 5)}}, JointInterpolation::Linear, {}, {}};
   Scene scene;
   const RobotBodies bodies = add_robot(scene, robot, path);
   const Body& b = scene.bodies.at(bodies.body[1]);
@@ -326,8 +327,8 @@ BOOST_AUTO_TEST_CASE(link_piece_enclosures_hold_dense_mpfr_samples) {
       const Body& body = scene.bodies.at(bodies.body[robot.model().link_index(link)]);
       BOOST_REQUIRE(body.trajectory);
       const std::unique_ptr<SegmentModel> model = make_segment_model(body.trajectory->segments[0]);
-      for (const auto& [s0, s1] : {std::pair{Exact(0), Exact(1)}, std::pair{Exact(1, 4), Exact(3, 8)},
-                                   std::pair{Exact(5, 8), Exact(41, 64)}}) {
+      for (const auto& [s0, s1] : {std::pair{Exact(0), Exact(1)}, std::pair{Exact(1, 4), Exact(1, 2)},
+                                   std::pair{Exact(5, 8), Exact(3, 4)}}) {
         const PieceEnclosure pe = enclose_piece(*model, s0, s1, g);
         BOOST_REQUIRE(pe.valid);
         for (int k = 0; k <= 32; ++k) {
@@ -684,7 +685,7 @@ BOOST_AUTO_TEST_CASE(mimic_joints_follow_exactly) {
   const PlacedRobot robot(model, "g", Pose{});
   Scene scene;
   const RobotBodies bodies =
-      add_robot(scene, robot, JointPath{{"lift", "wrist", "finger1"}, {0, 1}, {{0, 0, 0}, {0, 0, Exact(1, 50)}}});
+      add_robot(scene, robot, JointPath{{"lift", "wrist", "finger1"}, {0, 1}, {{0, 0, 0}, {0, 0, Exact(1, 50)}}, JointInterpolation::Linear, {}, {}});
   const Body& right = scene.bodies.at(bodies.body[model->link_index("finger_r")]);
   BOOST_REQUIRE(right.motion);  // prismatic only: exact
   BOOST_TEST(right.motion->control_points[1][7] - right.motion->control_points[0][7] == Exact(-1, 50));
@@ -744,7 +745,7 @@ BOOST_AUTO_TEST_CASE(collisions_of_cylinders_and_spheres_are_proven_on_the_true_
     m.weights = {1, 1};
     speck.motion = m;
     scene.bodies.push_back(speck);
-    const RobotBodies bodies = add_robot(scene, robot, JointPath{{}, {0, 1}, {{}, {}}});
+    const RobotBodies bodies = add_robot(scene, robot, JointPath{{}, {0, 1}, {{}, {}}, JointInterpolation::Linear, {}, {}});
     scene.checks = {{0, bodies.body[0]}};
     VerifyOptions options;
     options.epsilon = Exact(1, 10000);
@@ -968,13 +969,340 @@ BOOST_AUTO_TEST_CASE(verdicts_through_the_api) {
     wall.mass.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     wall.mass.weights = {1, 1, 1, 1};
     scene.bodies.push_back(wall);
-    const RobotBodies bodies = add_robot(scene, arm, JointPath{{"turn"}, {0, 1}, {{Exact(0)}, {Exact(3, 2)}}});
+    const RobotBodies bodies = add_robot(scene, arm, JointPath{{"turn"}, {0, 1}, {{Exact(0)}, {Exact(3, 2)}}, JointInterpolation::Linear, {}, {}});
     scene.checks = robot_default_checks(arm, bodies, {0}, false, {});
     VerifyOptions options;
     options.epsilon = Exact(1, 1000);
     const SceneResult result = verify_scene(scene, options);
     BOOST_TEST(result.verdict == truth);
   }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// ------------------------------------------------------------------ trajectories
+// Cubic and quintic joint trajectories (SCENE_FORMAT.md "Real robots as
+// they ship"; proofs/trajectories.md): the Hermite coefficients, the exact
+// limit check on the whole polynomial, and the enclosures of link pieces
+// against dense MPFR samples with a rigorous Lipschitz bound.
+
+namespace {
+
+// q(s) from the Hermite basis (the test's own form, not the library's
+// coefficients): values p, s-derivatives D = T v and A = T^2 a at both ends.
+Exact hermite_at(int degree, const Exact& p0, const Exact& p1, const Exact& D0, const Exact& D1, const Exact& A0,
+                 const Exact& A1, const Exact& s) {
+  const Exact s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+  if (degree == 3) return (2 * s3 - 3 * s2 + 1) * p0 + (s3 - 2 * s2 + s) * D0 + (3 * s2 - 2 * s3) * p1 + (s3 - s2) * D1;
+  return (1 - 10 * s3 + 15 * s4 - 6 * s5) * p0 + (s - 6 * s3 + 8 * s4 - 3 * s5) * D0 +
+         (s2 - 3 * s3 + 3 * s4 - s5) / 2 * A0 + (s3 - 2 * s4 + s5) / 2 * A1 + (7 * s4 - 4 * s3 - 3 * s5) * D1 +
+         (10 * s3 - 15 * s4 + 6 * s5) * p1;
+}
+
+Exact poly_at(const std::vector<Exact>& c, const Exact& s) {
+  Exact v = 0;
+  for (std::size_t k = c.size(); k-- > 0;) v = v * s + c[k];
+  return v;
+}
+std::vector<Exact> derivative(const std::vector<Exact>& c) {
+  std::vector<Exact> out;
+  for (std::size_t k = 1; k < c.size(); ++k) out.push_back(Exact(static_cast<int>(k)) * c[k]);
+  return out;
+}
+
+// The message of validate_joint_path, or "" when the path is accepted.
+std::string path_error(const RobotModel& model, const JointPath& path) {
+  try {
+    validate_joint_path(model, path);
+  } catch (const JointPathError& e) {
+    return e.field + ": " + e.what();
+  }
+  return "";
+}
+
+JointPath one_joint(JointInterpolation how, const std::string& joint, const std::vector<Exact>& p,
+                    const std::vector<Exact>& v, const std::vector<Exact>& a = {}) {
+  JointPath path;
+  path.joints = {joint};
+  path.times = {0, 1};
+  path.interpolation = how;
+  path.positions = {{p[0]}, {p[1]}};
+  path.velocities = {{v[0]}, {v[1]}};
+  if (!a.empty()) path.accelerations = {{a[0]}, {a[1]}};
+  return path;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(robot_trajectories)
+
+BOOST_AUTO_TEST_CASE(hermite_coefficients_meet_their_ends_exactly) {
+  // The power-basis coefficients (src/model/chain.h) have the given values,
+  // first and second derivatives at s = 0 and s = 1, and equal the Hermite
+  // basis form everywhere (checked at 7 rationals: two polynomials of
+  // degree <= 5 that agree at 6 points are equal).
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Exact p0 = random_in(rng, -3, 3), p1 = random_in(rng, -3, 3), v0 = random_in(rng, -2, 2),
+                v1 = random_in(rng, -2, 2), a0 = random_in(rng, -5, 5), a1 = random_in(rng, -5, 5),
+                T = random_in(rng, Exact(1, 10), 3);
+    for (const int degree : {3, 5}) {
+      const Exact A0 = degree == 5 ? a0 : Exact(0), A1 = degree == 5 ? a1 : Exact(0);
+      const std::vector<Exact> c = hermite_coefficients(degree, p0, p1, v0, v1, A0, A1, T);
+      BOOST_TEST(static_cast<int>(c.size()) == degree + 1);
+      const std::vector<Exact> c1 = derivative(c), c2 = derivative(c1);
+      BOOST_TEST(poly_at(c, 0) == p0);
+      BOOST_TEST(poly_at(c, 1) == p1);
+      BOOST_TEST(poly_at(c1, 0) == T * v0);
+      BOOST_TEST(poly_at(c1, 1) == T * v1);
+      if (degree == 5) {
+        BOOST_TEST(poly_at(c2, 0) == T * T * a0);
+        BOOST_TEST(poly_at(c2, 1) == T * T * a1);
+      }
+      for (const Exact s : {Exact(0), Exact(1, 7), Exact(1, 3), Exact(1, 2), Exact(5, 8), Exact(9, 10), Exact(1)})
+        BOOST_TEST(poly_at(c, s) == hermite_at(degree, p0, p1, T * v0, T * v1, T * T * A0, T * T * A1, s));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(limits_hold_on_the_whole_polynomial_exactly) {
+  // Joint "j" of two_links has limits [-1, 1].
+  const std::shared_ptr<const RobotModel> model = load_urdf_text(two_links("revolute"), "t.urdf", kData + "/robots");
+  using JI = JointInterpolation;
+  // 1 - (2/5)(s - 1/2)^2 as a cubic: p = 9/10 at both ends, D = +-2/5; its
+  // maximum is the limit 1 exactly, at s = 1/2: within the limits.
+  BOOST_TEST(path_error(*model, one_joint(JI::Cubic, "j", {d("0.9"), d("0.9")}, {d("0.4"), d("-0.4")})) == "");
+  // A little faster: the cubic passes 1 between the waypoints, which are
+  // within the limits.
+  const std::string over = path_error(*model, one_joint(JI::Cubic, "j", {d("0.9"), d("0.9")}, {d("0.4001"), d("-0.4")}));
+  BOOST_TEST(over.find("path: segment from waypoint 0 to 1 (cubic): joint \"j\" at t = ") == 0, over);
+  BOOST_TEST(over.find(", outside its limits [-1, 1]") != std::string::npos, over);
+  // 1 - (s^2 - s + 1/8)^2: touches the limit at the two irrational points
+  // (1 +- sqrt(1/2))/2 and stays below elsewhere: within the limits,
+  // decided exactly (no sampling or subdivision can show this).
+  const std::vector<Exact> touch_p = {Exact(63, 64), Exact(63, 64)}, touch_v = {Exact(1, 4), Exact(-1, 4)},
+                           touch_a = {Exact(-5, 2), Exact(-5, 2)};
+  BOOST_TEST(path_error(*model, one_joint(JI::Quintic, "j", touch_p, touch_v, touch_a)) == "");
+  // Its mirror image touches the lower limit.
+  BOOST_TEST(path_error(*model, one_joint(JI::Quintic, "j", {-touch_p[0], -touch_p[1]}, {-touch_v[0], -touch_v[1]},
+                                          {-touch_a[0], -touch_a[1]})) == "");
+  // A slightly larger acceleration at the start lifts the first touch point
+  // above the limit.
+  const std::string lifted =
+      path_error(*model, one_joint(JI::Quintic, "j", touch_p, touch_v, {d("-2.49"), touch_a[1]}));
+  BOOST_TEST(lifted.find("path: segment from waypoint 0 to 1 (quintic): joint \"j\" at t = ") == 0, lifted);
+  // The witness is real: the polynomial at the reported time is outside.
+  {
+    const std::size_t at = lifted.find(" is at ");
+    BOOST_REQUIRE(at != std::string::npos);
+    const std::string t_text = lifted.substr(lifted.find("at t = ") + 7, lifted.find(" is at ") - lifted.find("at t = ") - 7);
+    Exact t;
+    BOOST_REQUIRE(parse_exact(t_text, t));
+    BOOST_TEST(hermite_at(5, touch_p[0], touch_p[1], touch_v[0], touch_v[1], d("-2.49"), touch_a[1], t) > 1);
+  }
+  // Linear paths keep their waypoint rule; velocities are refused there.
+  JointPath linear = one_joint(JI::Linear, "j", {d("0.9"), d("0.9")}, {0, 0});
+  BOOST_TEST(path_error(*model, linear).find("velocities: velocities are not used by linear interpolation") == 0);
+  linear.velocities.clear();
+  BOOST_TEST(path_error(*model, linear) == "");
+  // A continuous joint has no limits to leave.
+  const std::shared_ptr<const RobotModel> spin = load_urdf_text(two_links("continuous", "<box size=\"1 1 1\"/>", ""),
+                                                                "t.urdf", kData + "/robots");
+  BOOST_TEST(path_error(*spin, one_joint(JI::Cubic, "j", {0, 0}, {100, 100})) == "");
+}
+
+BOOST_AUTO_TEST_CASE(mimic_joints_follow_the_polynomial_within_their_limits) {
+  // tests/data/bad/robots/mimic-limit.urdf: "follow" = 2 "slide", limited
+  // to [0, 0.5] (slide: [0, 1]).  slide = 0.2 + ... peaks near 0.3 between
+  // the waypoints: follow passes 0.5 there, though both waypoints are fine.
+  const std::shared_ptr<const RobotModel> model = load_urdf(kData + "/bad/robots/mimic-limit.urdf");
+  using JI = JointInterpolation;
+  const std::string over = path_error(*model, one_joint(JI::Cubic, "slide", {d("0.2"), d("0.2")}, {d("0.5"), d("-0.5")}));
+  BOOST_TEST(over.find("path: segment from waypoint 0 to 1 (cubic): joint \"follow\" (mimic of \"slide\": 2 q + 0) at t = ") == 0, over);
+  // Slower: slide peaks at 0.2 + 0.2/4 = 0.25, follow at 0.5 exactly.
+  BOOST_TEST(path_error(*model, one_joint(JI::Cubic, "slide", {d("0.2"), d("0.2")}, {d("0.2"), d("-0.2")})) == "");
+}
+
+BOOST_AUTO_TEST_CASE(hermite_link_pieces_hold_dense_mpfr_samples_with_a_lipschitz_bound) {
+  // Cubic and quintic paths of chain.urdf (revolute, prismatic, rpy
+  // origins, an axis of irrational length): enclose_piece's tube holds the
+  // MPFR pose at N + 1 samples of each piece with room for the gaps:
+  // between samples (spacing h) the pose moves by at most L h / 2 and the
+  // line by M h / (2 w), so a sample distance below tube - (L + M / w) h / 2
+  // puts every pose of the piece within the tube.  L bounds |d pose / ds|
+  // (Frobenius): sum_j max|q_j'| (sqrt 2 + R) with R = 2 above every
+  // distance from a joint to a link body origin in this chain (its
+  // translations add up to less than 1.6), over the joints of the link's chain;
+  // max|q_j'| from the Bernstein form of q_j'.  The enclosed pose at 9
+  // rationals holds the MPFR pose and is narrow.
+  std::mt19937_64 rng(23);
+  const PlacedRobot robot(chain_model(), "r", some_base());
+  std::array<Interval, 16> g;
+  for (int i = 0; i < 16; ++i) g[i] = Interval(i % 5 == 0 ? 1 : 0);
+  int checked = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    const int degree = trial % 2 ? 5 : 3;
+    const Exact T = random_in(rng, Exact(1, 2), 2);
+    const std::array<Exact, 4> lo{d("-1"), d("0.05"), d("-0.7"), d("-1")}, hi{d("1"), d("0.15"), d("0.7"), d("1")};
+    const std::array<Exact, 4> vmax{d("0.5"), d("0.05"), d("0.4"), d("0.5")};
+    std::array<Exact, 4> p0, p1, v0, v1, a0, a1;
+    for (int j = 0; j < 4; ++j) {
+      p0[j] = random_in(rng, lo[j], hi[j]), p1[j] = random_in(rng, lo[j], hi[j]);
+      v0[j] = random_in(rng, -vmax[j], vmax[j]), v1[j] = random_in(rng, -vmax[j], vmax[j]);
+      a0[j] = degree == 5 ? random_in(rng, -vmax[j], vmax[j]) : Exact(0);
+      a1[j] = degree == 5 ? random_in(rng, -vmax[j], vmax[j]) : Exact(0);
+    }
+    JointPath path = two_waypoints(p0, p1);
+    path.times = {0, T};
+    path.interpolation = degree == 5 ? JointInterpolation::Quintic : JointInterpolation::Cubic;
+    path.velocities = {{v0[0], v0[1], v0[2], v0[3]}, {v1[0], v1[1], v1[2], v1[3]}};
+    if (degree == 5) path.accelerations = {{a0[0], a0[1], a0[2], a0[3]}, {a1[0], a1[1], a1[2], a1[3]}};
+    Scene scene;
+    const RobotBodies bodies = add_robot(scene, robot, path);  // within the limits by construction
+    auto q_at = [&](const Exact& s) {
+      std::array<Exact, 4> q;
+      for (int j = 0; j < 4; ++j) q[j] = hermite_at(degree, p0[j], p1[j], T * v0[j], T * v1[j], T * T * a0[j], T * T * a1[j], s);
+      return q;
+    };
+    // max |q_j'| on [0, 1] <= the largest |Bernstein coefficient| of q_j'
+    // (a convex combination of them at every s), exactly.
+    std::array<double, 4> rate{};
+    for (int j = 0; j < 4; ++j) {
+      const std::vector<Exact> c1 = derivative(hermite_coefficients(degree, p0[j], p1[j], v0[j], v1[j], a0[j], a1[j], T));
+      const int n = static_cast<int>(c1.size()) - 1;
+      auto choose = [](int a, int b) {
+        long r = 1;
+        for (int i = 1; i <= b; ++i) r = r * (a - b + i) / i;
+        return Exact(static_cast<int>(r));
+      };
+      Exact most = 0;
+      for (int i = 0; i <= n; ++i) {
+        Exact b = 0;
+        for (int k = 0; k <= i; ++k) b += choose(i, k) / choose(n, k) * c1[k];
+        most = std::max(most, b < 0 ? -b : b);
+      }
+      rate[j] = to_interval(most).sup();
+    }
+    for (const std::string link : {"l2", "l5"}) {
+      const int moving = link == "l2" ? 2 : 4;  // the chain's joints
+      double L = 0;
+      for (int j = 0; j < moving; ++j) L += rate[j] * (std::sqrt(2.0) + 2.0);
+      L *= 1.0 + 1e-9;  // the double sums' rounding
+      const Body& body = scene.bodies.at(bodies.body[robot.model().link_index(link)]);
+      BOOST_REQUIRE(body.trajectory);
+      const MotionSegment& seg = body.trajectory->segments[0];
+      BOOST_TEST(kind_of(seg).name() == "robot_link_hermite");
+      const std::unique_ptr<SegmentModel> model = make_segment_model(seg);
+      for (int k = 0; k <= 8; ++k)
+        check_pose_encloses(enclose_pose(*model, Exact(k, 8)), mp_link_body(mp_base(), link, q_at(Exact(k, 8))), 1e-9,
+                            link + " point");
+      for (const auto& [s0, s1] : {std::pair{Exact(0), Exact(1)}, std::pair{Exact(1, 4), Exact(1, 2)},
+                                   std::pair{Exact(5, 8), Exact(3, 4)}}) {
+        const PieceEnclosure pe = enclose_piece(*model, s0, s1, g);
+        BOOST_REQUIRE(pe.valid);
+        double M2 = 0;  // |P1 - P0|^2 bounded over the control boxes
+        {
+          RoundingGuard guard;
+          for (int e = 0; e < 12; ++e) {
+            const Interval diff = pe.controls[1][e] - pe.controls[0][e];
+            const double m = std::max(std::abs(diff.inf()), std::abs(diff.sup()));
+            M2 += m * m;
+          }
+        }
+        const double w = to_interval(s1 - s0).inf();
+        // The largest sample distance at N + 1 samples.
+        auto worst_of = [&](int N) {
+          Mp worst(0);
+          for (int k = 0; k <= N; ++k) {
+          const Exact u = Exact(k, N), s = s0 + (s1 - s0) * u;
+          const MpPose want = mp_link_body(mp_base(), link, q_at(s));
+          Mp sum(0);
+          for (int e = 0; e < 12; ++e) {
+            RoundingGuard guard;
+            const Interval line = pe.controls[0][e] + to_interval(u) * (pe.controls[1][e] - pe.controls[0][e]);
+            const Mp a(line.inf()), b(line.sup());
+            Mp gap(0);
+            if (want[e] < a) gap = a - want[e];
+            if (b < want[e]) gap = want[e] - b;
+            sum = sum + gap * gap;
+          }
+          if (worst < sqrt(sum)) worst = sqrt(sum);
+          }
+          return worst;
+        };
+        // Enough samples that the gaps' allowance is half of what the tube
+        // leaves above a first pass (at most 1024).
+        const double spread = (L + std::sqrt(M2) / w) * to_interval(s1 - s0).sup() / 2 * (1 + 1e-9);
+        const double left = pe.tube - worst_of(16).to_double();
+        const int N = left > 0 ? static_cast<int>(std::min(1024.0, std::ceil(2 * spread / left) + 1)) : 1024;
+        const Mp room = Mp(pe.tube) - Mp(spread) / Mp(N);
+        const Mp worst = worst_of(N);
+        BOOST_TEST_CONTEXT(link << " trial " << trial << " piece [" << s0 << ", " << s1 << "] tube " << pe.tube
+                                << " worst sample " << worst.to_double() << " room " << room.to_double() << " samples "
+                                << N + 1) {
+          BOOST_TEST(!(room < worst));
+        }
+        ++checked;
+      }
+    }
+  }
+  BOOST_TEST(checked == 4 * 2 * 3);
+}
+
+BOOST_AUTO_TEST_CASE(hermite_link_tubes_shrink_with_the_piece) {
+  // The search subdivides the parameter: the tube of [1/3, 1/3 + 2^-k]
+  // falls (quadratically: the remainder of a second-order Taylor form) as
+  // the piece shrinks, so that every pose is eventually decided.
+  const PlacedRobot robot(chain_model(), "r", some_base());
+  std::array<Interval, 16> g;
+  for (int i = 0; i < 16; ++i) g[i] = Interval(i % 5 == 0 ? 1 : 0);
+  JointPath path = two_waypoints({d("-1"), d("0.1"), d("0.5"), d("2")}, {d("1"), d("0.2"), d("-0.5"), d("-1")});
+  path.interpolation = JointInterpolation::Quintic;
+  path.velocities = {{d("0.5"), 0, d("-0.3"), d("1")}, {d("-0.5"), 0, d("0.2"), d("2")}};
+  path.accelerations = {{d("0.5"), 0, d("0.5"), d("-1")}, {d("0.2"), 0, d("-0.5"), d("1")}};
+  Scene scene;
+  const RobotBodies bodies = add_robot(scene, robot, path);
+  const Body& body = scene.bodies.at(bodies.body[robot.model().link_index("l5")]);
+  const std::unique_ptr<SegmentModel> model = make_segment_model(body.trajectory->segments[0]);
+  double previous = 1e300;
+  for (int k = 2; k <= 14; k += 2) {
+    const PieceEnclosure pe = enclose_piece(*model, Exact(1, 3), Exact(1, 3) + Exact(1) / Exact(1 << k), g);
+    BOOST_REQUIRE(pe.valid);
+    BOOST_TEST_CONTEXT("k " << k << " tube " << pe.tube) {
+      BOOST_TEST(pe.tube < previous / 8);
+    }
+    previous = pe.tube;
+  }
+  BOOST_TEST(previous < 1e-7);
+}
+
+BOOST_AUTO_TEST_CASE(a_segment_of_degree_one_stays_linear_and_a_still_link_stays_still) {
+  // A cubic whose joint polynomials have no s^2 or s^3 term (velocities
+  // equal to the chord's) is the linear motion exactly: the segment is the
+  // linear kind (rational where its chain is), and a link whose joints do
+  // not move on any segment is motionless.
+  const PlacedRobot robot(chain_model(), "r", some_base());
+  JointPath path = two_waypoints({d("0.5"), d("0.1"), d("0"), d("1")}, {d("0.5"), d("0.2"), d("0"), d("1")});
+  path.times = {0, 2};
+  path.interpolation = JointInterpolation::Cubic;
+  path.velocities = {{0, d("0.05"), 0, 0}, {0, d("0.05"), 0, 0}};
+  Scene scene;
+  const RobotBodies bodies = add_robot(scene, robot, path);
+  const Body& l1 = scene.bodies.at(bodies.body[robot.model().link_index("l1")]);
+  BOOST_REQUIRE(l1.trajectory);  // j1 = 0.5: not exact, so a still link segment
+  BOOST_TEST(l1.trajectory->segments.size() == 1u);
+  BOOST_TEST(l1.trajectory->segments[0].link->degree() == 1);
+  BOOST_TEST((l1.trajectory->segments[0].link->from == l1.trajectory->segments[0].link->to));
+  const Body& l2 = scene.bodies.at(bodies.body[robot.model().link_index("l2")]);
+  BOOST_REQUIRE(l2.trajectory);
+  BOOST_TEST(kind_of(l2.trajectory->segments[0]).name() == "robot_link");
+  // A velocity off the chord makes it a polynomial of degree 3.
+  path.velocities[1][1] = d("0.06");
+  Scene curved;
+  const RobotBodies cb = add_robot(curved, robot, path);
+  const Body& c2 = curved.bodies.at(cb.body[robot.model().link_index("l2")]);
+  BOOST_REQUIRE(c2.trajectory);
+  BOOST_TEST(kind_of(c2.trajectory->segments[0]).name() == "robot_link_hermite");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -17,13 +17,17 @@ using tmcert::MotionSegment;
 namespace {
 
 // The segments of every body of a scene with a rational keyframe segment,
-// an rpy (enclosed) one and a robot moving along a joint path.
+// an rpy (enclosed) one, a robot moving along a linear joint path and one
+// along a cubic trajectory.
 std::vector<MotionSegment> sample_segments() {
   const std::string text = R"({"format": "tmcert-scene/1",
     "bodies": [{"name": "a", "points": [[0, 0, 0]], "motion": {"type": "keyframes", "times": [0, 1, 2], "poses": [
       {}, {"translation": [1, 0, 0]}, {"translation": [1, 0, 0], "rotation": {"rpy": [0, 0, 1]}}]}}],
     "robots": [{"name": "arm", "urdf": "chain.urdf", "joints": ["j1", "j2", "j3", "j4"],
-                "path": {"times": [0, 2], "positions": [[0, 0, 0, 0], [0.5, 0.1, 0.25, 1]]}}]})";
+                "path": {"times": [0, 2], "positions": [[0, 0, 0, 0], [0.5, 0.1, 0.25, 1]]}},
+               {"name": "arm2", "urdf": "chain.urdf", "joints": ["j1", "j2", "j3", "j4"],
+                "path": {"times": [0, 2], "interpolation": "cubic", "positions": [[0, 0, 0, 0], [0.5, 0.1, 0.25, 1]],
+                         "velocities": [[0, 0, 0, 0], [0, 0, 0, 0]]}}]})";
   std::vector<tmcert::SceneRobot> robots;
   const tmcert::Scene scene =
       tmcert::parse_scene_text(text, "kinds.json", std::string(TMCERT_TEST_DATA) + "/robots", robots);
@@ -40,7 +44,7 @@ BOOST_AUTO_TEST_SUITE(segment_kinds)
 BOOST_AUTO_TEST_CASE(names_are_unique_and_every_segment_has_one_kind) {
   std::set<std::string> names;
   for (const tmcert::SegmentKind* kind : tmcert::segment_kinds()) BOOST_TEST(names.insert(std::string(kind->name())).second);
-  BOOST_TEST(names == (std::set<std::string>{"rational_bezier", "keyframe", "robot_link"}));
+  BOOST_TEST(names == (std::set<std::string>{"rational_bezier", "keyframe", "robot_link", "robot_link_hermite"}));
   std::set<std::string> seen;
   for (const MotionSegment& seg : sample_segments()) {
     int holders = 0;

@@ -319,7 +319,7 @@ BOOST_AUTO_TEST_CASE(joint_space_agrees_with_the_verifier_on_the_robot_scene) {
     Scene scene;
     scene.source = "arm";
     scene.bodies.push_back(post);
-    JointPath path{joints, {Exact(0), Exact(1)}, {{}, {}}};
+    JointPath path{joints, {Exact(0), Exact(1)}, {{}, {}}, JointInterpolation::Linear, {}, {}};
     for (int j = 0; j < 6; ++j) {
       path.positions[0].push_back(Exact(a[j]));
       path.positions[1].push_back(Exact(b[j]));

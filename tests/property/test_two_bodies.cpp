@@ -835,14 +835,24 @@ BOOST_AUTO_TEST_CASE(certificates_of_random_scenes_check_and_tampering_is_caught
         nlohmann::json& pieces = doc["checks"][0]["pieces"];
         RC_TAG(to_string(result.checks[0].verdict), pieces.empty() ? "no pieces" : "pieces");
         if (pieces.empty()) return;
+        // A random separation of a random piece's proof (shared nodes
+        // followed: negating a shared one breaks every use, this one too).
+        nlohmann::json& nodes = doc["checks"][0]["nodes"];
         nlohmann::json* proof = &pieces[uniform(std::size_t(0), pieces.size() - 1)]["proof"];
-        while (!proof->contains("sep")) {
-          nlohmann::json& parts = (*proof)["parts"];
-          proof = &parts[uniform(std::size_t(0), parts.size() - 1)];
+        while (proof->is_number_integer() || !proof->contains("sep")) {
+          if (proof->is_number_integer()) {
+            proof = &nodes[proof->get<std::size_t>()];
+          } else if (proof->is_array()) {  // a split [s, P1, ..., Pm]
+            proof = &(*proof)[uniform(std::size_t(1), proof->size() - 1)];
+          } else {
+            nlohmann::json& parts = (*proof)["parts"];
+            proof = &parts[uniform(std::size_t(0), parts.size() - 1)];
+          }
         }
         for (nlohmann::json& x : (*proof)["sep"]) {
           Exact q;
-          RC_ASSERT(parse_exact(x.get<std::string>(), q));
+          const bool parsed = x.is_number_integer() ? (q = Exact(x.get<long>()), true) : parse_exact(x.get<std::string>(), q);
+          RC_ASSERT(parsed);
           x = to_string(-q);
         }
         RC_ASSERT(!certificate::check_certificate(c.scene, doc, "property").ok);

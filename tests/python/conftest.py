@@ -144,6 +144,11 @@ def builder_from_document(doc: Dict[str, Any], base: Path) -> tmcert.SceneBuilde
         if "path" in r:
             positions = np.array([[exact(v) for v in row] for row in r["path"]["positions"]], dtype=object)
             robot.path(r["joints"], [exact(t) for t in r["path"]["times"]], positions)
+            if {"interpolation", "velocities", "accelerations"} & set(r["path"]):
+                rows = {key: [[exact(v) for v in row] for row in r["path"].get(key, [])]
+                        for key in ("velocities", "accelerations")}
+                robot.interpolation(r["path"].get("interpolation", "linear"), rows["velocities"], rows["accelerations"])
+            assert set(r["path"]) <= {"times", "positions", "interpolation", "velocities", "accelerations"}, r
         if "self_collision" in r:
             robot.self_collision(r["self_collision"])
         for link_a, link_b in r.get("allowed_pairs", []):

@@ -1,5 +1,5 @@
 // An independent high-precision reference for the planner motions
-// (tests/unit/test_planner_motions.cpp, tests/property/test_planner_motions.cpp):
+// (tests/motion/test_planner_motions.cpp, tests/property/test_planner_motions.cpp):
 // MPFR numbers at 256 bits (CGAL ships MPFR; tmcert's validated functions
 // use Arb, so the two share no code), and slerp, screw and nlerp written
 // from their textbook definitions (SCENE_FORMAT.md "Motion type keyframes"),

@@ -1,5 +1,5 @@
-// Helpers shared by the seeded randomized tests (tests/unit/test_contact.cpp,
-// tests/unit/test_motion.cpp, tests/crosscheck/test_kernels.cpp): a small
+// Helpers shared by the seeded randomized tests (tests/kernels/test_contact.cpp,
+// tests/motion/test_bezier.cpp, tests/crosscheck/test_kernels.cpp): a small
 // reproducible random source, triangle bodies and an exact collinearity test.
 #pragma once
 

@@ -170,4 +170,63 @@ BOOST_AUTO_TEST_CASE(only_the_slices_near_the_wall_are_searched) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(coarse_boxes_keep_the_slices_that_the_vertex_boxes_keep) {
+  // section 1b: a slice whose coarse box (the slice's map on the box of the
+  // vertices) the caller's test clears keeps that box; it holds the vertex
+  // box, so the same slices are kept as with the vertex boxes alone.  The
+  // caller's test: "misses the slab |x| <= 1/100" (a wall's box).
+  const Scene scene = cube_and_wall();
+  const auto vertices = enclosed_vertices(scene.bodies[1]);
+  SliceFilter filter;
+  filter.bounds = enclosed_bounds(vertices);
+  for (int i = 0; i < 3; ++i) {
+    BOOST_TEST(Exact(filter.bounds[i].inf()) <= Exact(-1, 5));  // holds every vertex, narrowly
+    BOOST_TEST(filter.bounds[i].inf() > -0.20001);
+    BOOST_TEST(Exact(filter.bounds[i].sup()) >= Exact(1, 5));
+    BOOST_TEST(filter.bounds[i].sup() < 0.20001);
+  }
+  // The cube is its own vertex box, whose image is the vertex box; a larger
+  // box holding every vertex (also a valid `bounds`) makes the coarse boxes
+  // differ, so that the boxes kept can be told apart.
+  for (int i = 0; i < 3; ++i) filter.bounds[i] = Interval(-0.5, 0.5);
+  int calls = 0;
+  auto misses = [](const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+    return hi[0] < -0.01 || lo[0] > 0.01;
+  };
+  filter.clears = [&](const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+    ++calls;
+    return misses(lo, hi);
+  };
+  for (const int turn : {0, 3})
+    for (const Interpolation how : {Interpolation::Slerp, Interpolation::Nlerp}) {
+      const Trajectory motion = keyframes({Exact(-2), Exact(1, 3), Exact(0)}, {Exact(1), Exact(0), Exact(1, 7)}, turn, how);
+      calls = 0;
+      const EdgeSlices fine = tmcert::edge_slices(motion, vertices, 16);
+      const EdgeSlices coarse = tmcert::edge_slices(motion, vertices, 16, &filter);
+      BOOST_TEST(calls == 16);
+      BOOST_REQUIRE_EQUAL(fine.size(), coarse.size());
+      BOOST_TEST(fine.t == coarse.t, boost::test_tools::per_element());
+      int kept_coarse = 0;
+      for (std::size_t k = 0; k < fine.size(); ++k) {
+        BOOST_TEST(coarse.valid[k] == fine.valid[k]);
+        for (int i = 0; i < 3; ++i) {
+          BOOST_TEST(coarse.lo[k][i] <= fine.lo[k][i]);  // the coarse box holds the vertex box
+          BOOST_TEST(coarse.hi[k][i] >= fine.hi[k][i]);
+        }
+        const bool cleared = misses(coarse.lo[k], coarse.hi[k]);
+        BOOST_TEST(cleared == misses(fine.lo[k], fine.hi[k]), "slice " << k);
+        if (cleared && (coarse.lo[k] != fine.lo[k] || coarse.hi[k] != fine.hi[k])) ++kept_coarse;
+        if (!cleared) {  // not cleared: the vertex box itself
+          BOOST_TEST((coarse.lo[k] == fine.lo[k]));
+          BOOST_TEST((coarse.hi[k] == fine.hi[k]));
+        }
+      }
+      if (turn == 0) BOOST_TEST(kept_coarse > 0);  // a wide turn's coarse boxes may clear nothing
+      auto keep_fine = [&](std::size_t k) { return !fine.valid[k] || !misses(fine.lo[k], fine.hi[k]); };
+      auto keep_coarse = [&](std::size_t k) { return !coarse.valid[k] || !misses(coarse.lo[k], coarse.hi[k]); };
+      BOOST_TEST((slice_runs(fine, keep_fine) == slice_runs(coarse, keep_coarse)));
+      BOOST_TEST(!slice_runs(fine, keep_fine).empty());
+    }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

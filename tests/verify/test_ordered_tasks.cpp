@@ -3,6 +3,7 @@
 // reason joined, a witness ends it), the node budget's "limit" stop, and a
 // result that does not depend on the number of threads
 // (proofs/search-and-pruning.md).
+#include "src/verify/ordered_tasks.h"
 #include "tests/verify/check_testing.h"
 
 #include <boost/test/unit_test.hpp>

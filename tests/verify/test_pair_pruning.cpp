@@ -4,6 +4,7 @@
 // pairs, the pruning of a piece that clears every pair or keeps the
 // touching ones, and the carry decision's shortfall
 // (proofs/search-and-pruning.md, proofs/hierarchy.md).
+#include "src/verify/pair_pruning.h"
 #include "tests/verify/check_testing.h"
 
 #include <boost/test/unit_test.hpp>

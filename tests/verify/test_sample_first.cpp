@@ -94,7 +94,10 @@ BOOST_AUTO_TEST_CASE(a_contact_at_the_end_decides_without_a_search) {
   BOOST_TEST(got.verdict == Verdict::Collision);
   BOOST_REQUIRE(got.witness);
   BOOST_TEST(got.witness->t == Exact(1));
-  BOOST_TEST(!got.witness->point_box);  // an exact pose: an exact point
+  // An exact pose, but the edges of the cube cross the wall transversally:
+  // the certain crossing of the enclosures is found first (no exact test),
+  // and the witness is its box.
+  BOOST_REQUIRE(got.witness->point_box);
   BOOST_REQUIRE_EQUAL(got.checks.size(), 1u);
   const CheckResult& c = got.checks[0];
   BOOST_TEST(c.stats.nodes == 0u);  // no search
@@ -110,11 +113,17 @@ BOOST_AUTO_TEST_CASE(a_contact_at_the_end_decides_without_a_search) {
   BOOST_TEST(!c.first_contact_exact);
   BOOST_REQUIRE(got.safe_until);
   BOOST_TEST(*got.safe_until == Exact(0));
-  // The witness is the exact static test's contact at that pose, and its
-  // point lies on the wall (x = 0) within the cube's reach.
+  // The exact static test confirms a contact at that pose, and the box
+  // holds a point of the wall (x = 0) within the cube's reach.
   const Pose end = motion.segments[0].to;
   BOOST_TEST(env.static_contact({*exact_pose(end)}).has_value());
-  BOOST_TEST(got.witness->point[0] == Exact(0));
+  const auto& box = *got.witness->point_box;
+  BOOST_TEST(box[0][0] <= Exact(0));
+  BOOST_TEST(box[0][1] >= Exact(0));
+  for (int i = 1; i < 3; ++i) {  // within the cube's reach, up to rounding
+    BOOST_TEST(box[i][0] >= Exact(-1, 5) - Exact(1, 1000000));
+    BOOST_TEST(box[i][1] <= Exact(1, 5) + Exact(1, 1000000));
+  }
   // check() searches for the first contact: the cube's face reaches the
   // wall at x = -1/5, t = 4/5.
   const MotionCheck full = env.check({motion});
@@ -123,6 +132,21 @@ BOOST_AUTO_TEST_CASE(a_contact_at_the_end_decides_without_a_search) {
   BOOST_TEST(full.first_contact->first <= Exact(4, 5));
   BOOST_TEST(full.first_contact->second >= Exact(4, 5));
   BOOST_TEST(full.checks[0].stats.nodes > 0u);
+}
+
+BOOST_AUTO_TEST_CASE(a_touching_end_pose_gets_the_exact_point) {
+  // The cube's face ends on the wall (x = -1/5 + 1/5 = 0): a touching
+  // contact, no transversal crossing for the interval test to prove, so
+  // the exact test decides and the witness is an exact point on the wall.
+  const Scene scene = cube_and_wall("0");
+  const FixedEnvironment env(scene.bodies[0], {scene.bodies[1]}, {}, options());
+  const MotionCheck got = env.decide({along_x(Exact(-1), Exact(-1, 5))});
+  BOOST_TEST(got.verdict == Verdict::Collision);
+  BOOST_REQUIRE(got.witness);
+  BOOST_TEST(got.witness->t == Exact(1));
+  BOOST_TEST(!got.witness->point_box);
+  BOOST_TEST(got.witness->point[0] == Exact(0));
+  BOOST_TEST(got.checks[0].stats.nodes == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(an_enclosed_pose_gives_a_certain_crossing) {

@@ -3,6 +3,7 @@
 // point, a vertex inside a solid, the closest pair within a clearance) and
 // the apartness of the whole configuration (proofs/witness.md,
 // proofs/containment.md, proofs/partition.md).
+#include "src/verify/witness_search.h"
 #include "tests/verify/check_testing.h"
 
 #include <boost/test/unit_test.hpp>

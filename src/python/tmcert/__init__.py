@@ -333,7 +333,7 @@ class Result:
         return str(self._raw.summary())
 
     def certificate(self) -> str:
-        """The tmcert-certificate/1 document; needs ``verify(..., certificate=True)``."""
+        """The tmcert-certificate/2 document; needs ``verify(..., certificate=True)``."""
         return str(self._raw.certificate())
 
     def write_certificate(self, path: PathLike) -> None:
@@ -632,9 +632,20 @@ class Robot:
         return self
 
     def path(self, joints: Sequence[str], times: Iterable[NumberLike], positions: Any) -> "Robot":
-        """Linear in joint space: ``positions`` one row per time, columns in the order of ``joints``."""
+        """Linear in joint space (unless :meth:`interpolation` says otherwise): ``positions`` one row per time, columns in the order of ``joints``."""
         rows = [list(row) for row in positions]
         self._raw.path(list(joints), list(times), rows)
+        return self
+
+    def interpolation(self, how: str, velocities: Any = None, accelerations: Any = None) -> "Robot":
+        """The path as a controller executes a time-parameterised trajectory:
+        ``"cubic"`` splines in time with ``velocities`` (dq/dt), ``"quintic"``
+        with also ``accelerations``, one row per time like the positions;
+        ``"linear"`` (the default) takes neither.  Limits hold on the whole
+        polynomial."""
+        vel = [list(row) for row in velocities] if velocities is not None else []
+        acc = [list(row) for row in accelerations] if accelerations is not None else []
+        self._raw.interpolation(str(how), vel, acc)
         return self
 
     def self_collision(self, value: bool = True) -> "Robot":
@@ -928,7 +939,7 @@ def check(certificate: Union[PathLike, Result, Mapping[str, Any]], scene: SceneL
     """Re-verifies a certificate against ``scene`` in exact arithmetic (as ``tmcert check``).
 
     certificate: a file path, a Result of ``verify(..., certificate=True)``,
-        or the tmcert-certificate/1 document as a dict.
+        or the tmcert-certificate/2 document as a dict.
     A malformed certificate raises InputError; one whose claims fail gives
     a false CertificateCheck whose ``message`` names the failing claim.
     """

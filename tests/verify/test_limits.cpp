@@ -76,7 +76,7 @@ BOOST_AUTO_TEST_CASE(time_limit_passed_is_undecided_never_safe) {
 
 BOOST_AUTO_TEST_CASE(time_limit_returns_promptly) {
   // A point resting 1e-9..1e-7 above a slowly tilting triangle
-  // (tests/unit/test_threads.cpp), searched by the ball search alone with
+  // (tests/verify/test_threads.cpp), searched by the ball search alone with
   // epsilon 1e-12 and no node or stop budget to speak of: every piece along
   // the rest stops at about epsilon, some 1e5 pieces and more (minutes to
   // hours).  With a time limit of 1/2 s it must come back at once,

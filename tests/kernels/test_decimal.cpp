@@ -1,5 +1,5 @@
 // kernels/decimal: decimals of exact numbers, rounded in integer
-// arithmetic (tests/unit mirrors kernels/ here, as test_number_types does).
+// arithmetic (tests/kernels/ mirrors kernels/).
 #include "kernels/decimal.h"
 
 #include <boost/test/unit_test.hpp>

@@ -10,6 +10,8 @@
 #include "kernels/robust_crossing.h"
 #include "kernels/validated.h"
 #include "src/metric/metric.h"
+#include "src/model/chain.h"
+#include "src/motion/chain.h"
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
 #include "tests/support/exact_oracle.h"
@@ -19,6 +21,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -142,6 +145,48 @@ BOOST_AUTO_TEST_CASE(validated_sin_cos_enclose_mpfr_and_are_narrow) {
   for (const double x : xs) {
     check_point_function("sin", x, validated::sin(Interval(x)), mpfr_sin);
     check_point_function("cos", x, validated::cos(Interval(x)), mpfr_cos);
+  }
+}
+
+// sin and cos remember their last results per thread (kernels/validated.cpp
+// Memo): intervals sharing one end, or hashing alike, must each get their
+// own enclosure, and a second pass in another order the same bits.
+BOOST_AUTO_TEST_CASE(validated_sin_cos_remembered_results_belong_to_their_argument) {
+  Rng r(21);
+  std::vector<Interval> xs;
+  for (int k = 0; k < 200; ++k) {
+    const double a = r.noise() * 4, w = std::ldexp(1.0, r.i(-30, 1));
+    xs.push_back(Interval(a, a + w));
+    xs.push_back(Interval(a, a + 2 * w));   // the same lower end
+    xs.push_back(Interval(a - w, a + w));   // the same upper end as the first
+    xs.push_back(Interval(a));
+  }
+  // Many intervals sharing one end (more than the table has entries, so
+  // that some share a slot): sin and cos are monotone over [1/4, 5/4], so
+  // a remembered narrower interval's enclosure would miss the other end.
+  for (int k = 1; k <= 1000; ++k) {
+    xs.push_back(Interval(0.25, 0.25 + k / 1024.0));
+    xs.push_back(Interval(1.25 - k / 1024.0, 1.25));
+  }
+  std::vector<std::pair<Interval, Interval>> first;
+  for (const Interval& x : xs) {
+    const Interval s = validated::sin(x), c = validated::cos(x);
+    for (const double e : {x.inf(), x.sup()}) {
+      const auto [sl, sh] = mp_bounds(e, mpfr_sin);
+      const auto [cl, ch] = mp_bounds(e, mpfr_cos);
+      BOOST_TEST(mpfr_cmp_d(sl.get(), s.inf()) >= 0);
+      BOOST_TEST(mpfr_cmp_d(sh.get(), s.sup()) <= 0);
+      BOOST_TEST(mpfr_cmp_d(cl.get(), c.inf()) >= 0);
+      BOOST_TEST(mpfr_cmp_d(ch.get(), c.sup()) <= 0);
+    }
+    first.push_back({s, c});
+  }
+  for (std::size_t k = xs.size(); k-- > 0;) {
+    const Interval s = validated::sin(xs[k]), c = validated::cos(xs[k]);
+    BOOST_TEST(s.inf() == first[k].first.inf());
+    BOOST_TEST(s.sup() == first[k].first.sup());
+    BOOST_TEST(c.inf() == first[k].second.inf());
+    BOOST_TEST(c.sup() == first[k].second.sup());
   }
 }
 
@@ -354,6 +399,67 @@ BOOST_AUTO_TEST_CASE(models_enclose_keyframes_and_the_reference_motion) {
       }
     }
   }
+}
+
+// SegmentModel::pose_values is the value part of pose(Jet(s)) bit for bit:
+// the link chain's own value-only evaluation (LinkChain::pose_values) on a
+// chain with rpy and quaternion constants, an identity constant, revolute
+// joints (one axis not of unit length) and a prismatic one; the keyframe
+// models through the default.  Slices' boxes and sampled poses rely on it
+// (proofs/enclosures.md section 2).
+BOOST_AUTO_TEST_CASE(pose_values_are_the_jet_values_bit_for_bit) {
+  auto rpy_pose = [](const char* x, const char* y, const char* z, std::array<const char*, 3> rpy) {
+    Pose p;
+    auto e = [](const char* text) { return Exact(std::string(text)); };
+    p.translation = {e(x), e(y), e(z)};
+    p.rotation.kind = Rotation::Kind::Rpy;
+    p.rotation.rpy = {e(rpy[0]), e(rpy[1]), e(rpy[2])};
+    return p;
+  };
+  Pose quat;
+  quat.translation = {Exact(0), Exact(1, 10), Exact(3, 10)};
+  quat.rotation.kind = Rotation::Kind::Quaternion;
+  quat.rotation.quaternion = {Exact(3), Exact(1), Exact(0), Exact(-2)};
+  const std::vector<std::vector<Pose>> constants = {{rpy_pose("0", "0", "4/5", {"0", "0", "2/5"})},
+                                                    {rpy_pose("1/5", "0", "1/2", {"1/10", "-3/10", "0"}), quat},
+                                                    {},
+                                                    {rpy_pose("3/5", "0", "0", {"0", "0", "0"})},
+                                                    {rpy_pose("0", "1/20", "1/5", {"7/10", "0", "-1/5"})}};
+  std::vector<ChainJoint> joints(4);
+  joints[0].axis = {Exact(0), Exact(0), Exact(1)};
+  joints[1].axis = {Exact(0), Exact(2), Exact(1)};  // length sqrt 5
+  joints[2].axis = {Exact(1), Exact(0), Exact(0)};
+  joints[3].kind = ChainJoint::Kind::Prismatic;
+  joints[3].axis = {Exact(1), Exact(0), Exact(0)};
+  auto link = std::make_shared<LinkMotion>();
+  link->chain = std::make_shared<const LinkChain>(constants, joints);
+  link->from = {Exact(-1, 2), Exact(1, 4), Exact(2), Exact(0)};
+  link->to = {Exact(6, 5), Exact(-3, 4), Exact(-1, 3), Exact(3, 10)};
+  MotionSegment seg;
+  seg.t0 = 0;
+  seg.t1 = 1;
+  seg.link = link;
+  MotionSegment slerp;
+  slerp.t0 = 0;
+  slerp.t1 = 1;
+  slerp.from = pose_q({Exact(0), Exact(0), Exact(0)}, {Exact(1), Exact(0), Exact(0), Exact(0)});
+  slerp.to = pose_q({Exact(1), Exact(2), Exact(-1)}, {Exact(2), Exact(1), Exact(-1), Exact(3)});
+  slerp.interpolation = Interpolation::Slerp;
+  int compared = 0;
+  for (const MotionSegment* sg : {&seg, &slerp}) {
+    const std::unique_ptr<SegmentModel> model = make_segment_model(*sg);
+    for (int k = 0; k < 16; ++k)
+      for (const Interval& s : {Interval(k / 16.0, (k + 1) / 16.0), Interval(k / 16.0), to_interval(Exact(k, 17))}) {
+        RoundingGuard guard;
+        const PoseJet j = model->pose(Jet(s));
+        const PoseInterval v = model->pose_values(s);
+        for (int e = 0; e < 12; ++e) {
+          BOOST_TEST(std::memcmp(&j[e].v, &v[e], sizeof(Interval)) == 0, "entry " << e << " at s = " << s);
+          ++compared;
+        }
+      }
+  }
+  BOOST_TEST(compared == 2 * 16 * 3 * 12);
 }
 
 BOOST_AUTO_TEST_CASE(slerp_rotation_stays_orthonormal) {
