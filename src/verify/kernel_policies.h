@@ -20,17 +20,21 @@ namespace tmcert::detail {
 // body 2 is fixed (world coordinates, no rho term); B = 2: both move along
 // their joint curve, with the product metric.
 
+// Sets p's centre(s) and radius, in place (its clearance fields stay).
+// In place, not returned and assigned: with a returned Placement<Interval>
+// assigned to a ball's member and then given its clearance, GCC 12 -O3
+// left body2_moving and g2 as stack garbage in the copy (release builds
+// crashed on two-moving-body checks; -O1 with sanitizers did not).
 template <int B, class FT>
-Placement<FT> make_placement(const std::array<FT, 12 * B>& center, const FT& r2) {
-  Placement<FT> p;
+void set_placement(Placement<FT>& p, const std::array<FT, 12 * B>& center, const FT& r2) {
   for (int e = 0; e < 12; ++e) p.g1[e] = center[e];
+  p.body2_moving = B == 2;
   if constexpr (B == 2) {
-    p.body2_moving = true;
     for (int e = 0; e < 12; ++e) p.g2[e] = center[12 + e];
   }
   p.r2 = r2;
-  return p;
 }
+
 
 // A ball of squared radius r2 widened by `tube` (a tolerance, or the
 // remainder of an enclosed motion): (sqrt(r2) + tube)^2, rounded upward.
@@ -139,7 +143,7 @@ struct FilteredPolicy {
       }
       std::array<Interval, 12 * B> c;
       for (int e = 0; e < 12 * B; ++e) c[e] = Interval(b.ball.center[e]);
-      b.interval = make_placement<B>(c, Interval(b.placed_r2));
+      set_placement<B>(b.interval, c, Interval(b.placed_r2));
       b.interval.clear = clear;
     }
     return b;
@@ -183,7 +187,8 @@ struct FilteredPolicy {
           if (!b.exact) {
             std::array<Exact, 12 * B> c;
             for (int e = 0; e < 12 * B; ++e) c[e] = Exact(b.ball.center[e]);
-            b.exact = make_placement<B>(c, Exact(b.placed_r2));
+            b.exact.emplace();
+            set_placement<B>(*b.exact, c, Exact(b.placed_r2));
             b.exact->shift = Exact(b.interval.shift.sup());
           }
           return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], *b.exact);
@@ -230,7 +235,8 @@ struct ExactPolicy {
       const double widened = widen_r2(to_interval(b.r2).sup(), tube);
       b.r2 = std::isfinite(widened) ? Exact(widened) : b.r2 + Exact(1e300);
     }
-    Ball out{make_placement<B>(b.center, b.r2), r2};
+    Ball out{{}, r2};
+    set_placement<B>(out.placement, b.center, b.r2);
     out.placement.clear = clear;
     return out;
   }
@@ -293,7 +299,7 @@ struct FastPolicy {
   Ball ball(const Piece& p) const {
     Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}};
     const double r = std::sqrt(b.ball.r2) + tube;
-    b.placement = make_placement<B>(b.ball.center, tube > 0 ? r * r : b.ball.r2);
+    set_placement<B>(b.placement, b.ball.center, tube > 0 ? r * r : b.ball.r2);
     b.placement.clear = clear;
     return b;
   }
