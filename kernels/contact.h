@@ -7,6 +7,11 @@
 // piece satisfies, for some x in X, y in Y,
 //     Phi(x, y) = |g1(x) - g2(y)|^2 - R^2 (rho1(x)^2 + rho2(y)^2) <= 0,
 // where the rho2 term is present only when body 2 moves too (joint ball).
+// With a clearance d the pair is cleared only when the bodies stay farther
+// apart than d: Phi is lowered by a constant `shift` >= d^2 + 2 d R rhobar,
+// rhobar >= rho over the pair (proofs/clearance.md): Phi - shift > 0 gives
+// |g1(x) - g2(y)| > R rho(x, y) + d, so every map in the ball keeps x and y
+// farther apart than d.
 // With x = oX + EX sX and y = oY + EY sY, Phi is a quadratic in the two
 // parameters s = (sX, sY), and the pair is cleared exactly when the minimum
 // of Phi over the parameter domain is positive.
@@ -56,6 +61,11 @@ struct Placement {
   bool body2_moving = false;
   std::array<FT, 12> g2;     // center for body 2 when it moves
   FT r2;                     // squared radius of the (joint) ball
+  // A clearance d (proofs/clearance.md): `shift` (an upper bound of
+  // d^2 + 2 d R rhobar, subtracted from Phi's constant term) for the contact
+  // test, `clear` (an upper bound of d) for the sphere, slab and axis tests.
+  FT shift = FT(0);
+  double clear = 0;
 };
 
 enum class ContactKind : std::uint8_t { VertexFace = 0, EdgeEdge = 1, FaceVertex = 2 };
@@ -155,6 +165,7 @@ Quadratic2<FT> contact_quadratic(const FeatureGeometry<FT>& X, const FeatureGeom
   };
   subtract_rho(X, 0);
   if (p.body2_moving) subtract_rho(Y, kx);
+  c -= p.shift;
   return Quadratic2<FT>{h[0][0], h[0][1], h[1][1], b[0], b[1], c};
 }
 
@@ -210,9 +221,12 @@ std::size_t vertex_images(const FeatureGeometry<FT>& F, const std::array<FT, 12>
 // The test on vertex images already placed: xs (nx of them) of X under g1,
 // ys of Y under g2 (or as they are), with rho an upper bound of
 // max_X rho1^2 (+ max_Y rho2^2 when body 2 moves) and r2 the ball's R^2.
+// With a clearance (`clear` >= d > 0) the gap must exceed
+// |n| (R sqrt(rho) + clear) instead (proofs/clearance.md): then
+// |g1(x) - g2(y)| > R rho(x, y) + d.
 template <class FT>
 bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, const Vec3<FT>* ys, std::size_t ny,
-                      const FT& rho, const FT& r2) {
+                      const FT& rho, const FT& r2, double clear = 0) {
   constexpr bool interval = std::is_same_v<FT, CGAL::Interval_nt<false>>;
   if constexpr (!interval && !std::is_same_v<FT, double>) {
     return false;
@@ -308,10 +322,24 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
         // (Opacified as above.)
         const double g_lo = ylo - xhi >= xlo - yhi ? -CGAL::IA_opacify(xhi - ylo) : -CGAL::IA_opacify(yhi - xlo);
         const double g2_lo = -CGAL::IA_opacify(CGAL::IA_opacify(-g_lo) * g_lo);
+        if (clear > 0) {
+          // |n| (R sqrt(rho) + clear), each factor an upper bound rounded
+          // up (IEEE sqrt rounds by the current, upward, mode).
+          const double reach_up = CGAL::IA_opacify(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) *
+                                                   (std::sqrt(hi(r2)) * std::sqrt(hi(rho)) + clear));
+          if (g_lo > 0 && std::isfinite(reach_up) && g_lo > reach_up) return true;
+          continue;
+        }
         const double bound_up = CGAL::IA_opacify(hi(r2) * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) * hi(rho));
         if (g_lo > 0 && g2_lo > bound_up) return true;
       } else {
         const FT g = ylo - xhi >= xlo - yhi ? FT(ylo) - FT(xhi) : FT(xlo) - FT(yhi);
+        if (clear > 0) {
+          const double reach = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) *
+                               (std::sqrt(hi(r2)) * std::sqrt(hi(rho)) + clear);
+          if (lo(g) > reach) return true;
+          continue;
+        }
         const FT bound = r2 * (FT(n[0]) * FT(n[0]) + FT(n[1]) * FT(n[1]) + FT(n[2]) * FT(n[2])) * rho;
         if (lo(g) > 0 && lo(g * g) > hi(bound)) return true;
       }
@@ -329,7 +357,7 @@ bool apart_along_axis(ContactKind kind, const FeatureGeometry<FT>& X, const Feat
   const std::size_t ny = detail::vertex_images(Y, p.body2_moving ? &p.g2 : nullptr, ys.data());
   FT rho = detail::max_rho2(X);
   if (p.body2_moving) rho = rho + detail::max_rho2(Y);
-  return apart_along_axis<FT>(kind, xs.data(), nx, ys.data(), ny, rho, p.r2);
+  return apart_along_axis<FT>(kind, xs.data(), nx, ys.data(), ny, rho, p.r2, p.clear);
 }
 
 // Sign of min Phi over X x Y: POSITIVE means the pair is cleared on the

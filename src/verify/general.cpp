@@ -76,17 +76,6 @@ Exact mass_sum(const Body& b) {
   return w;
 }
 
-// sqrt(x) rounded upward.
-double sqrt_up(const Exact& x) {
-  RoundingGuard guard;
-  return CGAL::sqrt(to_interval(x)).sup();
-}
-
-double add_up(double a, double b) {
-  RoundingGuard guard;
-  return (Interval(a) + Interval(b)).sup();
-}
-
 template <int B>
 void run_part(const PreparedBody& m, const PreparedBody& o, bool swapped, const PartMotion& pm, const PartMotion& po,
               const Exact& t0, const Exact& t1, const VerifyOptions& options, const std::array<double, 2>& tube,
@@ -208,19 +197,19 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
 
-  // Tubes: each body's tolerance; the clearance as a tolerance of the
-  // searched body: a translation by v has norm |v| sqrt(sum w) in its
-  // metric, and displaces every point by |v| (proofs/enclosures.md section 6).
-  // The mass sums only where a tolerance or clearance needs them (a sum
-  // over every mass point: noticeable per check for a large fixed body).
-  const Exact wm = mb.tolerance > 0 || clearance > 0 ? mass_sum(mb) : Exact(1);
+  // Tubes: each body's tolerance (proofs/enclosures.md section 6).  The
+  // clearance is no tube: every test asks for a distance above it instead
+  // (proofs/clearance.md).  The mass sums only where a tolerance needs them
+  // (a sum over every mass point: noticeable per check for a large fixed
+  // body).
+  const Exact wm = mb.tolerance > 0 ? mass_sum(mb) : Exact(1);
   const Exact wo = ob.tolerance > 0 ? mass_sum(ob) : Exact(1);
-  std::array<double, 2> tube = {add_up(to_interval(mb.tolerance).sup(), clearance > 0 ? sqrt_up(clearance * clearance * wm) : 0.0),
-                                o.moving ? to_interval(ob.tolerance).sup() : 0.0};
+  std::array<double, 2> tube = {to_interval(mb.tolerance).sup(), o.moving ? to_interval(ob.tolerance).sup() : 0.0};
   const bool two = o.moving;
   CheckExtras<1> e1;
   CheckExtras<2> e2;
   e1.clearance2 = e2.clearance2 = clearance * clearance;
+  e1.clear = e2.clear = to_interval(clearance).sup();
   e1.reach2 = e2.reach2 = {mb.tolerance * mb.tolerance / wm, ob.tolerance * ob.tolerance / wo};
   // The first part's start: proven free by the caller, or tested by the search.
   e1.start_proven_free = e2.start_proven_free = start_proven_free;

@@ -112,6 +112,10 @@ struct SphereFrame {
   std::array<FT, 12> g1, g2;
   bool body2_moving = false;
   FT n1, n2, R;
+  // An upper bound of the check's clearance d (0: none): body 1's placed
+  // spheres grow by it, and the slab test's range by d |n_b|
+  // (proofs/clearance.md): apart then means farther apart than d.
+  double clear = 0;
 };
 
 namespace detail {
@@ -166,12 +170,14 @@ SphereFrame<FT> sphere_frame(const Placement<FT>& p) {
   f.n1 = detail::operator_norm_bound(p.g1);
   f.n2 = p.body2_moving ? detail::operator_norm_bound(p.g2) : FT(1);
   f.R = detail::sqrt_of(p.r2);
+  f.clear = p.clear;
   return f;
 }
 
 // A node's sphere placed in the world by the piece's ball: every point the
 // node's features can occupy on the piece lies within `f` of `c`
-// (|A| r + R p for a moving body, r for a fixed one).
+// (|A| r + R p for a moving body, r for a fixed one), and with a clearance d
+// body 1's spheres hold every point within d of those (|A| r + R p + d).
 template <class FT>
 struct WorldSphere {
   Vec3<FT> c;
@@ -183,7 +189,10 @@ struct WorldSphere {
 template <class FT>
 WorldSphere<FT> world_sphere(const SphereFrame<FT>& fr, bool body1, const BvNode& n) {
   const Vec3<FT> c{FT(n.c[0]), FT(n.c[1]), FT(n.c[2])};
-  if (body1) return {detail::apply_point(fr.g1, c), fr.n1 * FT(n.r) + fr.R * FT(n.p)};
+  if (body1) {
+    if (fr.clear > 0) return {detail::apply_point(fr.g1, c), fr.n1 * FT(n.r) + fr.R * FT(n.p) + FT(fr.clear)};
+    return {detail::apply_point(fr.g1, c), fr.n1 * FT(n.r) + fr.R * FT(n.p)};
+  }
   if (fr.body2_moving) return {detail::apply_point(fr.g2, c), fr.n2 * FT(n.r) + fr.R * FT(n.p)};
   return {c, FT(n.r)};
 }
@@ -308,7 +317,10 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   // interval square roots, which switch the rounding mode).
   const double size_up = std::sqrt(perp2_up) * a.r;
   const double fat_up = sb.nb_up * f.R.sup() * a.p;
-  const double spread = size_up + fat_up;
+  // A clearance d: every point within d of a's features projects within
+  // d |n_b| of theirs (proofs/clearance.md); no piece shrinks it.
+  const double clear_up = f.clear > 0 ? sb.nb_up * f.clear : 0.0;
+  const double spread = size_up + fat_up + clear_up;
   if (!(spread >= 0) || !std::isfinite(spread)) return out;  // NaN or unbounded: no claim
   // alpha (n_a.x) over a's slab [slab_lo, slab_hi], plus perp.c and the shift.
   const double s_hi = alpha >= 0 ? a.slab_hi : a.slab_lo, s_lo = alpha >= 0 ? a.slab_lo : a.slab_hi;
@@ -320,7 +332,7 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   // The range of n_b.(g(x) + delta(x)): [-(base_negdown + spread), base_up + spread].
   out.applicable = true;
   out.apart = hi_up < b.slab_lo || -lo_negdown > b.slab_hi;
-  const double reach = size_up;  // descent decisions only, from here
+  const double reach = size_up + clear_up;  // descent decisions only, from here
   const double w0_hi = base_up + reach, w0_lo = -(base_negdown + reach);
   out.apart_unfattened = w0_hi < b.slab_lo || w0_lo > b.slab_hi;
   out.gap = std::max(b.slab_lo - w0_hi, w0_lo - b.slab_hi);

@@ -20,17 +20,21 @@ namespace tmcert::detail {
 // body 2 is fixed (world coordinates, no rho term); B = 2: both move along
 // their joint curve, with the product metric.
 
+// Sets p's centre(s) and radius, in place (its clearance fields stay).
+// In place, not returned and assigned: with a returned Placement<Interval>
+// assigned to a ball's member and then given its clearance, GCC 12 -O3
+// left body2_moving and g2 as stack garbage in the copy (release builds
+// crashed on two-moving-body checks; -O1 with sanitizers did not).
 template <int B, class FT>
-Placement<FT> make_placement(const std::array<FT, 12 * B>& center, const FT& r2) {
-  Placement<FT> p;
+void set_placement(Placement<FT>& p, const std::array<FT, 12 * B>& center, const FT& r2) {
   for (int e = 0; e < 12; ++e) p.g1[e] = center[e];
+  p.body2_moving = B == 2;
   if constexpr (B == 2) {
-    p.body2_moving = true;
     for (int e = 0; e < 12; ++e) p.g2[e] = center[12 + e];
   }
   p.r2 = r2;
-  return p;
 }
+
 
 // A ball of squared radius r2 widened by `tube` (a tolerance, or the
 // remainder of an enclosed motion): (sqrt(r2) + tube)^2, rounded upward.
@@ -41,6 +45,29 @@ inline double widen_r2(double r2, double tube) {
   const Interval r = CGAL::sqrt(Interval(r2)) + Interval(tube);
   const double out = CGAL::square(r).sup();
   return std::isfinite(out) ? out : std::numeric_limits<double>::infinity();
+}
+
+// A clearance d (proofs/clearance.md): an upper bound of
+// d^2 + 2 d R sqrt(rho2), R = sqrt(r2) the (widened) ball's radius and rho2
+// an upper bound of rho^2 over the feature pair; the contact test lowers
+// Phi by it.  `clear` is an upper bound of d.  Infinity when not finite (the
+// caller then clears nothing).
+inline double clearance_shift(double clear, double r2, double rho2) {
+  if (clear == 0) return 0;
+  RoundingGuard guard;
+  const Interval d(clear);
+  const Interval out = CGAL::square(d) + Interval(2) * d * CGAL::sqrt(Interval(r2)) * CGAL::sqrt(Interval(rho2));
+  return std::isfinite(out.sup()) ? out.sup() : std::numeric_limits<double>::infinity();
+}
+
+// An upper bound of max rho^2 over the pair of p (both sides when body 2
+// moves), from the features' bounds.
+template <int B>
+double pair_rho2(const FeatureGeometry<Interval>& x, const FeatureGeometry<Interval>& y) {
+  RoundingGuard guard;
+  Interval rho = detail::max_rho2(x);
+  if constexpr (B == 2) rho += detail::max_rho2(y);
+  return rho.sup();
 }
 
 template <int B>
@@ -97,6 +124,7 @@ struct FilteredPolicy {
   const PreparedBody& f;
   const HomogeneousCurve<Exact, B>& curve;
   double tube = 0;  // every pose of the check lies within this of its piece's curve (tolerance)
+  double clear = 0;  // an upper bound of the check's clearance (proofs/clearance.md)
 
   Piece root() const { return enclose(curve); }
   void split(const Piece& p, Piece& l, Piece& r) const {
@@ -115,7 +143,8 @@ struct FilteredPolicy {
       }
       std::array<Interval, 12 * B> c;
       for (int e = 0; e < 12 * B; ++e) c[e] = Interval(b.ball.center[e]);
-      b.interval = make_placement<B>(c, Interval(b.placed_r2));
+      set_placement<B>(b.interval, c, Interval(b.placed_r2));
+      b.interval.clear = clear;
     }
     return b;
   }
@@ -140,10 +169,17 @@ struct FilteredPolicy {
                                                     : Y.fixed_images(p.j);
       Interval rho = detail::max_rho2(x);
       if (b.interval.body2_moving) rho += detail::max_rho2(y);
-      if (apart_along_axis<Interval>(p.kind, xs, nx, ys, ny, rho, b.interval.r2)) {
+      if (apart_along_axis<Interval>(p.kind, xs, nx, ys, ny, rho, b.interval.r2, clear)) {
         ++stats.axis_clears;
         return CGAL::POSITIVE;
       }
+    }
+    if (clear > 0) {
+      // The contact test with the clearance's shift for this pair.
+      const double shift = clearance_shift(clear, b.placed_r2, pair_rho2<B>(X.interval[p.i], Y.interval[p.j]));
+      if (!std::isfinite(shift)) return CGAL::ZERO;  // no bound: not cleared
+      b.interval.shift = Interval(shift);
+      if (b.exact) b.exact->shift = Exact(shift);
     }
     return filtered(
         [&] { return contact_sign<Interval>(p.kind, X.interval[p.i], Y.interval[p.j], b.interval); },
@@ -151,7 +187,9 @@ struct FilteredPolicy {
           if (!b.exact) {
             std::array<Exact, 12 * B> c;
             for (int e = 0; e < 12 * B; ++e) c[e] = Exact(b.ball.center[e]);
-            b.exact = make_placement<B>(c, Exact(b.placed_r2));
+            b.exact.emplace();
+            set_placement<B>(*b.exact, c, Exact(b.placed_r2));
+            b.exact->shift = Exact(b.interval.shift.sup());
           }
           return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], *b.exact);
         },
@@ -162,7 +200,7 @@ struct FilteredPolicy {
   // over the intervals enclosing the control points and features.  An
   // uncertain comparison only means "not cleared": no exact fallback.
   bool hull(const Piece& piece, const PairRef& p) const {
-    if (tube > 0) return false;  // the hull test knows no tube: it clears nothing then
+    if (tube > 0 || clear > 0) return false;  // the hull test knows no tube or clearance: it clears nothing then
     const FeatureTable& X = moving_table(m, p.kind);
     const FeatureTable& Y = other_table(f, p.kind);
     return hull_search<B>(piece, X.approx[p.i], Y.approx[p.j], [&](const HullPlane& plane) {
@@ -185,6 +223,7 @@ struct ExactPolicy {
   const PreparedBody& f;
   const HomogeneousCurve<Exact, B>& curve;
   double tube = 0;
+  double clear = 0;  // an upper bound of the check's clearance (proofs/clearance.md)
 
   Piece root() const { return curve; }
   void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
@@ -196,7 +235,10 @@ struct ExactPolicy {
       const double widened = widen_r2(to_interval(b.r2).sup(), tube);
       b.r2 = std::isfinite(widened) ? Exact(widened) : b.r2 + Exact(1e300);
     }
-    return Ball{make_placement<B>(b.center, b.r2), r2};
+    Ball out{{}, r2};
+    set_placement<B>(out.placement, b.center, b.r2);
+    out.placement.clear = clear;
+    return out;
   }
   // The sphere test over intervals enclosing the exact ball: certified, and
   // it only ever skips contact tests that would clear too.
@@ -209,18 +251,27 @@ struct ExactPolicy {
     if (p.body2_moving)
       for (int e = 0; e < 12; ++e) p.g2[e] = to_interval(b.placement.g2[e]);
     p.r2 = to_interval(b.placement.r2);
+    p.clear = b.placement.clear;
     return sphere_frame(p);
   }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats, bool axis = false) const {
     FilterCounters& c = stats.by_kind[static_cast<int>(p.kind)];
     ++c.calls;
     ++c.exact_fallbacks;  // every call is exact
+    if (clear > 0) {
+      const FeatureTable& X = moving_table(m, p.kind);
+      const FeatureTable& Y = other_table(f, p.kind);
+      const double shift = clearance_shift(clear, to_interval(b.placement.r2).sup(),
+                                           pair_rho2<B>(X.interval[p.i], Y.interval[p.j]));
+      if (!std::isfinite(shift)) return CGAL::ZERO;  // no bound: not cleared
+      b.placement.shift = Exact(shift);
+    }
     return contact_sign<Exact>(p.kind, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j],
                                b.placement);
   }
   // The hull test, decided exactly (proofs/hull-test.md).
   bool hull(const Piece& piece, const PairRef& p) const {
-    if (tube > 0) return false;
+    if (tube > 0 || clear > 0) return false;
     return hull_search<B>(piece, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
                           [&](const HullPlane& plane) {
                             return hull_apart<B>(piece, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], plane);
@@ -241,13 +292,15 @@ struct FastPolicy {
   const PreparedBody& f;
   const HomogeneousCurve<Exact, B>& curve;
   double tube = 0;
+  double clear = 0;  // the check's clearance (not certified here)
 
   Piece root() const { return approximate(curve); }
   void split(const Piece& p, Piece& l, Piece& r) const { split_half(p, l, r); }
   Ball ball(const Piece& p) const {
     Ball b{bounding_ball<B>(p, metrics_of<B>(m, f)), {}};
     const double r = std::sqrt(b.ball.r2) + tube;
-    b.placement = make_placement<B>(b.ball.center, tube > 0 ? r * r : b.ball.r2);
+    set_placement<B>(b.placement, b.ball.center, tube > 0 ? r * r : b.ball.r2);
+    b.placement.clear = clear;
     return b;
   }
   using SphereFT = double;
@@ -256,6 +309,13 @@ struct FastPolicy {
     // No axis test here: in double the contact test itself is about as
     // cheap (gripper: 0.19 -> 0.21 s with it).
     ++stats.by_kind[static_cast<int>(p.kind)].calls;
+    if (clear > 0) {
+      const FeatureGeometry<double>& X = moving_table(m, p.kind).approx[p.i];
+      const FeatureGeometry<double>& Y = other_table(f, p.kind).approx[p.j];
+      double rho2 = CGAL::to_double(detail::max_rho2(X));
+      if constexpr (B == 2) rho2 += CGAL::to_double(detail::max_rho2(Y));
+      b.placement.shift = clear * clear + 2 * clear * std::sqrt(b.placement.r2) * std::sqrt(rho2);
+    }
     return contact_sign<double>(p.kind, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
                                 b.placement);
   }
@@ -264,6 +324,7 @@ struct FastPolicy {
     if (tube > 0) return false;
     const FeatureGeometry<double>& X = moving_table(m, p.kind).approx[p.i];
     const FeatureGeometry<double>& Y = other_table(f, p.kind).approx[p.j];
+    if (clear > 0) return false;
     return hull_search<B>(piece, X, Y, [&](const HullPlane& plane) { return hull_apart<B>(piece, X, Y, plane); });
   }
 };
@@ -279,7 +340,7 @@ struct EnclosedSource {
   std::array<const SegmentModel*, B> models{};
   std::array<Exact, B> s0, s1;
   std::array<const MetricData*, B> metrics{};
-  std::array<double, B> tube{};  // per body: tolerance (and clearance), in its metric
+  std::array<double, B> tube{};  // per body: tolerance, in its metric
 
   Exact s_of(int b, const Exact& u) const { return s0[b] + u * (s1[b] - s0[b]); }
   // The poses at u, enclosed.
@@ -358,14 +419,12 @@ struct EnclosedPolicy {
     r = enclose_on(mid, p.u1);
   }
   Ball ball(const Piece& p) const {
-    Ball b{};
     if (!std::isfinite(p.tube)) {
+      Ball b{};
       b.ball.valid = false;
       return b;
     }
-    static_cast<typename FilteredPolicy<B>::Ball&>(b) = base.ball_of(p.controls, p.tube);
-    b.remainder = p.remainder;
-    return b;
+    return Ball{base.ball_of(p.controls, p.tube), p.remainder};
   }
   SphereFrame<Interval> frame(const Ball& b) const { return base.frame(b); }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats, bool axis = false) const {

@@ -81,12 +81,12 @@ void Check<B>::run() {
     return;
   }
   if (extras.enclosed) {
-    search(EnclosedPolicy<B>{FilteredPolicy<B>{moving, other, curve, 0}, *extras.enclosed});
+    search(EnclosedPolicy<B>{FilteredPolicy<B>{moving, other, curve, 0, extras.clear}, *extras.enclosed});
   } else {
     switch (options.kernel) {
-      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve, extras.tube}); break;
-      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve, extras.tube}); break;
-      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve, extras.tube}); break;
+      case KernelKind::Filtered: search(FilteredPolicy<B>{moving, other, curve, extras.tube, extras.clear}); break;
+      case KernelKind::Exact: search(ExactPolicy<B>{moving, other, curve, extras.tube, extras.clear}); break;
+      case KernelKind::Fast: search(FastPolicy<B>{moving, other, curve, extras.tube, extras.clear}); break;
     }
   }
   secure_partition();

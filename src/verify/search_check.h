@@ -49,11 +49,12 @@ struct Node {
 bool merge_result(CheckResult& total, const CheckResult& part);
 
 // What a check adds to the plain contact search (src/verify/general.cpp):
-// a tube around the motion (tolerances, clearance), enclosed motions, and
-// the distance witnesses of tolerance and clearance.
+// a tube around the motion (tolerances), the clearance's offset, enclosed
+// motions, and the distance witnesses of tolerance and clearance.
 template <int B>
 struct CheckExtras {
   double tube = 0;  // rational motions: every admissible pose is within this of the curve (product metric)
+  double clear = 0;  // an upper bound of the clearance: the tests' offset (proofs/clearance.md)
   const EnclosedSource<B>* enclosed = nullptr;  // enclosed motions instead of `curve`
   // Witnesses at a distance (exact configurations only): the clearance
   // squared, and per side of the check (moving, other) the squared length
