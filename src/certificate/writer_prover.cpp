@@ -320,7 +320,7 @@ std::optional<int> Prover::prove(const PieceImages& im, const std::function<cons
   } pop{path};
   // The parts of a split on `side`: the child on the path of the last
   // failure first.
-  auto split = [&](int side) -> std::optional<int> {
+  auto split = [&](int side, int old = -1) -> std::optional<int> {
     const std::array<int, 2>& c = side == 0 ? A.children[g] : B.children[h];
     auto pair = [&](int i) {
       return side == 0 ? std::pair{c[i], h} : std::pair{g, c[i]};
@@ -336,6 +336,7 @@ std::optional<int> Prover::prove(const PieceImages& im, const std::function<cons
       if (!p) return std::nullopt;
       parts[i] = *p;
     }
+    if (old >= 0 && nodes.reusable[old].parts == parts) return old;
     return nodes.split(side, parts);
   };
   // The neighbouring piece's proof of this pair first.
@@ -349,7 +350,7 @@ std::optional<int> Prover::prove(const PieceImages& im, const std::function<cons
     if (r.kind == ProofNodes::Reusable::kSplit) {
       follow = r.side;
       if (proofs % kRetry != 0) {
-        const std::optional<int> k = split(*follow);
+        const std::optional<int> k = split(*follow, was->second);
         if (k) last[key] = *k;
         return k;
       }
