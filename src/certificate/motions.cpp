@@ -723,14 +723,17 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
       out.exact = restrict(*seg->rational, ta, tb);
       return out;
     }
-    // The union of the enclosures over kSubBalls equal parts of the piece:
-    // each ball narrower, so less of the dependency blow-up of the
-    // formulas (a box over a cover of the piece holds its poses).
+    // A keyframe segment: the union of the enclosures over kSubBalls equal
+    // parts of the piece, each ball narrower, so less of the dependency
+    // blow-up of the interpolation's formula (a box over a cover of the
+    // piece holds its poses).  A robot link: one ball (its chain costs
+    // about ten times a slerp, and parts did not make its pieces fewer).
+    const int parts = seg->link ? 1 : kSubBalls;
     const Exact span = seg->t1 - seg->t0;
-    const Exact u0 = (ta - seg->t0) / span, du = (tb - ta) / span / kSubBalls;
+    const Exact u0 = (ta - seg->t0) / span, du = (tb - ta) / span / parts;
     std::optional<PoseBox> box;
     Mat34E lo, hi;
-    for (int k = 0; k < kSubBalls; ++k) {
+    for (int k = 0; k < parts; ++k) {
       const B s = interval(u0 + du * k, u0 + du * (k + 1));
       const auto pose = checker_kind(*seg).pose(*seg, s);
       std::optional<PoseBox> part;
