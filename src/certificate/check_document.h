@@ -79,7 +79,12 @@ class Reader {
     return v.get_ref<const std::string&>();
   }
   std::size_t index(const json& v, const std::string& path, std::size_t limit, const std::string& what) const {
-    if (!v.is_number_integer()) bad(path, std::string("expected a non-negative integer, got ") + describe(v));
+    return index_at(v, [&] { return path; }, limit, what);
+  }
+  // The same with the path built only for a message (hot loops).
+  template <class PathFn>
+  std::size_t index_at(const json& v, const PathFn& path, std::size_t limit, const char* what) const {
+    if (!v.is_number_integer()) bad(path(), std::string("expected a non-negative integer, got ") + describe(v));
     if (v.is_number_unsigned()) {
       const std::uint64_t x = v.get<std::uint64_t>();
       if (x < limit) return static_cast<std::size_t>(x);
@@ -87,7 +92,11 @@ class Reader {
       const std::int64_t x = v.get<std::int64_t>();
       if (x >= 0 && static_cast<std::uint64_t>(x) < limit) return static_cast<std::size_t>(x);
     }
-    bad(path, v.dump() + " is out of range (" + what + ")");
+    bad(path(), v.dump() + " is out of range (" + what + ")");
+  }
+  template <class PathFn>
+  std::size_t index_at(const json& v, const PathFn& path, std::size_t limit, const std::string& what) const {
+    return index_at(v, path, limit, what.c_str());
   }
   Exact rational(const json& v, const std::string& path) const {
     return rational_at(v, [&] { return path; });

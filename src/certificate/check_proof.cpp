@@ -151,7 +151,7 @@ void Checker::prove(const json& node_in, std::uint32_t g, std::uint32_t h, std::
     in_.bad(path(), "proof tree deeper than " + std::to_string(kMaxProofDepth) + " splits");
   const json* resolved = &node_in;
   while (resolved->is_number_integer())  // validated: each entry refers to earlier ones only
-    resolved = &(*ctx.nodes)[in_.index(*resolved, path(), ctx.nodes->size(), "an index into nodes")];
+    resolved = &(*ctx.nodes)[in_.index_at(*resolved, path, ctx.nodes->size(), "an index into nodes")];
   const json& node = *resolved;
   auto here = [&] {
     return pc.label + ": " + trail_path(trail) + " (groups " + std::to_string(g) + ", " + std::to_string(h) + ")";
@@ -160,14 +160,15 @@ void Checker::prove(const json& node_in, std::uint32_t g, std::uint32_t h, std::
   std::size_t first = 0, side = 0;
   if (node.is_array()) {  // a split [s, P1, ..., Pm]
     if (node.empty()) in_.index(json(), path() + "[0]", 2, "0 or 1");  // throws
-    side = in_.index(node[0], path() + "[0]", 2, "0 or 1");
+    side = in_.index_at(node[0], [&] { return path() + "[0]"; }, 2, "0 or 1");
     parts = &node;
     first = 1;
   } else {
     if (!node.is_object()) in_.object(node, path());
     const json* sep = in_.find(node, "sep");
-    const json* split_side = in_.find(node, "split");
-    if (const json* exact = in_.find(node, "exact")) {
+    const bool only_sep = sep && node.size() == 1;  // (most nodes: no other member to look for)
+    const json* split_side = only_sep ? nullptr : in_.find(node, "split");
+    if (const json* exact = only_sep ? nullptr : in_.find(node, "exact")) {
       validate_exact_leaf(node, *exact, sep || split_side, path());
       if (ctx.general)  // exact claims decide the check's one rational curve, which a general check has not
         reject(here() + ": exact no-contact claims are not part of certificates of planner motions, tolerances or "

@@ -218,20 +218,29 @@ int ProofNodes::separation(const std::array<double, 3>& n) {
   std::string key = "d";
   for (double x : n) append_bytes(key, x + 0.0);  // -0 as 0
   auto [it, fresh] = index.emplace(std::move(key), static_cast<int>(nodes.size()));
-  if (fresh) nodes.push_back({{"sep", integer_direction({Exact(n[0]), Exact(n[1]), Exact(n[2])})}});
+  if (fresh) {
+    nodes.push_back({{"sep", integer_direction({Exact(n[0]), Exact(n[1]), Exact(n[2])})}});
+    reusable.push_back({Reusable::kSeparation, 0, n, {}});
+  }
   return it->second;
 }
 
 int ProofNodes::separation(const Vec3E& n) {
   json node{{"sep", integer_direction(n)}};
   auto [it, fresh] = index.emplace("q" + node.dump(), static_cast<int>(nodes.size()));
-  if (fresh) nodes.push_back(std::move(node));
+  if (fresh) {
+    nodes.push_back(std::move(node));
+    reusable.emplace_back();
+  }
   return it->second;
 }
 
 int ProofNodes::exact_claim() {
   auto [it, fresh] = index.emplace("e", static_cast<int>(nodes.size()));
-  if (fresh) nodes.push_back({{"exact", "no_contact"}});
+  if (fresh) {
+    nodes.push_back({{"exact", "no_contact"}});
+    reusable.emplace_back();
+  }
   return it->second;
 }
 
@@ -244,6 +253,7 @@ int ProofNodes::split(int side, const std::vector<int>& parts) {
     json node = json::array({side});
     for (int p : parts) node.push_back(p);
     nodes.push_back(std::move(node));
+    reusable.push_back({Reusable::kSplit, side, {}, parts});
   }
   return it->second;
 }
@@ -300,6 +310,52 @@ json integer_direction(const Vec3E& n) {
 
 std::optional<int> Prover::prove(const PieceImages& im, const std::function<const CurveE&()>& exact, int g, int h) const {
   const std::uint64_t key = static_cast<std::uint64_t>(g) << 32 | static_cast<std::uint32_t>(h);
+  if (g == 0 && h == 0) ++proofs;
+  const BodyGroups& A = *groups[0];
+  const BodyGroups& B = *groups[1];
+  path.push_back(key);
+  struct Pop {
+    std::vector<std::uint64_t>& path;
+    ~Pop() { path.pop_back(); }
+  } pop{path};
+  // The parts of a split on `side`: the child on the path of the last
+  // failure first.
+  auto split = [&](int side, int old = -1) -> std::optional<int> {
+    const std::array<int, 2>& c = side == 0 ? A.children[g] : B.children[h];
+    auto pair = [&](int i) {
+      return side == 0 ? std::pair{c[i], h} : std::pair{g, c[i]};
+    };
+    auto key_of = [](std::pair<int, int> p) {
+      return static_cast<std::uint64_t>(p.first) << 32 | static_cast<std::uint32_t>(p.second);
+    };
+    const int first = hard.size() > path.size() && hard[path.size()] == key_of(pair(1)) ? 1 : 0;
+    std::vector<int> parts(2);
+    for (int i : {first, 1 - first}) {
+      const auto [cg, ch] = pair(i);
+      const std::optional<int> p = prove(im, exact, cg, ch);
+      if (!p) return std::nullopt;
+      parts[i] = *p;
+    }
+    if (old >= 0 && nodes.reusable[old].parts == parts) return old;
+    return nodes.split(side, parts);
+  };
+  // The neighbouring piece's proof of this pair first.
+  std::optional<int> follow;  // the side of a remembered split
+  if (const auto was = last.find(key); was != last.end()) {
+    const ProofNodes::Reusable& r = nodes.reusable[was->second];
+    if (r.kind == ProofNodes::Reusable::kSeparation && certify(im, r.direction, g, h)) {
+      ++stats.separations;
+      return was->second;
+    }
+    if (r.kind == ProofNodes::Reusable::kSplit) {
+      follow = r.side;
+      if (proofs % kRetry != 0) {
+        const std::optional<int> k = split(*follow, was->second);
+        if (k) last[key] = *k;
+        return k;
+      }
+    }
+  }
   const auto remembered = memory.find(key);
   std::optional<std::array<double, 3>> n;
   if (remembered != memory.end() && remembered->second && certify(im, *remembered->second, g, h))
@@ -309,10 +365,10 @@ std::optional<int> Prover::prove(const PieceImages& im, const std::function<cons
   if (n) memory[key] = n;
   if (n) {
     ++stats.separations;
-    return nodes.separation(*n);
+    const int k = nodes.separation(*n);
+    last[key] = k;
+    return k;
   }
-  const BodyGroups& A = *groups[0];
-  const BodyGroups& B = *groups[1];
   const bool leaf_a = A.element[g] >= 0, leaf_b = B.element[h] >= 0;
   if (leaf_a && leaf_b) {
     // (The exact fallback knows no margins: general checks bisect instead.)
@@ -326,16 +382,13 @@ std::optional<int> Prover::prove(const PieceImages& im, const std::function<cons
       return nodes.exact_claim();
     }
     failed = {A.element[g], B.element[h]};
+    hard = path;
     return std::nullopt;
   }
   const int side = leaf_a ? 1 : leaf_b ? 0 : (A.vertices[g].size() >= B.vertices[h].size() ? 0 : 1);
-  std::vector<int> parts;
-  for (int c : side == 0 ? A.children[g] : B.children[h]) {
-    const std::optional<int> p = side == 0 ? prove(im, exact, c, h) : prove(im, exact, g, c);
-    if (!p) return std::nullopt;
-    parts.push_back(*p);
-  }
-  return nodes.split(side, parts);
+  const std::optional<int> k = split(side);
+  if (k) last[key] = *k;
+  return k;
 }
 
 }  // namespace tmcert::certificate::writer_internal

@@ -38,6 +38,17 @@ struct PieceImages {
 struct ProofNodes {
   std::vector<json> nodes;
   std::unordered_map<std::string, int> index;  // keyed by a byte string of the node
+  // Per node, what the prover needs to try it again on another piece: a
+  // separation found in double precision (its direction), a split (its
+  // side and parts), or anything else (an exact direction or claim: found
+  // again rather than reused).
+  struct Reusable {
+    enum Kind : char { kOther, kSeparation, kSplit } kind = kOther;
+    int side = 0;
+    std::array<double, 3> direction{};
+    std::vector<int> parts;
+  };
+  std::vector<Reusable> reusable;
 
   // The number of a node (the existing one for an equal node): a
   // separation with direction n (a double direction, or an exact one), an
@@ -84,6 +95,23 @@ struct Prover {
   // The direction an earlier piece found for a pair of groups (neighbouring
   // pieces mostly share them).
   mutable std::unordered_map<std::uint64_t, std::optional<std::array<double, 3>>> memory;
+
+  // The proof node an earlier piece used for a pair of groups: tried
+  // first on the next piece (its separations certified again, its splits
+  // followed without searching), so that only what fails is searched
+  // again and an unchanged proof is the same node.
+  mutable std::unordered_map<std::uint64_t, int> last;
+
+  // The pairs from the root down to the last pair of leaves found
+  // inseparable: visited first in a split, so that a piece that fails
+  // there (to be bisected) fails before the rest is proven.
+  mutable std::vector<std::uint64_t> path, hard;
+
+  // Proofs begun (a split remembered from a neighbour is followed without
+  // searching its pair again, except on every kRetry-th piece, where a
+  // coarser proof is looked for).
+  mutable std::uint64_t proofs = 0;
+  static constexpr std::uint64_t kRetry = 8;
 
   // The check's proof nodes (shared by all its pieces).
   mutable ProofNodes nodes;

@@ -203,4 +203,52 @@ BOOST_AUTO_TEST_CASE(exact_link_pose_matches_the_verifiers) {
   BOOST_TEST(exact == 3);  // without rpy: every joint at 0, or only the prismatic of length 5 off 0
 }
 
+// A piece's pose box (piece_motion) holds the poses sampled on the piece
+// and is close to their spread: enclosed over parts of the piece, not over
+// one ball of its whole parameter range, where the slerp formula's
+// dependency blow-up made the box several times wider (the planner
+// pieces' penalty, hence many more certificate pieces).
+BOOST_AUTO_TEST_CASE(piece_box_is_close_to_the_poses_spread) {
+  MotionSegment seg;
+  seg.t0 = 0;
+  seg.t1 = 1;
+  seg.interpolation = Interpolation::Slerp;
+  seg.from.translation = v("0", "0", "0");
+  seg.to.translation = v("1", "2", "-1");
+  seg.from.rotation.kind = Rotation::Kind::Rpy;
+  seg.from.rotation.rpy = {q("0.3"), q("-0.2"), q("1.1")};
+  seg.to.rotation.kind = Rotation::Kind::Rpy;
+  seg.to.rotation.rpy = {q("1.2"), q("0.4"), q("-0.5")};
+  Body body;
+  body.name = "b";
+  body.trajectory = Trajectory{{seg}};
+  std::string why;
+  const std::optional<cert::PieceMotion> m = cert::piece_motion(body, q("0.4"), q("0.5"), why);
+  BOOST_REQUIRE(m);
+  BOOST_REQUIRE(!m->exact);
+  std::array<double, 12> lo, hi;
+  lo.fill(HUGE_VAL);
+  hi.fill(-HUGE_VAL);
+  for (int k = 0; k <= 200; ++k) {
+    const std::optional<cert::PoseBox> at = cert::pose_box_at(body, q("0.4") + Exact(k) / 2000);
+    BOOST_REQUIRE(at);
+    for (int e = 0; e < 12; ++e) {
+      // Every sampled pose in the piece's box.
+      BOOST_TEST(at->center[e] - at->radius[e] >= m->box.center[e] - m->box.radius[e]);
+      BOOST_TEST(at->center[e] + at->radius[e] <= m->box.center[e] + m->box.radius[e]);
+      lo[e] = std::min(lo[e], CGAL::to_double(at->center[e]));
+      hi[e] = std::max(hi[e], CGAL::to_double(at->center[e]));
+    }
+  }
+  // Over the 12 entries, the radii at most 3/4 of the spreads (a box as
+  // wide as the spread has radii of half of it; one ball of the whole
+  // piece gave radii of 1.6 times the spreads).
+  double radii = 0, spreads = 0;
+  for (int e = 0; e < 12; ++e) {
+    radii += CGAL::to_double(m->box.radius[e]);
+    spreads += hi[e] - lo[e];
+  }
+  BOOST_TEST(radii <= 0.75 * spreads, "radii " << radii << ", spreads " << spreads);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
