@@ -666,34 +666,40 @@ PoseBox exact_box(const Mat34E& m) {
 
 // The checker's own view of one kind of motion segment (motion_kinds.h,
 // src/model/segment_kind.h): which segments are of it, the exact pose at
-// a segment's ends where it is known, and the pose over a ball of segment
+// a segment's ends where it is known, its exact rational Bezier form when
+// it is one (null otherwise), and the pose over a ball of segment
 // parameters s (null for the rational kind, whose pieces are restricted
 // exactly instead).
 struct CheckerKind {
   const char* name;
   bool (*holds)(const MotionSegment& seg);
+  const Motion* (*rational)(const MotionSegment& seg);
   std::optional<Mat34E> (*exact_end)(const MotionSegment& seg, bool last);
   std::optional<BallPose> (*pose)(const MotionSegment& seg, const B& s);
 };
 
 const CheckerKind kCheckerKinds[] = {
     {"rational_bezier", [](const MotionSegment& seg) { return seg.rational.has_value(); },
+     [](const MotionSegment& seg) -> const Motion* { return &*seg.rational; },
      [](const MotionSegment& seg, bool last) -> std::optional<Mat34E> {
        return evaluate(*seg.rational, last ? seg.t1 : seg.t0);
      },
      nullptr},
     {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() == 1; },
+     [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
      [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }},
     {"robot_link_hermite",
      [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() > 1; },
+     [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) {  // the waypoint's joint values, as for linear joints
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
      [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(hermite_link_pose(*seg.link, s)); }},
     {"keyframe", [](const MotionSegment& seg) { return !seg.rational && !seg.link; },
+     [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) { return exact_keyframe(last ? seg.to : seg.from); },
      [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }},
 };
@@ -717,13 +723,14 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
             body.name + "\"";
       return std::nullopt;
     }
-    if (seg->rational) {
-      out.exact = restrict(*seg->rational, ta, tb);
+    const CheckerKind& kind = checker_kind(*seg);
+    if (const Motion* rational = kind.rational(*seg)) {
+      out.exact = restrict(*rational, ta, tb);
       return out;
     }
     const Exact span = seg->t1 - seg->t0;
     const B s = interval((ta - seg->t0) / span, (tb - seg->t0) / span);
-    const auto pose = checker_kind(*seg).pose(*seg, s);
+    const auto pose = kind.pose(*seg, s);
     std::optional<PoseBox> box;
     if (pose) box = to_box(*pose);
     if (!box) {
@@ -752,7 +759,7 @@ std::optional<std::pair<Exact, Exact>> rational_span(const Body& a, const Body& 
   for (const Body* body : {&a, &b}) {
     if (!body->trajectory) continue;
     const MotionSegment* seg = segment_over(*body->trajectory, lo, hi);
-    if (!seg || !seg->rational) return std::nullopt;
+    if (!seg || !checker_kind(*seg).rational(*seg)) return std::nullopt;
     span.first = std::max(span.first, seg->t0);
     span.second = std::min(span.second, seg->t1);
   }
@@ -763,9 +770,10 @@ std::optional<Mat34E> exact_pose_at(const Body& body, const Exact& t) {
   if (body.trajectory) {
     const MotionSegment* seg = segment_over(*body.trajectory, t, t);
     if (!seg) return std::nullopt;
-    if (seg->rational) return evaluate(*seg->rational, t);
-    if (t == seg->t0) return checker_kind(*seg).exact_end(*seg, false);
-    if (t == seg->t1) return checker_kind(*seg).exact_end(*seg, true);
+    const CheckerKind& kind = checker_kind(*seg);
+    if (const Motion* rational = kind.rational(*seg)) return evaluate(*rational, t);
+    if (t == seg->t0) return kind.exact_end(*seg, false);
+    if (t == seg->t1) return kind.exact_end(*seg, true);
     return std::nullopt;
   }
   if (!body.motion) return kIdentity;
@@ -777,9 +785,11 @@ std::optional<PoseBox> pose_box_at(const Body& body, const Exact& t) {
   if (const auto m = exact_pose_at(body, t)) return exact_box(*m);
   if (!body.trajectory) return std::nullopt;
   const MotionSegment* seg = segment_over(*body.trajectory, t, t);
-  if (!seg || seg->rational) return std::nullopt;
+  if (!seg) return std::nullopt;
+  const CheckerKind& kind = checker_kind(*seg);
+  if (kind.rational(*seg)) return std::nullopt;
   const Exact s = (t - seg->t0) / (seg->t1 - seg->t0);
-  const auto pose = checker_kind(*seg).pose(*seg, B(s));
+  const auto pose = kind.pose(*seg, B(s));
   if (!pose) return std::nullopt;
   return to_box(*pose);
 }
