@@ -1,5 +1,6 @@
 #include "src/certificate/motions.h"
 
+#include "src/certificate/check_numbers.h"
 #include "src/certificate/motion_kinds.h"
 
 #include "src/model/chain.h"
@@ -527,24 +528,11 @@ Motion restrict(const Motion& m, const Exact& ta, const Exact& tb) {
     for (int e = 0; e < 12; ++e) c[k][e] = m.weights[k] * m.control_points[k][e];
     c[k][12] = m.weights[k];
   }
-  auto split = [](std::vector<std::array<Exact, 13>> p, const Exact& u, bool keep_left) {
-    const std::size_t deg = p.size() - 1;
-    std::vector<std::array<Exact, 13>> o(deg + 1);
-    if (keep_left) o[0] = p[0];
-    else o[deg] = p[deg];
-    for (std::size_t r = 1; r <= deg; ++r) {
-      for (std::size_t i = 0; i + r <= deg; ++i)
-        for (int e = 0; e < 13; ++e) p[i][e] += u * (p[i + 1][e] - p[i][e]);
-      if (keep_left) o[r] = p[0];
-      else o[deg - r] = p[deg - r];
-    }
-    return o;
-  };
   const Exact span = m.t1 - m.t0;
   const Exact ua = (ta - m.t0) / span, ub = (tb - m.t0) / span;
   if (n > 1) {
-    if (ub != 1) c = split(c, ub, true);
-    if (ua != 0) c = split(c, ua / ub, false);
+    if (ub != 1) c = check_internal::split_controls(std::move(c), ub, true);
+    if (ua != 0) c = check_internal::split_controls(std::move(c), ua / ub, false);
   }
   for (const auto& p : c) {
     Mat34E a;

@@ -4,6 +4,7 @@
 
 #include "src/motion/bezier.h"
 #include "src/motion/chain.h"
+#include "src/model/de_casteljau.h"
 #include "src/model/quaternion.h"
 
 #include <CGAL/number_utils.h>
@@ -45,24 +46,8 @@ PoseInterval interval_pose(const Pose& p) {
 Motion restrict_motion(const Motion& m, const Exact& t0, const Exact& t1) {
   if (t0 == m.t0 && t1 == m.t1) return m;
   const Exact span = m.t1 - m.t0;
-  HomogeneousCurve<Exact, 1> c = homogeneous_curve(m);
-  auto split_at = [](HomogeneousCurve<Exact, 1>& curve, const Exact& u, bool keep_right) {
-    // De Casteljau at u: left controls are the first entries of each
-    // column, right controls the last.
-    const std::size_t n = curve.size();
-    HomogeneousCurve<Exact, 1> work = curve, left(n), right(n);
-    for (std::size_t level = 0; level < n; ++level) {
-      left[level] = work[0];
-      right[n - 1 - level] = work[n - 1 - level];
-      for (std::size_t k = 0; k + 1 < n - level; ++k)
-        for (std::size_t e = 0; e < work[k].size(); ++e) work[k][e] = (1 - u) * work[k][e] + u * work[k + 1][e];
-    }
-    curve = keep_right ? right : left;
-  };
   const Exact a = (t0 - m.t0) / span, b = (t1 - m.t0) / span;
-  if (a > 0) split_at(c, a, true);
-  const Exact b2 = a > 0 ? (b - a) / (1 - a) : b;
-  if (b2 < 1) split_at(c, b2, false);
+  const HomogeneousCurve<Exact, 1> c = de_casteljau_restrict(homogeneous_curve(m), a, b);
   Motion out;
   out.t0 = t0;
   out.t1 = t1;
