@@ -869,8 +869,9 @@ RInterval operator*(const RInterval& a, const RInterval& b) {
   return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
 }
 
-// The sign of det[b - a, c - a, d - a] when it is certain over the boxes, else 0.
-int orientation(const RBox& a, const RBox& b, const RBox& c, const RBox& d) {
+// The sign of det[b - a, c - a, d - a] when it is certain and nonzero over
+// the boxes; nullopt otherwise (unsure, or possibly zero).
+std::optional<CGAL::Sign> orientation(const RBox& a, const RBox& b, const RBox& c, const RBox& d) {
   RBox u, v, w;
   for (int i = 0; i < 3; ++i) {
     u[i] = b[i] - a[i];
@@ -879,9 +880,9 @@ int orientation(const RBox& a, const RBox& b, const RBox& c, const RBox& d) {
   }
   const RInterval det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
                         u[2] * (v[0] * w[1] - v[1] * w[0]);
-  if (det.lo > 0) return 1;
-  if (det.hi < 0) return -1;
-  return 0;
+  if (det.lo > 0) return CGAL::POSITIVE;
+  if (det.hi < 0) return CGAL::NEGATIVE;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -903,10 +904,10 @@ bool certain_crossing(const RBox& p, const RBox& q, const RBox& a, const RBox& b
   // p and q strictly on opposite sides of the triangle's plane, and the
   // line pq passing strictly inside the triangle: the three orientations
   // of (p, q) with the triangle's edges share one certain sign.
-  const int sp = orientation(a, b, c, p), sq = orientation(a, b, c, q);
-  if (sp == 0 || sq == 0 || sp == sq) return false;
-  const int e0 = orientation(p, q, a, b), e1 = orientation(p, q, b, c), e2 = orientation(p, q, c, a);
-  return e0 != 0 && e0 == e1 && e1 == e2;
+  const std::optional<CGAL::Sign> sp = orientation(a, b, c, p), sq = orientation(a, b, c, q);
+  if (!sp || !sq || *sp == *sq) return false;
+  const std::optional<CGAL::Sign> e0 = orientation(p, q, a, b), e1 = orientation(p, q, b, c), e2 = orientation(p, q, c, a);
+  return e0 && e1 && e2 && *e0 == *e1 && *e1 == *e2;
 }
 
 }  // namespace tmcert::certificate
