@@ -205,36 +205,41 @@ inline bool is_value(double x, double v) { return x == v; }
 // The standard triangle (0,0), (1,0), (0,1) and the unit square (0,0),
 // (1,0), (1,1), (0,1), both counter-clockwise: every triangle's and every
 // edge pair's domain (make_face in src/verify/prepared.cpp, contact_sign).
-// Returns 3 or 4 for them, else 0.
+enum class UnitDomain { None, Triangle, Square };
+
+// Which unit domain `d` is, written exactly so (None for any other polygon).
 template <class FT>
-int unit_domain(const ConvexDomain<FT>& d) {
-  if (d.orientation != 1 || (d.count != 3 && d.count != 4)) return 0;
+UnitDomain unit_domain(const ConvexDomain<FT>& d) {
+  if (d.orientation != 1 || (d.count != 3 && d.count != 4)) return UnitDomain::None;
   const auto* v = d.vertices;
-  if (!is_value(v[0][0], 0) || !is_value(v[0][1], 0) || !is_value(v[1][0], 1) || !is_value(v[1][1], 0)) return 0;
-  if (d.count == 3) return is_value(v[2][0], 0) && is_value(v[2][1], 1) ? 3 : 0;
-  return is_value(v[2][0], 1) && is_value(v[2][1], 1) && is_value(v[3][0], 0) && is_value(v[3][1], 1) ? 4 : 0;
+  if (!is_value(v[0][0], 0) || !is_value(v[0][1], 0) || !is_value(v[1][0], 1) || !is_value(v[1][1], 0))
+    return UnitDomain::None;
+  if (d.count == 3) return is_value(v[2][0], 0) && is_value(v[2][1], 1) ? UnitDomain::Triangle : UnitDomain::None;
+  return is_value(v[2][0], 1) && is_value(v[2][1], 1) && is_value(v[3][0], 0) && is_value(v[3][1], 1)
+             ? UnitDomain::Square
+             : UnitDomain::None;
 }
 
-// The candidates on a unit domain (kind 3 or 4): those of the general
+// The candidates on a unit domain (Triangle or Square): those of the general
 // polygon below with the 0/1 coordinates folded into the sums (fewer
 // interval products).  Returns false when the interior could not be
 // settled.
 template <class FT>
-bool min_sign_unit(const Quadratic2<FT>& q, int kind, MinSign& m) {
+bool min_sign_unit(const Quadratic2<FT>& q, UnitDomain kind, MinSign& m) {
   const FT zero(0), one(1), two(2);
   // Vertices: q(0,0) = c, q(1,0) = h11 + b1 + c, q(0,1) = h22 + b2 + c,
   // q(1,1) = q(1,0) + h22 + b2 + 2 h12.
   const FT q00 = q.c, q10 = q.h11 + q.b1 + q.c, q01 = q.h22 + q.b2 + q.c;
-  const FT q11 = kind == 4 ? q10 + q.h22 + q.b2 + two * q.h12 : zero;
+  const FT q11 = kind == UnitDomain::Square ? q10 + q.h22 + q.b2 + two * q.h12 : zero;
   detail::take(m, q00);
   detail::take(m, q10);
-  if (kind == 4) detail::take(m, q11);
+  if (kind == UnitDomain::Square) detail::take(m, q11);
   detail::take(m, q01);
   if (m.negative()) return true;
   // Edges from v along e: alpha = e^T H e, beta = (gradient at v).e with
   // gradient (2 h11 s1 + 2 h12 s2 + b1, 2 h12 s1 + 2 h22 s2 + b2), gamma = q(v).
   if (edge_candidate(q.h11, q.b1, q00, m)) return true;  // (0,0) -> (1,0)
-  if (kind == 3) {
+  if (kind == UnitDomain::Triangle) {
     // (1,0) -> (0,1): e = (-1, 1), gradient at (1,0) = (2 h11 + b1, 2 h12 + b2).
     const FT alpha = q.h11 - two * q.h12 + q.h22;
     const FT beta = (two * q.h12 + q.b2) - (two * q.h11 + q.b1);
@@ -251,7 +256,7 @@ bool min_sign_unit(const Quadratic2<FT>& q, int kind, MinSign& m) {
   return interior_candidate(
       q,
       [&](const FT& s1, const FT& s2) {
-        if (kind == 3) return (s1 >= zero) & (s2 >= zero) & (one - s1 - s2 >= zero);
+        if (kind == UnitDomain::Triangle) return (s1 >= zero) & (s2 >= zero) & (one - s1 - s2 >= zero);
         return (s1 >= zero) & (s2 >= zero) & (one - s1 >= zero) & (one - s2 >= zero);
       },
       m);
@@ -306,8 +311,8 @@ template <class FT>
 CGAL::Sign min_sign_candidates(const Quadratic2<FT>& q, const ConvexDomain<FT>& d, MinSign& m) {
   bool settled;
   if constexpr (std::is_same_v<FT, CGAL::Interval_nt<false>> || std::is_same_v<FT, double>) {
-    const int kind = unit_domain(d);
-    settled = kind ? min_sign_unit(q, kind, m) : min_sign_polygon(q, d, m);
+    const UnitDomain kind = unit_domain(d);
+    settled = kind != UnitDomain::None ? min_sign_unit(q, kind, m) : min_sign_polygon(q, d, m);
   } else {
     settled = min_sign_polygon(q, d, m);
   }

@@ -79,17 +79,7 @@ std::vector<CP> joint_curve(const Body& a, const Body& b) { return joint_curve(m
 
 // de Casteljau at s: the control points of [0, s] (left) or [s, 1] (right).
 std::vector<CP> split(std::vector<CP> p, const Exact& s, bool keep_left) {
-  const std::size_t n = p.size() - 1;
-  std::vector<CP> out(n + 1);
-  if (keep_left) out[0] = p[0];
-  else out[n] = p[n];
-  for (std::size_t r = 1; r <= n; ++r) {
-    for (std::size_t i = 0; i + r <= n; ++i)
-      for (int e = 0; e < 25; ++e) p[i][e] += s * (p[i + 1][e] - p[i][e]);
-    if (keep_left) out[r] = p[0];
-    else out[n - r] = p[n - r];
-  }
-  return out;
+  return split_controls(std::move(p), s, keep_left);
 }
 
 // The curve restricted exactly to [ua, ub] within [0, 1] (0 <= ua < ub <= 1).

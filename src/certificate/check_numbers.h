@@ -9,7 +9,9 @@
 
 #include <gmp.h>
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace tmcert::certificate::check_internal {
 
@@ -80,6 +82,27 @@ inline std::string str(const Vec3E& v) {
     out += str(v[i]);
   }
   out += ")";
+  return out;
+}
+
+// ---------------------------------------------------------------- de Casteljau
+
+// The checker's one exact de Casteljau subdivision (the verifier has its
+// own, src/model/de_casteljau.h): the control points of the curve's part
+// over [0, s] (keep_left) or [s, 1], for control points that are arrays of
+// exact rationals and s in [0, 1].  `p` has at least one point.
+template <class Point>
+std::vector<Point> split_controls(std::vector<Point> p, const Exact& s, bool keep_left) {
+  const std::size_t n = p.size() - 1;
+  std::vector<Point> out(n + 1);
+  if (keep_left) out[0] = p[0];
+  else out[n] = p[n];
+  for (std::size_t r = 1; r <= n; ++r) {
+    for (std::size_t i = 0; i + r <= n; ++i)
+      for (std::size_t e = 0; e < p[i].size(); ++e) p[i][e] += s * (p[i + 1][e] - p[i][e]);
+    if (keep_left) out[r] = p[0];
+    else out[n - r] = p[n - r];
+  }
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "src/certificate/motions.h"
 
+#include "src/certificate/check_numbers.h"
 #include "src/certificate/motion_kinds.h"
 
 #include "src/model/chain.h"
@@ -529,24 +530,11 @@ Motion restrict(const Motion& m, const Exact& ta, const Exact& tb) {
     for (int e = 0; e < 12; ++e) c[k][e] = m.weights[k] * m.control_points[k][e];
     c[k][12] = m.weights[k];
   }
-  auto split = [](std::vector<std::array<Exact, 13>> p, const Exact& u, bool keep_left) {
-    const std::size_t deg = p.size() - 1;
-    std::vector<std::array<Exact, 13>> o(deg + 1);
-    if (keep_left) o[0] = p[0];
-    else o[deg] = p[deg];
-    for (std::size_t r = 1; r <= deg; ++r) {
-      for (std::size_t i = 0; i + r <= deg; ++i)
-        for (int e = 0; e < 13; ++e) p[i][e] += u * (p[i + 1][e] - p[i][e]);
-      if (keep_left) o[r] = p[0];
-      else o[deg - r] = p[deg - r];
-    }
-    return o;
-  };
   const Exact span = m.t1 - m.t0;
   const Exact ua = (ta - m.t0) / span, ub = (tb - m.t0) / span;
   if (n > 1) {
-    if (ub != 1) c = split(c, ub, true);
-    if (ua != 0) c = split(c, ua / ub, false);
+    if (ub != 1) c = check_internal::split_controls(std::move(c), ub, true);
+    if (ua != 0) c = check_internal::split_controls(std::move(c), ua / ub, false);
   }
   for (const auto& p : c) {
     Mat34E a;
@@ -668,34 +656,40 @@ PoseBox exact_box(const Mat34E& m) {
 
 // The checker's own view of one kind of motion segment (motion_kinds.h,
 // src/model/segment_kind.h): which segments are of it, the exact pose at
-// a segment's ends where it is known, and the pose over a ball of segment
+// a segment's ends where it is known, its exact rational Bezier form when
+// it is one (null otherwise), and the pose over a ball of segment
 // parameters s (null for the rational kind, whose pieces are restricted
 // exactly instead).
 struct CheckerKind {
   const char* name;
   bool (*holds)(const MotionSegment& seg);
+  const Motion* (*rational)(const MotionSegment& seg);
   std::optional<Mat34E> (*exact_end)(const MotionSegment& seg, bool last);
   std::optional<BallPose> (*pose)(const MotionSegment& seg, const B& s);
 };
 
 const CheckerKind kCheckerKinds[] = {
     {"rational_bezier", [](const MotionSegment& seg) { return seg.rational.has_value(); },
+     [](const MotionSegment& seg) -> const Motion* { return &*seg.rational; },
      [](const MotionSegment& seg, bool last) -> std::optional<Mat34E> {
        return evaluate(*seg.rational, last ? seg.t1 : seg.t0);
      },
      nullptr},
     {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() == 1; },
+     [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
      [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }},
     {"robot_link_hermite",
      [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() > 1; },
+     [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) {  // the waypoint's joint values, as for linear joints
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
      [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(hermite_link_pose(*seg.link, s)); }},
     {"keyframe", [](const MotionSegment& seg) { return !seg.rational && !seg.link; },
+     [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) { return exact_keyframe(last ? seg.to : seg.from); },
      [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }},
 };
@@ -719,8 +713,9 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
             body.name + "\"";
       return std::nullopt;
     }
-    if (seg->rational) {
-      out.exact = restrict(*seg->rational, ta, tb);
+    const CheckerKind& kind = checker_kind(*seg);
+    if (const Motion* rational = kind.rational(*seg)) {
+      out.exact = restrict(*rational, ta, tb);
       return out;
     }
     // A keyframe segment: the union of the enclosures over kSubBalls equal
@@ -735,7 +730,7 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
     Mat34E lo, hi;
     for (int k = 0; k < parts; ++k) {
       const B s = interval(u0 + du * k, u0 + du * (k + 1));
-      const auto pose = checker_kind(*seg).pose(*seg, s);
+      const auto pose = kind.pose(*seg, s);
       std::optional<PoseBox> part;
       if (pose) part = to_box(*pose);
       if (!part) {
@@ -780,7 +775,7 @@ std::optional<std::pair<Exact, Exact>> rational_span(const Body& a, const Body& 
   for (const Body* body : {&a, &b}) {
     if (!body->trajectory) continue;
     const MotionSegment* seg = segment_over(*body->trajectory, lo, hi);
-    if (!seg || !seg->rational) return std::nullopt;
+    if (!seg || !checker_kind(*seg).rational(*seg)) return std::nullopt;
     span.first = std::max(span.first, seg->t0);
     span.second = std::min(span.second, seg->t1);
   }
@@ -791,9 +786,10 @@ std::optional<Mat34E> exact_pose_at(const Body& body, const Exact& t) {
   if (body.trajectory) {
     const MotionSegment* seg = segment_over(*body.trajectory, t, t);
     if (!seg) return std::nullopt;
-    if (seg->rational) return evaluate(*seg->rational, t);
-    if (t == seg->t0) return checker_kind(*seg).exact_end(*seg, false);
-    if (t == seg->t1) return checker_kind(*seg).exact_end(*seg, true);
+    const CheckerKind& kind = checker_kind(*seg);
+    if (const Motion* rational = kind.rational(*seg)) return evaluate(*rational, t);
+    if (t == seg->t0) return kind.exact_end(*seg, false);
+    if (t == seg->t1) return kind.exact_end(*seg, true);
     return std::nullopt;
   }
   if (!body.motion) return kIdentity;
@@ -805,9 +801,11 @@ std::optional<PoseBox> pose_box_at(const Body& body, const Exact& t) {
   if (const auto m = exact_pose_at(body, t)) return exact_box(*m);
   if (!body.trajectory) return std::nullopt;
   const MotionSegment* seg = segment_over(*body.trajectory, t, t);
-  if (!seg || seg->rational) return std::nullopt;
+  if (!seg) return std::nullopt;
+  const CheckerKind& kind = checker_kind(*seg);
+  if (kind.rational(*seg)) return std::nullopt;
   const Exact s = (t - seg->t0) / (seg->t1 - seg->t0);
-  const auto pose = checker_kind(*seg).pose(*seg, B(s));
+  const auto pose = kind.pose(*seg, B(s));
   if (!pose) return std::nullopt;
   return to_box(*pose);
 }
@@ -899,8 +897,9 @@ RInterval operator*(const RInterval& a, const RInterval& b) {
   return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
 }
 
-// The sign of det[b - a, c - a, d - a] when it is certain over the boxes, else 0.
-int orientation(const RBox& a, const RBox& b, const RBox& c, const RBox& d) {
+// The sign of det[b - a, c - a, d - a] when it is certain and nonzero over
+// the boxes; nullopt otherwise (unsure, or possibly zero).
+std::optional<CGAL::Sign> orientation(const RBox& a, const RBox& b, const RBox& c, const RBox& d) {
   RBox u, v, w;
   for (int i = 0; i < 3; ++i) {
     u[i] = b[i] - a[i];
@@ -909,9 +908,9 @@ int orientation(const RBox& a, const RBox& b, const RBox& c, const RBox& d) {
   }
   const RInterval det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
                         u[2] * (v[0] * w[1] - v[1] * w[0]);
-  if (det.lo > 0) return 1;
-  if (det.hi < 0) return -1;
-  return 0;
+  if (det.lo > 0) return CGAL::POSITIVE;
+  if (det.hi < 0) return CGAL::NEGATIVE;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -933,10 +932,10 @@ bool certain_crossing(const RBox& p, const RBox& q, const RBox& a, const RBox& b
   // p and q strictly on opposite sides of the triangle's plane, and the
   // line pq passing strictly inside the triangle: the three orientations
   // of (p, q) with the triangle's edges share one certain sign.
-  const int sp = orientation(a, b, c, p), sq = orientation(a, b, c, q);
-  if (sp == 0 || sq == 0 || sp == sq) return false;
-  const int e0 = orientation(p, q, a, b), e1 = orientation(p, q, b, c), e2 = orientation(p, q, c, a);
-  return e0 != 0 && e0 == e1 && e1 == e2;
+  const std::optional<CGAL::Sign> sp = orientation(a, b, c, p), sq = orientation(a, b, c, q);
+  if (!sp || !sq || *sp == *sq) return false;
+  const std::optional<CGAL::Sign> e0 = orientation(p, q, a, b), e1 = orientation(p, q, b, c), e2 = orientation(p, q, c, a);
+  return e0 && e1 && e2 && *e0 == *e1 && *e1 == *e2;
 }
 
 }  // namespace tmcert::certificate

@@ -7,6 +7,7 @@
 #include "src/certificate/check.h"
 #include "src/certificate/check_enclosed.h"
 #include "src/certificate/exact_claims.h"
+#include "src/model/de_casteljau.h"
 #include "src/model/solid.h"
 
 #include <algorithm>
@@ -323,22 +324,8 @@ void CheckWriter::before_witness(const Prover& prover, const Exact& from, json& 
   } catch (const ExactLimit&) {
     return;
   }
-  // The exact control points on [u0, u1] (de Casteljau at u1, then at
-  // u0 / u1 on the left part).
-  auto split_at = [](const CurveE& c, const Exact& s, bool keep_left) {
-    CurveE p = c, left;
-    const std::size_t n = p.size();
-    left.reserve(n);
-    CurveE right(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      left.push_back(p[0]);
-      right[n - 1 - j] = p[n - 1 - j];
-      for (std::size_t i = 0; i + 1 < n - j; ++i)
-        for (std::size_t e = 0; e < p[i].size(); ++e) p[i][e] = (1 - s) * p[i][e] + s * p[i + 1][e];
-    }
-    return keep_left ? left : right;
-  };
-  const CurveE piece = split_at(u1 == 1 ? joint : split_at(joint, u1, true), u0 / u1, false);
+  // The exact control points on [u0, u1].
+  const CurveE piece = de_casteljau_restrict(joint, u0, u1);
   const PieceImages im = prover.images(enclose(piece));
   const std::function<const CurveE&()> exact_of = [&]() -> const CurveE& { return piece; };
   set_no_contact(prover, u0, u1, &root);

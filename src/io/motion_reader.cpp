@@ -6,7 +6,7 @@
 #include "kernels/decimal.h"
 
 #include "src/model/segment_kind.h"
-#include "src/motion/segment.h"
+#include "src/model/pose_algebra.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -112,26 +112,24 @@ std::optional<Motion> SceneReader::motion_segments(const Node& node, const Path&
   const Node* type = find(obj, "type");
   if (!type) fail(type_path, "missing required field (e.g. \"rational_bezier\")");
   const std::string kind = type->kind == Node::Kind::String ? std::string(text(*type)) : std::string();
-  if (kind == "keyframes") {
-    keyframes(obj, path, out);
-    return std::nullopt;
+  std::string supported;
+  for (const MotionType& t : motion_types()) {
+    if (kind == t.name) return (this->*t.read)(obj, path, out);
+    supported += std::string(supported.empty() ? "" : ", ") + "\"" + t.name + "\"";
   }
-  if (kind == "piecewise") {
-    piecewise(obj, path, out);
-    return std::nullopt;
-  }
-  if (kind != "rational_bezier")
-    fail(type_path, "unknown motion type " + describe(*type) +
-                        " (supported: \"rational_bezier\", \"keyframes\", \"piecewise\")");
-  Motion m = rational_bezier(obj, path);
-  if (m.degree() >= 1) {
-    MotionSegment seg;
-    seg.t0 = m.t0;
-    seg.t1 = m.t1;
-    seg.rational = m;
-    out.push_back(std::move(seg));
-  }
-  return m;
+  fail(type_path, "unknown motion type " + describe(*type) + " (supported: " + supported + ")");
+}
+
+// The motion types, in the order the message lists them: a new type is a
+// reader here, its segment kind (src/model/segment_kind.h) and the
+// checker's enclosure of that kind (README "Architecture").
+const std::vector<SceneReader::MotionType>& SceneReader::motion_types() {
+  static const std::vector<MotionType> types = {
+      {"rational_bezier", &SceneReader::rational_bezier},
+      {"keyframes", &SceneReader::keyframes},
+      {"piecewise", &SceneReader::piecewise},
+  };
+  return types;
 }
 
 // {"translation": [x, y, z], "rotation": {...}} (SCENE_FORMAT.md "Rigid poses").
@@ -200,7 +198,7 @@ std::vector<Exact> SceneReader::times(const Node& node, const Path& path, std::s
   return out;
 }
 
-void SceneReader::keyframes(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const {
+std::optional<Motion> SceneReader::keyframes(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const {
   reject_unknown_keys(obj, path, {"type", "interpolation", "times", "poses"});
   Interpolation how = Interpolation::Slerp;
   if (const Node* i = find(obj, "interpolation")) {
@@ -239,9 +237,10 @@ void SceneReader::keyframes(const Members& obj, const Path& path, std::vector<Mo
     seg.rational = rational_keyframe_segment(poses[k], poses[k + 1], how, t[k], t[k + 1]);
     out.push_back(std::move(seg));
   }
+  return std::nullopt;
 }
 
-void SceneReader::piecewise(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const {
+std::optional<Motion> SceneReader::piecewise(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const {
   reject_unknown_keys(obj, path, {"type", "pieces"});
   const Path ppath = path.member("pieces");
   const Node* pieces = find(obj, "pieces");
@@ -264,16 +263,19 @@ void SceneReader::piecewise(const Members& obj, const Path& path, std::vector<Mo
       const std::optional<Mat34E> end = kind_of(prev).exact_end(prev, true), start = kind_of(next).exact_end(next, false);
       if (end && start) {
         if (*end != *start) fail(piece_path, join + ": the poses differ at t = " + to_string(next.t0) + " (a jump)");
-      } else if (!(!prev.rational && !next.rational && same_pose(prev.to, next.from))) {
+      } else if (const Pose *a = kind_of(prev).written_end(prev, true), *b = kind_of(next).written_end(next, false);
+                 !(a && b && same_pose(*a, *b))) {
         fail(piece_path, join + ": the poses at t = " + to_string(next.t0) +
                              " cannot be proven equal (an rpy pose must be written the same way on both sides)");
       }
     }
     for (MotionSegment& seg : segs) out.push_back(std::move(seg));
   }
+  return std::nullopt;
 }
 
-Motion SceneReader::rational_bezier(const Members& obj, const Path& path) const {
+std::optional<Motion> SceneReader::rational_bezier(const Members& obj, const Path& path,
+                                                   std::vector<MotionSegment>& out) const {
   reject_unknown_keys(obj, path, {"type", "interval", "control_points", "weights"});
 
   Motion m;
@@ -299,6 +301,13 @@ Motion SceneReader::rational_bezier(const Members& obj, const Path& path) const 
   else
     m.weights.assign(list.size(), Exact(1));
   normalise_weights(m);  // the same curve; weights of 1e400 would overflow every enclosure
+  if (m.degree() >= 1) {
+    MotionSegment seg;
+    seg.t0 = m.t0;
+    seg.t1 = m.t1;
+    seg.rational = m;
+    out.push_back(std::move(seg));
+  }
   return m;
 }
 

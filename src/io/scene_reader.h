@@ -109,9 +109,20 @@ class SceneReader : public JsonReader {
   std::optional<Motion> motion_segments(const Node& node, const Path& path, std::vector<MotionSegment>& out) const;
   std::string rpy_warning(const Path& path, const Exact& angle) const;
   std::vector<Exact> times(const Node& node, const Path& path, std::size_t count, const std::string& per) const;
-  void keyframes(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const;
-  void piecewise(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const;
-  Motion rational_bezier(const Members& obj, const Path& path) const;
+  // The readers of the motion types, one per JSON "type" (motion_types()
+  // in motion_reader.cpp lists them): each appends the segments of the
+  // motion `obj` and returns a motionless or one-curve rational_bezier
+  // motion instead, as it is (nullopt for the others).
+  using MotionTypeReader = std::optional<Motion> (SceneReader::*)(const Members& obj, const Path& path,
+                                                                  std::vector<MotionSegment>& out) const;
+  struct MotionType {
+    const char* name;  // the JSON "type"
+    MotionTypeReader read;
+  };
+  static const std::vector<MotionType>& motion_types();
+  std::optional<Motion> rational_bezier(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const;
+  std::optional<Motion> keyframes(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const;
+  std::optional<Motion> piecewise(const Members& obj, const Path& path, std::vector<MotionSegment>& out) const;
 
   std::filesystem::path base_;
   ReadOptions options_;

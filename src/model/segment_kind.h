@@ -45,6 +45,11 @@ class SegmentKind {
   // The exact pose at the segment's end (`last`) or start, when it is
   // known exactly there; nullopt otherwise.
   virtual std::optional<Mat34E> exact_end(const MotionSegment& seg, bool last) const = 0;
+  // The pose at the segment's end (`last`) or start as the scene writes
+  // it (a keyframe's pose), when the kind is given by such poses; null
+  // otherwise.  Two ends written the same way are the same pose even
+  // where neither is exact (rpy).
+  virtual const Pose* written_end(const MotionSegment&, bool) const { return nullptr; }
 };
 
 // Every kind, in the order they are asked (src/motion/segment_kinds.cpp).

@@ -44,6 +44,7 @@ class KeyframeKind final : public VerifiedSegmentKind {
   std::optional<Mat34E> exact_end(const MotionSegment& seg, bool last) const override {
     return exact_pose(last ? seg.to : seg.from);
   }
+  const Pose* written_end(const MotionSegment& seg, bool last) const override { return last ? &seg.to : &seg.from; }
   std::unique_ptr<SegmentModel> model(const MotionSegment& seg) const override {
     return make_keyframe_model(seg.from, seg.to, seg.interpolation);
   }

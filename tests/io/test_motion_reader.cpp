@@ -7,6 +7,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <string>
+#include <utility>
 
 using tmcert::Body;
 using tmcert::Exact;
@@ -107,6 +108,28 @@ BOOST_AUTO_TEST_CASE(bad_motions_say_why) {
   BOOST_TEST(error_of(R"({"type": "piecewise", "pieces": [)" + keyframe_piece("0", "1", "1") + ", " +
                       keyframe_piece("1", "2", "0") + "]}") ==
              "m.json: motion.pieces[1]: join with pieces[0]: the poses differ at t = 1 (a jump)");
+}
+
+// A piecewise join where neither pose is exact (rpy): accepted when the
+// segments' kinds give the poses as written and they are written the same,
+// refused otherwise (SegmentKind::written_end).
+BOOST_AUTO_TEST_CASE(rpy_joins_are_compared_as_written) {
+  const std::string piece = R"({"type": "keyframes", "times": [%0, %1], "poses": [
+      {"rotation": {"rpy": [%2, 0, 0]}}, {"rotation": {"rpy": [%3, 0, 0]}}]})";
+  auto make = [&](const std::string& t0, const std::string& t1, const std::string& a, const std::string& b) {
+    std::string out = piece;
+    const std::pair<std::string, std::string> subs[] = {{"%0", t0}, {"%1", t1}, {"%2", a}, {"%3", b}};
+    for (const auto& [key, value] : subs) out.replace(out.find(key), 2, value);
+    return out;
+  };
+  const Body ok = motion_of(R"({"type": "piecewise", "pieces": [)" + make("0", "1", "0.1", "0.5") + ", " +
+                            make("1", "2", "0.5", "0.2") + "]}");
+  BOOST_TEST_REQUIRE(ok.trajectory.has_value());
+  BOOST_TEST(ok.trajectory->segments.size() == 2);
+  BOOST_TEST(error_of(R"({"type": "piecewise", "pieces": [)" + make("0", "1", "0.1", "0.5") + ", " +
+                      make("1", "2", "0.4", "0.2") + "]}") ==
+             "m.json: motion.pieces[1]: join with pieces[0]: the poses at t = 1 cannot be proven equal (an rpy pose "
+             "must be written the same way on both sides)");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -184,6 +184,25 @@ BOOST_AUTO_TEST_CASE(positive_means_positive_everywhere_sampled) {
   BOOST_TEST(nonpositives > 20);
 }
 
+// Which domains take the unit path: the standard triangle and square as
+// written (counter-clockwise, from the origin), nothing else.
+BOOST_AUTO_TEST_CASE(unit_domains_are_recognised_exactly_as_written) {
+  using detail::UnitDomain;
+  auto kind = [](const std::vector<Pt2<Interval>>& v, int orientation = 1) {
+    return detail::unit_domain(ConvexDomain<Interval>{v.data(), v.size(), orientation});
+  };
+  const Interval o(0), l(1);
+  BOOST_TEST((kind({{o, o}, {l, o}, {o, l}}) == UnitDomain::Triangle));
+  BOOST_TEST((kind({{o, o}, {l, o}, {l, l}, {o, l}}) == UnitDomain::Square));
+  BOOST_TEST((kind({{o, o}, {l, o}, {o, l}}, -1) == UnitDomain::None));         // clockwise flag
+  BOOST_TEST((kind({{l, o}, {o, l}, {o, o}}) == UnitDomain::None));             // another first vertex
+  BOOST_TEST((kind({{o, o}, {l, o}, {l, l}}) == UnitDomain::None));             // another triangle
+  BOOST_TEST((kind({{o, o}, {Interval(0, 1), o}, {o, l}}) == UnitDomain::None));  // not a point value
+  BOOST_TEST((kind({{o, o}, {l, o}}) == UnitDomain::None));                     // a segment
+  const std::vector<Pt2<double>> sq = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  BOOST_TEST((detail::unit_domain(ConvexDomain<double>{sq.data(), sq.size(), 1}) == UnitDomain::Square));
+}
+
 // The unit triangle and square (every face's and edge pair's domain) take
 // a path of their own over intervals, with the 0/1 coordinates folded in
 // (detail::min_sign_unit).  On random quadratics, definite, indefinite and
