@@ -438,22 +438,29 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
     if (const json* interior = in_.find(x, "interior")) {
       if (in_.find(x, "element") || in_.find(x, "weights"))
         in_.bad(sp, "expected either \"interior\" or \"element\" and \"weights\"");
-      side.interior = true;
-      const std::string ip = mem(sp, "interior");
-      in_.object(*interior, ip);
-      side.ray = in_.vec3(in_.member(*interior, "ray", ip), mem(ip, "ray"));
+      read_interior_side(*interior, sp, side);
     } else {
-      const BodyData& bd = *ctx.data[s];
-      side.element = in_.index(in_.member(x, "element", sp), mem(sp, "element"), bd.elems.size(),
-                               quote_text(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
-      const std::size_t nv = bd.elems[side.element].size();
-      const json& ws = in_.array(in_.member(x, "weights", sp), mem(sp, "weights"));
-      if (ws.size() != nv)
-        in_.bad(mem(sp, "weights"), std::to_string(ws.size()) + " weights, element " + std::to_string(side.element) +
-                                        " has " + std::to_string(nv) + " vertices");
-      for (std::size_t i = 0; i < nv; ++i) side.weights.push_back(in_.rational(ws[i], idx(mem(sp, "weights"), i)));
+      read_weighted_side(x, sp, *ctx.data[s], side);
     }
   }
+}
+
+void Checker::read_interior_side(const json& interior, const std::string& sp, WitnessSide& side) {
+  side.interior = true;
+  const std::string ip = mem(sp, "interior");
+  in_.object(interior, ip);
+  side.ray = in_.vec3(in_.member(interior, "ray", ip), mem(ip, "ray"));
+}
+
+void Checker::read_weighted_side(const json& x, const std::string& sp, const BodyData& bd, WitnessSide& side) {
+  side.element = in_.index(in_.member(x, "element", sp), mem(sp, "element"), bd.elems.size(),
+                           quote_text(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
+  const std::size_t nv = bd.elems[side.element].size();
+  const json& ws = in_.array(in_.member(x, "weights", sp), mem(sp, "weights"));
+  if (ws.size() != nv)
+    in_.bad(mem(sp, "weights"), std::to_string(ws.size()) + " weights, element " + std::to_string(side.element) +
+                                    " has " + std::to_string(nv) + " vertices");
+  for (std::size_t i = 0; i < nv; ++i) side.weights.push_back(in_.rational(ws[i], idx(mem(sp, "weights"), i)));
 }
 
 void Checker::read_start(const json& c, CheckContext& ctx) {

@@ -134,20 +134,9 @@ void Checker::read_true_shape_witness(const json& w, CheckContext& ctx) {
       side.true_shape = true;
       ++shapes;
     } else if (interior) {
-      const std::string ip = mem(sp, "interior");
-      in_.object(*interior, ip);
-      side.interior = true;
-      side.ray = in_.vec3(in_.member(*interior, "ray", ip), mem(ip, "ray"));
+      read_interior_side(*interior, sp, side);
     } else {
-      const BodyData& bd = *ctx.data[s];
-      side.element = in_.index(*element, mem(sp, "element"), bd.elems.size(),
-                               quote_text(bd.body->name) + " has " + std::to_string(bd.elems.size()) + " elements");
-      const std::size_t nv = bd.elems[side.element].size();
-      const json& ws = in_.array(in_.member(x, "weights", sp), mem(sp, "weights"));
-      if (ws.size() != nv)
-        in_.bad(mem(sp, "weights"), std::to_string(ws.size()) + " weights, element " + std::to_string(side.element) +
-                                        " has " + std::to_string(nv) + " vertices");
-      for (std::size_t i = 0; i < nv; ++i) side.weights.push_back(in_.rational(ws[i], idx(mem(sp, "weights"), i)));
+      read_weighted_side(x, sp, *ctx.data[s], side);
       ++elements;
     }
   }

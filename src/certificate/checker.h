@@ -160,6 +160,12 @@ class Checker {
 
   void read_start(const json& c, CheckContext& ctx);
 
+  // The two point-witness sides both witness readers accept: "interior"
+  // (a ray from the point out of the solid) and "element" with "weights"
+  // (the point as a weighted sum of the element's vertices).
+  void read_interior_side(const json& interior, const std::string& sp, WitnessSide& side);
+  void read_weighted_side(const json& x, const std::string& sp, const BodyData& bd, WitnessSide& side);
+
   // ------------------------------------------------------------ phase 3 (check_judge.cpp)
 
   std::string judge_check(CheckContext& ctx);

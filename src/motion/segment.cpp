@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <mutex>
 
 namespace tmcert {
 
@@ -81,7 +82,18 @@ bool same_rotation(const Rotation& a, const Rotation& b) {
   if (a.kind == Rotation::Kind::Rpy && b.kind == Rotation::Kind::Rpy) return a.rpy == b.rpy;
   const auto qa = exact_quaternion(a), qb = exact_quaternion(b);
   if (!qa || !qb) return false;
-  // Proportional quaternions (either sign): every 2x2 minor vanishes.
+  // Proportional quaternions (either sign): every 2x2 minor vanishes.  A
+  // minor whose interval enclosure excludes 0 is not zero (the common
+  // case of two different rotations, decided without rational products);
+  // the others are decided exactly (proofs/enclosures.md section 3b).
+  {
+    RoundingGuard guard;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const Interval m = to_interval((*qa)[i]) * to_interval((*qb)[j]) - to_interval((*qa)[j]) * to_interval((*qb)[i]);
+        if (m.inf() > 0 || m.sup() < 0) return false;
+      }
+  }
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j)
       if ((*qa)[i] * (*qb)[j] != (*qa)[j] * (*qb)[i]) return false;
@@ -203,8 +215,13 @@ Motion translation_motion(const Mat34E& from, const Vec3E& to, const Exact& t0, 
 
 std::optional<Motion> rational_keyframe_segment(const Pose& a, const Pose& b, Interpolation how, const Exact& t0,
                                                 const Exact& t1) {
-  const auto pa = exact_pose(a), pb = exact_pose(b);
-  if (same_rotation(a.rotation, b.rotation) && pa) return translation_motion(*pa, b.translation, t0, t1);
+  // Different rotations under slerp or screw: no rational segment, and no
+  // exact pose is needed to say so.
+  const bool same = same_rotation(a.rotation, b.rotation);
+  if (!same && how != Interpolation::Nlerp) return std::nullopt;
+  const auto pa = exact_pose(a);
+  if (same && pa) return translation_motion(*pa, b.translation, t0, t1);
+  const auto pb = exact_pose(b);
   if (how != Interpolation::Nlerp || !pa || !pb) return std::nullopt;
   // q(s) = (1 - s) q0 + s q1 (q1 negated when q0 . q1 < 0): the rotation
   // form R(q(s)) is quadratic with Bernstein controls B(q0,q0), B(q0,q1),
@@ -364,7 +381,7 @@ class BezierModel final : public SegmentModel {
 class KeyframeModel final : public SegmentModel {
  public:
   KeyframeModel(const Pose& a, const Pose& b, Interpolation how)
-      : how_(how), exact_from_(tmcert::exact_pose(a)), exact_to_(tmcert::exact_pose(b)) {
+      : how_(how), from_(a), to_(b) {
     RoundingGuard guard;
     // nlerp interpolates the quaternions as written (a matrix's: the
     // rational multiple exact_quaternion gives); slerp and screw the unit ones.
@@ -522,9 +539,55 @@ class KeyframeModel final : public SegmentModel {
     return out;
   }
 
+  // The value parts of pose(Jet(s)) without the derivatives, for slerp
+  // away from angle 0, nlerp and equal rotations: the same interval
+  // operations on the values, in the same order (a constant jet's value
+  // part of a * b is a.v * b.v, of sin(a) validated::sin(a.v), of a / b
+  // a.v / b.v), so the same intervals bit for bit (proofs/enclosures.md
+  // section 2, "Value parts").  Screw and slerp near angle 0: the jets'.
+  PoseInterval pose_values(const Interval& s) const override {
+    const bool slerp = how_ == Interpolation::Slerp && !constant_;
+    if ((how_ == Interpolation::Screw && !constant_) || small_screw_ || (slerp && !(theta_.inf() > 0x1p-10)))
+      return SegmentModel::pose_values(s);
+    Quat<Interval> q;
+    bool unit = true;
+    if (constant_) {
+      q = p0_;
+      unit = false;
+    } else if (slerp) {
+      const Interval r = Interval(1) - s;
+      const Interval a = validated::sin(theta_ * r), b = validated::sin(theta_ * s);
+      const Interval inv = Interval(1) / validated::sin(theta_);
+      for (int i = 0; i < 4; ++i) q[i] = inv * (p0_[i] * a + p1_[i] * b);
+    } else {  // nlerp
+      for (int i = 0; i < 4; ++i) q[i] = p0_[i] + (p1_[i] - p0_[i]) * s;
+      unit = false;
+    }
+    std::array<Interval, 9> R = rotation_form(q);
+    if (!unit) {
+      const Interval n2 = qdot(q, q);
+      for (Interval& x : R) x = x / n2;
+    }
+    PoseInterval out;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) out[4 * r + c] = R[3 * r + c];
+      out[4 * r + 3] = t0_[r] + (t1_[r] - t0_[r]) * s;
+    }
+    return out;
+  }
+
+  // The end poses exactly, computed when first asked (a planner's edge
+  // often needs neither: its sampled and start tests use the enclosures
+  // unless a candidate pair is left; proofs/enclosures.md section 3b).
   std::optional<Mat34E> exact_pose(const Exact& s) const override {
-    if (s == 0) return exact_from_;
-    if (s == 1) return exact_to_;
+    if (s == 0) {
+      std::call_once(from_once_, [this] { exact_from_ = tmcert::exact_pose(from_); });
+      return exact_from_;
+    }
+    if (s == 1) {
+      std::call_once(to_once_, [this] { exact_to_ = tmcert::exact_pose(to_); });
+      return exact_to_;
+    }
     return std::nullopt;
   }
 
@@ -534,7 +597,9 @@ class KeyframeModel final : public SegmentModel {
   }
 
   Interpolation how_;
-  std::optional<Mat34E> exact_from_, exact_to_;
+  Pose from_, to_;
+  mutable std::once_flag from_once_, to_once_;
+  mutable std::optional<Mat34E> exact_from_, exact_to_;
   bool constant_ = false;
   Quat<Interval> p0_, p1_;
   std::array<Interval, 3> t0_, t1_;

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <tuple>
 
@@ -187,13 +188,31 @@ struct StaticOutcome {
 StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array<Interval, 12>& map,
                           const std::optional<Mat34E>& exact, const EnvironmentIndex& index,
                           const std::vector<StaticPart>& environment,
-                          const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false) {
+                          const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false,
+                          const LocalVertices* shared = nullptr,
+                          std::vector<std::array<Interval, 3>>* preplaced = nullptr) {
   struct Candidate {
     int pi, pj, si, sj;
     SimplexI x, y;
   };
   std::vector<Candidate> candidates;
   StaticOutcome out;
+  // With `shared` (the same enclosures as `local`, one per distinct
+  // vertex): each vertex placed once, when a simplex first needs it; the
+  // same interval operations on the same intervals, so the same placed
+  // simplices (proofs/sample-first.md section 2b).
+  std::vector<std::array<Interval, 3>> placed;
+  std::vector<char> done;
+  if (shared && local && preplaced && preplaced->size() == shared->vertices.size()) {
+    // Every vertex already placed by the caller, by the same operations.
+    placed = std::move(*preplaced);
+    done.assign(shared->vertices.size(), 1);
+  } else if (shared && local) {
+    placed.resize(shared->vertices.size());
+    done.assign(shared->vertices.size(), 0);
+  } else {
+    shared = nullptr;
+  }
   {
     RoundingGuard guard;
     for (std::size_t i = 0; i < parts.size() && out.kind == StaticOutcome::Kind::Free; ++i)
@@ -202,6 +221,17 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
         EnvironmentIndex::Item it{static_cast<int>(i), static_cast<int>(k), {}, {}, {}};
         it.s.count = x.count;
         for (int v = 0; v < x.count; ++v) {
+          if (shared) {
+            const std::uint32_t id = shared->index[i][k][v];
+            if (!done[id]) {
+              const std::array<Interval, 3>& p = shared->vertices[id];
+              for (int c = 0; c < 3; ++c)
+                placed[id][c] = map[4 * c] * p[0] + map[4 * c + 1] * p[1] + map[4 * c + 2] * p[2] + map[4 * c + 3];
+              done[id] = 1;
+            }
+            it.s.p[v] = placed[id];
+            continue;
+          }
           // The simplex's own coordinates enclosed (once per body when
           // `local` holds them: the same intervals).
           const std::array<Interval, 3> p =
@@ -416,6 +446,25 @@ FixedEnvironment::FixedEnvironment(Body environment, std::vector<Body> movers,
       parts.push_back(std::move(list));
     }
     local_.push_back(std::move(parts));
+    // The distinct vertices of its simplices, and each simplex corner's
+    // index among them (static_test places each vertex once).
+    LocalVertices shared;
+    std::map<Vec3E, std::uint32_t> ids;
+    for (const StaticPart& part : p->parts) {
+      std::vector<std::array<std::uint32_t, 3>> list;
+      for (const Simplex& x : part.simplices) {
+        std::array<std::uint32_t, 3> corner{0, 0, 0};
+        for (int v = 0; v < x.count; ++v) {
+          const auto [at, fresh] = ids.emplace(x.p[v], static_cast<std::uint32_t>(shared.vertices.size()));
+          if (fresh)
+            shared.vertices.push_back({to_interval(x.p[v][0]), to_interval(x.p[v][1]), to_interval(x.p[v][2])});
+          corner[v] = at->second;
+        }
+        list.push_back(corner);
+      }
+      shared.index.push_back(std::move(list));
+    }
+    shared_.push_back(std::move(shared));
   }
 }
 
@@ -486,14 +535,114 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
   // Per mover, its segments' models, built once per motion (the slices,
   // the start pose and the sampled poses).
   std::vector<std::vector<std::unique_ptr<SegmentModel>>> models(bodies_.size());
+  const Exact t1 = motions.front().t1();
+  // A mover's witness from a hit of the static test at parameter t.
+  auto mover_witness = [&](int a, const StaticOutcome& o, const Exact& t) {
+    Witness w{t,
+              {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,
+               bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
+              o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
+    if (o.box) {
+      std::array<std::array<Exact, 2>, 3> box;
+      for (int c = 0; c < 3; ++c) box[c] = {Exact((*o.box)[c].inf()), Exact((*o.box)[c].sup())};
+      w.point_box = box;
+    }
+    return w;
+  };
+  // decide(): the end configuration of every mover against the
+  // environment first, before any slice is enclosed (proofs/sample-first.md
+  // section 3): t1 is the first sampled parameter, and a mover-environment
+  // pair comes before every mover pair, so a hit here is the one the sample
+  // pass below would find first.  A mover whose coarse box at t1 (its pose's
+  // interval map applied to the box of its vertex enclosures), or else the
+  // box of its placed vertex enclosures, meets no environment simplex's box
+  // has no candidate pair there (the static test would come out free) and
+  // is skipped.
+  // Only for one mover (a rigid body, e.g. OMPL's SE(3) states): with
+  // several (a robot's links) the pose of each at t1 costs about as much
+  // as its slices' first boxes, and an edge rarely ends in contact; the
+  // sample pass below then tests t1 where the slices do not clear it.
+  std::vector<char> end_tested(bodies_.size(), 0);
+  if (decide && bodies_.size() == 2 && kSampledParameters > 0 && t0 < t1) {
+    std::uint64_t configurations = 0;
+    for (std::size_t k = 1; k < bodies_.size(); ++k) {
+      const int a = static_cast<int>(k);
+      if (enlarged_pair(bodies_[a], bodies_[0])) continue;
+      end_tested[a] = 1;
+      const StartPose p = pose_at(motions[a - 1], t1, &models[a]);
+      // Two gates, each a box holding every placed simplex's box of the
+      // static test: the coarse box (the map applied to the box of the
+      // vertex enclosures), then the box of the placed vertex enclosures.
+      auto clears = [&](const std::array<Interval, 3>& x, std::array<double, 3>& lo, std::array<double, 3>& hi,
+                        bool first) {
+        bool finite = true;
+        for (int i = 0; i < 3; ++i) {
+          const Interval y = p.map[4 * i] * x[0] + p.map[4 * i + 1] * x[1] + p.map[4 * i + 2] * x[2] + p.map[4 * i + 3];
+          lo[i] = first ? y.inf() : std::min(lo[i], y.inf());
+          hi[i] = first ? y.sup() : std::max(hi[i], y.sup());
+          finite = finite && std::isfinite(y.inf()) && std::isfinite(y.sup()) && y.inf() <= y.sup();
+        }
+        return finite;
+      };
+      bool gate = false;
+      // The vertices placed for the second gate, by static_test's
+      // operations: handed to it (section 2b).
+      std::vector<std::array<Interval, 3>> placed;
+      {
+        RoundingGuard guard;
+        std::array<double, 3> lo, hi;
+        gate = clears(bounds_[a], lo, hi, true) && !index_->any(lo, hi);
+        const std::vector<std::array<Interval, 3>>& corners = shared_[a].vertices;
+        if (!gate && !corners.empty()) {
+          placed.resize(corners.size());
+          bool finite = true;
+          for (std::size_t v = 0; v < corners.size(); ++v) {
+            const std::array<Interval, 3>& x = corners[v];
+            for (int i = 0; i < 3; ++i) {
+              const Interval y = p.map[4 * i] * x[0] + p.map[4 * i + 1] * x[1] + p.map[4 * i + 2] * x[2] + p.map[4 * i + 3];
+              placed[v][i] = y;
+              lo[i] = v == 0 ? y.inf() : std::min(lo[i], y.inf());
+              hi[i] = v == 0 ? y.sup() : std::max(hi[i], y.sup());
+              finite = finite && std::isfinite(y.inf()) && std::isfinite(y.sup()) && y.inf() <= y.sup();
+            }
+          }
+          gate = finite && !index_->any(lo, hi);
+        }
+      }
+      if (gate) continue;
+      ++configurations;
+      const StaticOutcome o =
+          static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
+                      &shared_[a], &placed);
+      if (o.kind != StaticOutcome::Kind::Hit) continue;
+      // As the sample pass's hit below: record(0), then finish().
+      out.checks.push_back(sampled_collision({a, 0}, t0, t1, mover_witness(a, o, t1), configurations));
+      record(0);
+      CheckResult& r = out.checks.back();
+      r.epsilon = *options_.epsilon;
+      r.interval = {t0, t1};
+      out.witness = r.witness;
+      out.first_contact = r.first_contact;
+      return out;
+    }
+  }
   for (std::size_t k = 1; k < bodies_.size(); ++k) {
     const bool coarse = !in_pair[k] && !bodies_[k].solid && !bodies_[0].solid;
     if (coarse) filter.bounds = bounds_[k];
     slices[k] = edge_slices(motions[k - 1], enclosed_[k], kSlices, coarse ? &filter : nullptr, &models[k]);
     swept[k] = slices[k].whole;
-    start[k] = start_pose_of(motions[k - 1], models[k]);
   }
-  const Exact t1 = motions.front().t1();
+  // The start poses, computed when first needed (the solids' containment,
+  // the start test before a search): a prefiltered edge needs none.
+  std::vector<char> has_start(bodies_.size(), 0);
+  has_start[0] = 1;
+  auto start_of = [&](int k) -> const StartPose& {
+    if (!has_start[k]) {
+      start[k] = start_pose_of(motions[k - 1], models[k]);
+      has_start[k] = 1;
+    }
+    return start[k];
+  };
   // A check cleared by boxes alone, without a search.
   auto prefiltered = [&](int a, int b) {
     CheckResult r;
@@ -565,6 +714,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         return *at[body];
       };
       const auto [a, b] = pairs[sampled[i]];
+      // A mover's end configuration was tested above.
+      if (b == 0 && end_tested[a] && t == t1) return std::nullopt;
       // Only inside the slices the boxes do not clear: elsewhere nothing
       // touches (proofs/edge-slices.md).
       const auto& runs = pair_windows(sampled[i]);
@@ -576,18 +727,10 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         // A certain crossing of the enclosures first, also at an exact
         // pose (cheaper than the exact tests; its witness is a box).
         const StaticOutcome o =
-            static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true);
+            static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
+                      &shared_[a]);
         if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
-        Witness w{t,
-                  {bodies_[a].name + " " + prepared_[a]->parts[o.part_mover].name,
-                   bodies_[0].name + " " + prepared_[0]->parts[o.part_environment].name},
-                  o.point, std::nullopt, std::nullopt, std::nullopt, 0, std::nullopt};
-        if (o.box) {
-          std::array<std::array<Exact, 2>, 3> box;
-          for (int c = 0; c < 3; ++c) box[c] = {Exact((*o.box)[c].inf()), Exact((*o.box)[c].sup())};
-          w.point_box = box;
-        }
-        return w;
+        return mover_witness(a, o, t);
       }
       // Two movers: the search's filtered static test with both poses.
       const StartPose& pa = pose(a);
@@ -639,7 +782,7 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       for (int side = 0; side < 2 && c.kind == Containment::Kind::Free; ++side) {
         const int sb = side == 0 ? a : b, ob = side == 0 ? b : a;
         if (bodies_[sb].solid)
-          c = start_containment(bodies_[sb], vertices_[sb], start[sb], bodies_[ob], representatives_[ob], start[ob],
+          c = start_containment(bodies_[sb], vertices_[sb], start_of(sb), bodies_[ob], representatives_[ob], start_of(ob),
                                 side == 0);
       }
       if (c.kind != Containment::Kind::Free) {
@@ -686,7 +829,8 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
     // when the first window starts at t0.
     const bool start_free =
         b == 0 && windows.front().first == t0 &&
-        static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts, &local_[a]).kind ==
+        static_test(prepared_[a]->parts, start_of(a).map, start_of(a).exact, *index_, prepared_[0]->parts, &local_[a],
+                    false, &shared_[a]).kind ==
             StaticOutcome::Kind::Free;
     // VerifyOptions::time_limit bounds each check, as in Verifier::check.
     VerifyOptions options = options_;
@@ -738,7 +882,7 @@ std::optional<Witness> FixedEnvironment::static_contact(const std::vector<Mat34E
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const StaticOutcome o =
         static_test(prepared_[k + 1]->parts, enclose_map(poses[k]), poses[k], *index_, prepared_[0]->parts,
-                    &local_[k + 1]);
+                    &local_[k + 1], false, &shared_[k + 1]);
     if (o.kind == StaticOutcome::Kind::Hit)
       return Witness{Exact(0),
                      {bodies_[k + 1].name + " " + prepared_[k + 1]->parts[o.part_mover].name,

@@ -7,7 +7,9 @@
 #include "kernels/static_intersection.h"
 #include "src/verify/verify.h"
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -39,6 +41,13 @@ struct MotionCheck {
 
 class PreparedBody;
 struct EnvironmentIndex;
+
+// A body's simplices by their distinct vertices: each vertex's interval
+// enclosure once, and per part, per simplex, its corners' indices.
+struct LocalVertices {
+  std::vector<std::array<Interval, 3>> vertices;
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> index;
+};
 
 class FixedEnvironment {
  public:
@@ -120,6 +129,7 @@ class FixedEnvironment {
   // Per body, per part, its simplices' coordinates enclosed once (the
   // static test places them by the pose's interval map).
   std::vector<std::vector<std::vector<SimplexI>>> local_;
+  std::vector<LocalVertices> shared_;  // the same enclosures, by distinct vertex
   std::vector<std::vector<std::pair<std::string, Vec3E>>> representatives_;
   mutable std::mutex mutex_;
 };

@@ -134,6 +134,53 @@ BOOST_AUTO_TEST_CASE(a_contact_at_the_end_decides_without_a_search) {
   BOOST_TEST(full.checks[0].stats.nodes > 0u);
 }
 
+BOOST_AUTO_TEST_CASE(the_end_of_one_mover_is_tested_before_its_slices) {
+  // One mover (proofs/sample-first.md section 3): its end configuration is
+  // tested first; an end across the wall decides, an end short of it
+  // (boxes apart) is skipped and the edge is certified as before.
+  const Scene scene = cube_and_wall("0");
+  const FixedEnvironment env(scene.bodies[0], {scene.bodies[1]}, {}, options());
+  const MotionCheck across = env.decide({along_x(Exact(-1), Exact(1, 10), 2)});
+  BOOST_TEST(across.verdict == Verdict::Collision);
+  BOOST_REQUIRE(across.witness);
+  BOOST_TEST(across.witness->t == Exact(1));
+  BOOST_TEST(across.checks[0].stats.static_configurations == 1u);
+  BOOST_TEST(across.checks[0].stats.nodes == 0u);
+  for (const Trajectory& m : {along_x(Exact(-1), Exact(-1, 4)), along_x(Exact(-1), Exact(-1, 4), 2)}) {
+    const MotionCheck short_of = env.decide({m});
+    BOOST_TEST(short_of.verdict == Verdict::Safe);
+    BOOST_TEST(env.check({m}).verdict == Verdict::Safe);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(with_several_movers_the_sample_pass_tests_the_end) {
+  // Two movers: no end test before the slices; the sample pass finds the
+  // contact at the end for whichever mover has it.
+  const Scene scene = cube_and_wall("0");
+  Body other = scene.bodies[1];
+  other.name = "cube2";
+  const FixedEnvironment env(scene.bodies[0], {scene.bodies[1], other}, {}, options());
+  MotionSegment away;
+  away.t0 = 0;
+  away.t1 = 1;
+  away.from.translation = {Exact(-5), Exact(5), Exact(0)};
+  away.to.translation = {Exact(-4), Exact(5), Exact(0)};
+  away.interpolation = Interpolation::Slerp;
+  away.rational = rational_keyframe_segment(away.from, away.to, away.interpolation, away.t0, away.t1);
+  const Trajectory far{{away}};
+  const Trajectory across = along_x(Exact(-1), Exact(0));
+  for (int which = 0; which < 2; ++which) {
+    const MotionCheck got = env.decide(which == 0 ? std::vector<Trajectory>{across, far} : std::vector<Trajectory>{far, across});
+    BOOST_TEST(got.verdict == Verdict::Collision);
+    BOOST_REQUIRE(got.witness);
+    BOOST_TEST(got.witness->t == Exact(1));
+    BOOST_REQUIRE_EQUAL(got.checks.size(), 1u);
+    BOOST_TEST(got.checks[0].bodies[0] == 1 + which);
+    BOOST_TEST(got.checks[0].bodies[1] == 0);
+    BOOST_TEST(got.checks[0].stats.nodes == 0u);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(a_touching_end_pose_gets_the_exact_point) {
   // The cube's face ends on the wall (x = -1/5 + 1/5 = 0): a touching
   // contact, no transversal crossing for the interval test to prove, so
