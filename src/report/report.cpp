@@ -344,6 +344,7 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
   w.member("static_filter_exact", s.static_filter_exact);
   w.member("sphere_tests", s.sphere_tests);
   w.member("slab_clears", s.slab_clears);
+  w.member("swept_clears", s.swept_clears);
   w.member("hull_clears", s.hull_clears);
   w.member("axis_clears", s.axis_clears);
   w.member("stops", s.stops);

@@ -5,6 +5,7 @@
 #include "kernels/filtered.h"
 #include "kernels/separation.h"
 #include "src/verify/pairs.h"
+#include "src/verify/swept_spheres.h"
 #include "src/verify/verify.h"
 #include "src/motion/enclosure.h"
 
@@ -427,6 +428,14 @@ struct EnclosedPolicy {
     return Ball{base.ball_of(p.controls, p.tube), p.remainder};
   }
   SphereFrame<Interval> frame(const Ball& b) const { return base.frame(b); }
+  // The piece's segment and tube for the swept-sphere test (one moving
+  // body; proofs/hierarchy.md §1c).  Call under RoundingGuard.
+  SweptFrame swept(const Piece& p) const {
+    if constexpr (B != 1) return {};
+    std::array<Interval, 12> g0, g1;
+    for (int i = 0; i < 12; ++i) g0[i] = p.controls[0][i], g1[i] = p.controls[1][i];
+    return swept_frame(g0, g1, p.tube, base.clear);  // the clearance too (proofs/hierarchy.md §1c)
+  }
   CGAL::Sign test(Ball& b, const PairRef& p, CheckStats& stats, bool axis = false) const {
     return base.test(b, p, stats, axis);
   }

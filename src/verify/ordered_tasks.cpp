@@ -30,6 +30,7 @@ bool merge_result(CheckResult& total, const CheckResult& part) {
   s.static_filter_exact += p.static_filter_exact;
   s.sphere_tests += p.sphere_tests;
   s.slab_clears += p.slab_clears;
+  s.swept_clears += p.swept_clears;
   s.hull_clears += p.hull_clears;
   s.axis_clears += p.axis_clears;
   s.exact_pieces += p.exact_pieces;

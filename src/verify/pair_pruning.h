@@ -91,6 +91,12 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
   const CellTree& Y = other.cells;
   const FeatureTable* moving_tables[3] = {&moving.vertices, &moving.edges, &moving.faces};
   const FeatureTable* other_tables[3] = {&other.vertices, &other.edges, &other.faces};
+  // An enclosed piece of one moving body: the swept-sphere test after a
+  // failed sphere test (proofs/hierarchy.md §1c).
+  SweptFrame swept;
+  if constexpr (requires { policy.swept(controls); }) {
+    if (!frame.body2_moving) swept = policy.swept(controls);
+  }
   // A feature pair: its sphere test, its hull test (unless it ran
   // first), then its contact test.
   auto feature = [&](const PairRef& p, bool hull_tested) {
@@ -99,6 +105,11 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
     if (world_spheres_apart(spheres.moving[a].get(piece, frame, true, moving_tables[a]->spheres, p.i),
                             spheres.other[b].get(piece, frame, false, other_tables[b]->spheres, p.j)))
       return;
+    if (swept.valid &&
+        swept_apart(spheres.moving_swept[a].get(piece, swept, moving_tables[a]->spheres, p.i), other_tables[b]->spheres[p.j])) {
+      ++stats.swept_clears;
+      return;
+    }
     // The contact test before the hull test here: on long lists (meshes)
     // it is the cheaper of the two and clears most pairs.
     if (policy.test(ball, p, stats, !hull_tested) == CGAL::POSITIVE) return;
@@ -119,6 +130,10 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
     if (world_spheres_apart(spheres.moving_cells.get(piece, frame, true, X.tree.nodes, p.i),
                             spheres.other_cells.get(piece, frame, false, Y.tree.nodes, p.j)))
       continue;
+    if (swept.valid && swept_apart(spheres.moving_swept_cells.get(piece, swept, X.tree.nodes, p.i), Y.tree.nodes[p.j])) {
+      ++stats.swept_clears;
+      continue;
+    }
     // Flat against fixed flat: their slabs (proofs/hierarchy.md §1b).
     SlabTest slab;
     if constexpr (std::is_same_v<FT, Interval>) {
@@ -182,7 +197,7 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
     // Few feature pairs under the pair: test them now (cheaper than
     // carrying them down the pieces, and as tight as all pairs).
     const bool small = CellTree::pairs_below(X, p.i, Y, p.j) <= kExpandPairs;
-    if (!expand_all && !small && !(std::max(size_a, size_b) > kDescend * radius * (a.p + b.p))) {
+    if (!expand_all && !small && !(std::max(size_a, size_b) > (swept.valid ? kDescendSwept : kDescend) * radius * (a.p + b.p))) {
       alive.push_back(p);
       continue;
     }

@@ -158,14 +158,20 @@ struct Check {
     SphereCache<FT> moving_cells, other_cells;
     SlabSideCache other_slabs;  // the fixed body's side of the slab test (Interval only)
     std::array<SphereCache<FT>, 3> moving, other;  // by table: vertices, edges, faces
+    SweptCache moving_swept_cells;                 // enclosed pieces of one moving body
+    std::array<SweptCache, 3> moving_swept;        // by table, as `moving`
     std::uint64_t piece = 0;
     std::vector<PairRef> scratch;  // prune's work stack
     Spheres(const PreparedBody& m, const PreparedBody& f) {
       moving_cells.reset(m.cells.tree.nodes.size());
+      moving_swept_cells.reset(m.cells.tree.nodes.size());
       other_cells.reset(f.cells.tree.nodes.size());
       other_slabs.reset(f.cells.tree.nodes.size());
       int t = 0;
-      for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) moving[t++].reset(x->size());
+      for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) {
+        moving_swept[t].reset(x->size());
+        moving[t++].reset(x->size());
+      }
       t = 0;
       for (const FeatureTable* x : {&f.vertices, &f.edges, &f.faces}) other[t++].reset(x->size());
     }
@@ -183,6 +189,11 @@ struct Check {
   static constexpr std::uint64_t kExpandPairs = 64;
 
   static constexpr double kDescend = 2;
+  // With the swept-sphere test (enclosed pieces of one moving body), whose
+  // fattening is the tube rather than the ball, splitting nodes keeps
+  // clearing pairs further down (a tuning choice: OMPL.app alpha-1.1,
+  // 90 -> 36 million sphere tests; bench/README.md).
+  static constexpr double kDescendSwept = 0.5;
 
   template <class Policy>
   bool hull_clears(const Policy& policy, const typename Policy::Piece& piece, const PairRef& p, CheckStats& stats);

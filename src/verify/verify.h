@@ -158,6 +158,7 @@ struct CheckStats {
   std::uint64_t static_filter_exact = 0;
   std::uint64_t sphere_tests = 0;  // hierarchy node pairs tested
   std::uint64_t slab_clears = 0;   // node pairs cleared by their slabs
+  std::uint64_t swept_clears = 0;  // node and feature pairs cleared by the swept-sphere test (enclosed motions)
   std::uint64_t hull_clears = 0;   // feature pairs cleared by the hull test (contact test failed)
   std::uint64_t axis_clears = 0;   // contact tests settled by the axis test alone (not counted in `contact`)
   // Exact resolution (proofs/exact-resolution.md): pieces decided by the

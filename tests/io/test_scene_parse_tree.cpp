@@ -192,6 +192,7 @@ std::string reference_json(const Scene& scene, const tmcert::SceneResult& r) {
                   {"static_filter_exact", s.static_filter_exact},
                   {"sphere_tests", s.sphere_tests},
                   {"slab_clears", s.slab_clears},
+                  {"swept_clears", s.swept_clears},
                   {"hull_clears", s.hull_clears},
                   {"axis_clears", s.axis_clears},
                   {"stops", s.stops},
