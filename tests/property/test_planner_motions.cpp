@@ -405,7 +405,7 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
   if (w.features[tri_side] != "tri polygon 0") return "unexpected obstacle feature " + w.features[tri_side];
   const std::string want_mover = k.moving.size() == 2 ? "mover segment 0" : "mover polygon 0";
   if (w.features[1 - tri_side] != want_mover) return "unexpected moving feature " + w.features[1 - tri_side];
-  const std::vector<P3> m = placed_moving(k, *pose);
+  std::vector<P3> m = placed_moving(k, *pose);
   const std::array<P3, 3> oa = placed_obstacle(k, w.t);
   const std::vector<P3> o(oa.begin(), oa.end());
   if (w.points) {
@@ -431,10 +431,16 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
     std::vector<P3> moved = m;
     for (P3& x : moved)
       for (int c = 0; c < 3; ++c) x[c] = x[c] + Mp(v[c]);
-    const P3 x = pw(w.point);
-    if (kOn < dist_feature(x, moved)) return "toleranced witness point not on the displaced mover";
-    if (kOn < dist_feature(x, o)) return "toleranced witness point not on the obstacle";
-    return "";
+    if (!w.point_box) {
+      const P3 x = pw(w.point);
+      if (kOn < dist_feature(x, moved)) return "toleranced witness point not on the displaced mover";
+      if (kOn < dist_feature(x, o)) return "toleranced witness point not on the obstacle";
+      return "";
+    }
+    // At an enclosed pose (a transcendental motion between keyframes): a
+    // crossing of the displaced mover and the obstacle inside the box
+    // (proofs/enclosures.md section 6), checked below.
+    m = moved;
   }
   if (!w.point_box) {
     const P3 x = pw(w.point);

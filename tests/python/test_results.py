@@ -45,7 +45,12 @@ def test_clearance_and_undecided_intervals() -> None:
     assert check.clearance == Fraction(1, 2) and check.clearance_violated
     a, b = check.witness.points
     assert sum((x - y) ** 2 for x, y in zip(a, b)) <= check.clearance ** 2
-    assert [u.reason for u in check.undecided] == ["epsilon", "limit"]
+    # The first violation: the pin at x = -2 + 4t comes within 1/2 of the
+    # plate when (|x| - 1/2)^2 + (3/10)^2 <= (1/2)^2, i.e. from t = 11/40 on;
+    # the one undecided interval (reason epsilon) holds it, before the witness.
+    assert [u.reason for u in check.undecided] == ["epsilon"]
+    (u,) = check.undecided
+    assert u.t[0] <= Fraction(11, 40) <= u.t[1] <= check.witness.t
     assert_views_agree(result)
 
 
