@@ -60,13 +60,16 @@ BOOST_AUTO_TEST_CASE(window_searches_only_its_part) {
   BOOST_TEST(across.witness->t == Exact(1, 3));
 }
 
-BOOST_AUTO_TEST_CASE(clearance_reaches_earlier) {
-  // With clearance 1/2 the faces come within it when -3 + 6t = -3/2, t = 1/4.
-  const Scene scene = two_cubes("-3 0 0", "3 0 0");
+BOOST_AUTO_TEST_CASE(clearance_counts_a_near_pass) {
+  // The mover passes the post at a gap of 1/4 (its faces y = 3/4 and y = 1/2):
+  // safe without a clearance, not safe with a clearance of 1/2.
+  const Scene scene = two_cubes("-3 1.25 0", "3 1.25 0");
   const PreparedBody mover(scene.bodies[0]), post(scene.bodies[1]);
-  const CheckResult r = detail::check_prepared_pair(mover, post, {0, 1}, Exact(1, 2), options());
-  BOOST_TEST((r.verdict != Verdict::Safe));
-  if (r.witness) BOOST_TEST(r.witness->t <= Exact(1, 3));
+  const CheckResult free = detail::check_prepared_pair(mover, post, {0, 1}, Exact(0), options());
+  BOOST_TEST((free.verdict == Verdict::Safe));
+  const CheckResult near = detail::check_prepared_pair(mover, post, {0, 1}, Exact(1, 2), options());
+  BOOST_TEST((near.verdict != Verdict::Safe));
+  BOOST_TEST(near.clearance == Exact(1, 2));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
