@@ -16,7 +16,7 @@
 #include "src/io/read_file.h"
 #include "src/io/scene_document.h"
 #include "src/io/scene_reader.h"
-#include "src/metric/metric.h"
+#include "src/model/mass.h"
 #include "src/model/solid.h"
 
 #include <gmp.h>
@@ -344,7 +344,7 @@ MassDistribution SceneReader::explicit_mass(const Node& node, const Path& path) 
   if (mass.points.empty()) fail(path.member("points"), "at least one mass point is required");
   mass.weights = positive_weights(*weights, path.member("weights"), mass.points.size(), "mass point");
   try {
-    Metric::require_positive_definite(mass);
+    require_positive_definite(mass);
   } catch (const InputError& e) {
     fail(path, e.what());
   }
@@ -368,7 +368,7 @@ void SceneReader::assign_masses(Scene& scene, const Path& bodies_path) const {
     if (!b.mass_is_default) continue;
     b.mass = default_mass(vertices_of(b), size);
     try {
-      Metric::require_positive_definite(b.mass);
+      require_positive_definite(b.mass);
     } catch (const InputError& e) {  // default_mass promises this cannot happen
       fail(bodies_path.index(i), std::string("default mass: ") + e.what());
     }

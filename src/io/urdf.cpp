@@ -7,7 +7,7 @@
 #include "src/io/robot.h"
 
 #include "kernels/decimal.h"
-#include "src/metric/metric.h"
+#include "src/model/mass.h"
 #include "src/io/primitives.h"
 #include "src/io/mesh.h"
 #include "src/io/parse.h"

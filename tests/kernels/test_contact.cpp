@@ -5,30 +5,13 @@
 #include "kernels/filtered.h"
 #include "src/metric/metric.h"
 #include "src/verify/prepared.h"
+#include "tests/support/contact_pairs.h"
 #include "tests/support/random_geometry.h"
 
 #include <boost/test/unit_test.hpp>
 
 using namespace tmcert;
 using namespace tmcert::testing;
-
-namespace {
-
-Vec3E rand_point(Rng& r) { return {r.q(-8, 8, 4), r.q(-8, 8, 4), r.q(-8, 8, 4)}; }
-
-Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-Vec3E on_triangle(const std::array<Vec3E, 3>& t, const Exact& a, const Exact& b) {
-  const Exact c = Exact(1) - a - b;
-  return {c * t[0][0] + a * t[1][0] + b * t[2][0], c * t[0][1] + a * t[1][1] + b * t[2][1],
-          c * t[0][2] + a * t[1][2] + b * t[2][2]};
-}
-
-}  // namespace
 
 BOOST_AUTO_TEST_SUITE(contact)
 
@@ -91,9 +74,7 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
     std::array<Vec3E, 3> tm{rand_point(r), rand_point(r), rand_point(r)};
     std::array<Vec3E, 3> tf{rand_point(r), rand_point(r), rand_point(r)};
     if (testing::collinear(tm[0], tm[1], tm[2]) || testing::collinear(tf[0], tf[1], tf[2])) continue;
-    Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
-    bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
-    const PreparedBody pm(bm), pf(bf);
+    const TrianglePair pair(tm, tf);
     Placement<Exact> pe;
     for (auto& e : pe.g1) e = r.q(-4, 4, 4);
     pe.g1[0] += 1; pe.g1[5] += 1; pe.g1[10] += 1;
@@ -103,10 +84,10 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
     pi.r2 = to_interval(pe.r2);
 
     auto phi = [&](const Vec3E& x, const Vec3E& y) {
-      const Vec3E gx = apply_map(pe.g1, x);
+      const Vec3E gx = map_point(pe.g1, x);
       Exact d2 = 0;
       for (int i = 0; i < 3; ++i) d2 += (gx[i] - y[i]) * (gx[i] - y[i]);
-      return d2 - pe.r2 * pm.exact_metric().rho2(x);
+      return d2 - pe.r2 * pair.pm.exact_metric().rho2(x);
     };
     const int n = 8;
     auto check_pair = [&](ContactKind kind, const FeatureGeometry<Exact>& X, const FeatureGeometry<Exact>& Y,
@@ -129,28 +110,7 @@ BOOST_AUTO_TEST_CASE(contact_sign_matches_sampled_phi) {
                                     [&] { return contact_sign<Exact>(kind, X, Y, pe); }, counters);
       BOOST_CHECK(f == s);
     };
-    // Vertex 0 of the moving triangle against the fixed face.
-    check_pair(ContactKind::VertexFace, pm.exact().vertices[0], pf.exact().faces[0], pm.vertices.interval[0],
-               pf.faces.interval[0], [&](const Exact& a, const Exact& b) {
-                 return std::pair{tm[0], a + b <= 1 ? on_triangle(tf, a, b) : on_triangle(tf, Exact(1) - a, Exact(1) - b)};
-               });
-    // Moving face against fixed vertex 0.
-    check_pair(ContactKind::FaceVertex, pm.exact().faces[0], pf.exact().vertices[0], pm.faces.interval[0],
-               pf.vertices.interval[0], [&](const Exact& a, const Exact& b) {
-                 return std::pair{a + b <= 1 ? on_triangle(tm, a, b) : on_triangle(tm, Exact(1) - a, Exact(1) - b), tf[0]};
-               });
-    // Edge 0 against edge 0 (edges are p0->p1 of the respective triangles).
-    const auto& em = pm.exact().edges[0];
-    const auto& ef = pf.exact().edges[0];
-    check_pair(ContactKind::EdgeEdge, em, ef, pm.edges.interval[0], pf.edges.interval[0],
-               [&](const Exact& a, const Exact& b) {
-                 Vec3E x, y;
-                 for (int i = 0; i < 3; ++i) {
-                   x[i] = em.origin[i] + a * em.axis[0][i];
-                   y[i] = ef.origin[i] + b * ef.axis[0][i];
-                 }
-                 return std::pair{x, y};
-               });
+    pair.for_each_sampled_pair(check_pair);
   }
   BOOST_TEST(cleared > 30);
   BOOST_TEST(not_cleared > 30);
@@ -169,10 +129,8 @@ BOOST_AUTO_TEST_CASE(axis_test_clears_only_what_the_exact_test_clears) {
     std::array<Vec3E, 3> tf{rand_point(r), rand_point(r), rand_point(r)};
     if (testing::collinear(tm[0], tm[1], tm[2]) || testing::collinear(tf[0], tf[1], tf[2])) continue;
     const bool both = iter % 2 == 1;
-    Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
-    const Motion shift{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
-    bm.motion = shift;
-    if (both) bf.motion = shift;
+    const Body bm = TrianglePair::moving(triangle_body("m", tm));
+    const Body bf = both ? TrianglePair::moving(triangle_body("f", tf)) : triangle_body("f", tf);
     const PreparedBody pm(bm), pf(bf);
     Placement<Exact> pe;
     auto random_map = [&](std::array<Exact, 12>& g) {

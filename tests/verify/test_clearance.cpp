@@ -8,6 +8,7 @@
 #include "src/metric/metric.h"
 #include "src/verify/kernel_policies.h"
 #include "src/verify/prepared.h"
+#include "tests/support/contact_pairs.h"
 #include "tests/support/random_geometry.h"
 
 #include <boost/test/unit_test.hpp>
@@ -18,20 +19,6 @@ using namespace tmcert;
 using namespace tmcert::testing;
 
 namespace {
-
-Vec3E rand_point(Rng& r) { return {r.q(-8, 8, 4), r.q(-8, 8, 4), r.q(-8, 8, 4)}; }
-
-Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-Vec3E on_triangle(const std::array<Vec3E, 3>& t, const Exact& a, const Exact& b) {
-  const Exact c = Exact(1) - a - b;
-  return {c * t[0][0] + a * t[1][0] + b * t[2][0], c * t[0][1] + a * t[1][1] + b * t[2][1],
-          c * t[0][2] + a * t[1][2] + b * t[2][2]};
-}
 
 // |g(x) - y| > R rho(x) + d, decided exactly: with A = |g(x) - y|^2 - R^2 rho^2 - d^2,
 // it holds iff A > 0 and A^2 > 4 d^2 R^2 rho^2.
@@ -66,9 +53,7 @@ BOOST_AUTO_TEST_CASE(shifted_tests_clear_only_pairs_farther_than_the_clearance) 
     std::array<Vec3E, 3> tm{rand_point(r), rand_point(r), rand_point(r)};
     std::array<Vec3E, 3> tf{rand_point(r), rand_point(r), rand_point(r)};
     if (testing::collinear(tm[0], tm[1], tm[2]) || testing::collinear(tf[0], tf[1], tf[2])) continue;
-    Body bm = triangle_body("m", tm), bf = triangle_body("f", tf);
-    bm.motion = Motion{0, 1, {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0}}, {1, 1}};
-    const PreparedBody pm(bm), pf(bf);
+    const TrianglePair pair(tm, tf);
     Placement<Exact> pe;
     for (auto& e : pe.g1) e = r.q(-4, 4, 4);
     pe.g1[0] += 1; pe.g1[5] += 1; pe.g1[10] += 1;
@@ -102,10 +87,10 @@ BOOST_AUTO_TEST_CASE(shifted_tests_clear_only_pairs_farther_than_the_clearance) 
       for (int i = 0; i <= n && all_far; ++i)
         for (int j = 0; j <= n && all_far; ++j) {
           auto [x, y] = sample(Exact(i, n), Exact(j, n));
-          const Vec3E gx = apply_map(pe.g1, x);
+          const Vec3E gx = map_point(pe.g1, x);
           Exact d2 = 0;
           for (int k = 0; k < 3; ++k) d2 += (gx[k] - y[k]) * (gx[k] - y[k]);
-          all_far = farther_than_reach(d2, pe.r2, pm.exact_metric().rho2(x), clear_e);
+          all_far = farther_than_reach(d2, pe.r2, pair.pm.exact_metric().rho2(x), clear_e);
         }
       if (s == CGAL::POSITIVE) {
         ++cleared;
@@ -118,25 +103,7 @@ BOOST_AUTO_TEST_CASE(shifted_tests_clear_only_pairs_farther_than_the_clearance) 
         BOOST_CHECK_MESSAGE(all_far, "axis test cleared a pair within the clearance, iteration " << iter);
       }
     };
-    check_pair(ContactKind::VertexFace, pm.exact().vertices[0], pf.exact().faces[0], pm.vertices.interval[0],
-               pf.faces.interval[0], [&](const Exact& a, const Exact& b) {
-                 return std::pair{tm[0], a + b <= 1 ? on_triangle(tf, a, b) : on_triangle(tf, Exact(1) - a, Exact(1) - b)};
-               });
-    check_pair(ContactKind::FaceVertex, pm.exact().faces[0], pf.exact().vertices[0], pm.faces.interval[0],
-               pf.vertices.interval[0], [&](const Exact& a, const Exact& b) {
-                 return std::pair{a + b <= 1 ? on_triangle(tm, a, b) : on_triangle(tm, Exact(1) - a, Exact(1) - b), tf[0]};
-               });
-    const auto& em = pm.exact().edges[0];
-    const auto& ef = pf.exact().edges[0];
-    check_pair(ContactKind::EdgeEdge, em, ef, pm.edges.interval[0], pf.edges.interval[0],
-               [&](const Exact& a, const Exact& b) {
-                 Vec3E x, y;
-                 for (int i = 0; i < 3; ++i) {
-                   x[i] = em.origin[i] + a * em.axis[0][i];
-                   y[i] = ef.origin[i] + b * ef.axis[0][i];
-                 }
-                 return std::pair{x, y};
-               });
+    pair.for_each_sampled_pair(check_pair);
   }
   BOOST_TEST_MESSAGE("clearance: " << cleared << " cleared, " << not_cleared << " not, " << axis << " by the axis test");
   BOOST_TEST(cleared > 30);

@@ -5,12 +5,15 @@
 #include "src/certificate/writer.h"
 #include "src/io/parse.h"
 #include "src/verify/fixed_environment.h"
+#include "src/verify/refine.h"
 #include "src/verify/verify.h"
 
 #include <boost/test/unit_test.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <string>
+#include <vector>
 
 using namespace tmcert;
 
@@ -116,6 +119,162 @@ BOOST_AUTO_TEST_CASE(the_fixed_environment_refines_as_the_verifier) {
   BOOST_REQUIRE(got.checks.size() == 1u);
   BOOST_TEST(got.checks[0].refined);
   BOOST_TEST(got.checks[0].epsilon < *options.epsilon);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// detail::refine_check itself (src/verify/refine.h), with a recorded
+// search in place of the real one: which parts are searched again, at
+// which epsilon, from a start proven free or not, and what the result
+// becomes.
+BOOST_AUTO_TEST_SUITE(refine_check_steps)
+
+namespace {
+
+struct Call {
+  Exact t0, t1;
+  bool start_free;
+  Exact epsilon;
+};
+
+// A result of the whole check [0, 1] at epsilon 1/1000, undecided on [a, b].
+CheckResult undecided_on(const Exact& a, const Exact& b) {
+  CheckResult r;
+  r.bodies = {0, 1};
+  r.verdict = Verdict::Undecided;
+  r.undecided.push_back({a, b, StopReason::Epsilon});
+  r.first_contact = std::pair{a, b};
+  return r;
+}
+
+VerifyOptions refining() {
+  VerifyOptions o;
+  o.epsilon = Exact(1, 1000);
+  o.refine = true;
+  return o;
+}
+
+// The search's answer on a window: safe, undecided (nodes visited or not)
+// or a collision at its middle.
+enum class Answer { Safe, Undecided, Stuck, Collision };
+
+detail::WindowSearch recorded(std::vector<Call>& calls, Answer answer) {
+  return [&calls, answer](const Exact& t0, const Exact& t1, bool start_free, const VerifyOptions& o) {
+    calls.push_back({t0, t1, start_free, *o.epsilon});
+    CheckResult part;
+    part.stats.nodes = answer == Answer::Stuck ? 0 : 1;
+    if (answer == Answer::Undecided || answer == Answer::Stuck) {
+      part.undecided.push_back({t0, t1, StopReason::Epsilon});
+      part.first_contact = std::pair{t0, t1};
+    } else if (answer == Answer::Collision) {
+      Witness w;
+      w.t = (t0 + t1) / 2;
+      w.features = {"a", "b"};
+      w.point = {0, 0, 0};
+      part.witness = w;
+      part.first_contact = std::pair{w.t, w.t};
+    }
+    return part;
+  };
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(nothing_without_refine_or_when_decided) {
+  std::vector<Call> calls;
+  VerifyOptions o = refining();
+  o.refine = false;
+  CheckResult r = undecided_on(Exact(1, 4), Exact(1, 2));
+  detail::refine_check(r, 0, 1, false, o, std::chrono::steady_clock::now(), recorded(calls, Answer::Safe));
+  BOOST_TEST(calls.empty());
+  BOOST_TEST((r.verdict == Verdict::Undecided));
+  BOOST_TEST(r.epsilon == Exact(1, 1000));
+  BOOST_TEST(!r.refined);
+  CheckResult safe;
+  safe.verdict = Verdict::Safe;
+  detail::refine_check(safe, 0, 1, false, refining(), std::chrono::steady_clock::now(), recorded(calls, Answer::Safe));
+  BOOST_TEST(calls.empty());
+  BOOST_TEST((safe.verdict == Verdict::Safe));
+}
+
+BOOST_AUTO_TEST_CASE(undecided_part_searched_again_at_a_tenth) {
+  std::vector<Call> calls;
+  CheckResult r = undecided_on(Exact(1, 4), Exact(1, 2));
+  detail::refine_check(r, 0, 1, false, refining(), std::chrono::steady_clock::now(), recorded(calls, Answer::Safe));
+  BOOST_REQUIRE(calls.size() == 1u);
+  BOOST_TEST(calls[0].t0 == Exact(1, 4));
+  BOOST_TEST(calls[0].t1 == Exact(1, 2));
+  BOOST_TEST(calls[0].start_free);  // everything before 1/4 was cleared from the tested start
+  BOOST_TEST(calls[0].epsilon == Exact(1, 10000));
+  BOOST_TEST((r.verdict == Verdict::Safe));
+  BOOST_TEST(r.undecided.empty());
+  BOOST_TEST(!r.first_contact);
+  BOOST_TEST(r.refined);
+  BOOST_TEST(r.epsilon == Exact(1, 10000));
+  BOOST_TEST(!r.refine_exhausted);
+  BOOST_TEST(!r.refine_out_of_time);
+}
+
+BOOST_AUTO_TEST_CASE(part_at_the_start_is_not_proven_free) {
+  std::vector<Call> calls;
+  CheckResult r = undecided_on(Exact(0), Exact(1, 2));
+  detail::refine_check(r, 0, 1, false, refining(), std::chrono::steady_clock::now(), recorded(calls, Answer::Safe));
+  BOOST_REQUIRE(calls.size() == 1u);
+  BOOST_TEST(!calls[0].start_free);
+}
+
+BOOST_AUTO_TEST_CASE(down_to_the_floor_then_exhausted) {
+  std::vector<Call> calls;
+  CheckResult r = undecided_on(Exact(1, 4), Exact(1, 2));
+  detail::refine_check(r, 0, 1, false, refining(), std::chrono::steady_clock::now(),
+                       recorded(calls, Answer::Undecided));
+  BOOST_REQUIRE(calls.size() == static_cast<std::size_t>(detail::kRefineLevels));
+  Exact eps(1, 1000);
+  for (const Call& c : calls) {
+    eps /= 10;
+    BOOST_TEST(c.epsilon == eps);
+  }
+  BOOST_TEST(eps == Exact(1, 1000000000));
+  BOOST_TEST((r.verdict == Verdict::Undecided));
+  BOOST_TEST(r.epsilon == eps);
+  BOOST_TEST(r.refine_exhausted);
+  BOOST_TEST(!r.refine_out_of_time);
+  BOOST_REQUIRE(r.undecided.size() == 1u);
+  BOOST_TEST(r.undecided[0].t0 == Exact(1, 4));
+  BOOST_TEST(r.undecided[0].t1 == Exact(1, 2));
+}
+
+BOOST_AUTO_TEST_CASE(stuck_part_is_not_searched_again) {
+  std::vector<Call> calls;
+  CheckResult r = undecided_on(Exact(1, 4), Exact(1, 2));
+  detail::refine_check(r, 0, 1, false, refining(), std::chrono::steady_clock::now(), recorded(calls, Answer::Stuck));
+  BOOST_TEST(calls.size() == 1u);
+  BOOST_TEST((r.verdict == Verdict::Undecided));
+  BOOST_TEST(r.refine_exhausted);
+}
+
+BOOST_AUTO_TEST_CASE(dyadic_check_searches_aligned_pieces) {
+  std::vector<Call> calls;
+  CheckResult r = undecided_on(Exact(1, 4), Exact(3, 4));
+  detail::refine_check(r, 0, 1, true, refining(), std::chrono::steady_clock::now(), recorded(calls, Answer::Safe));
+  BOOST_REQUIRE(calls.size() == 2u);
+  BOOST_TEST(calls[0].t0 == Exact(1, 4));
+  BOOST_TEST(calls[0].t1 == Exact(1, 2));
+  BOOST_TEST(calls[1].t0 == Exact(1, 2));
+  BOOST_TEST(calls[1].t1 == Exact(3, 4));
+  BOOST_TEST((r.verdict == Verdict::Safe));
+}
+
+BOOST_AUTO_TEST_CASE(witness_ends_the_refinement) {
+  std::vector<Call> calls;
+  CheckResult r = undecided_on(Exact(1, 4), Exact(1, 2));
+  r.undecided.push_back({Exact(3, 4), Exact(1), StopReason::Epsilon});
+  detail::refine_check(r, 0, 1, false, refining(), std::chrono::steady_clock::now(),
+                       recorded(calls, Answer::Collision));
+  BOOST_TEST(calls.size() == 1u);  // the second part is not searched after the witness
+  BOOST_TEST((r.verdict == Verdict::Collision));
+  BOOST_REQUIRE(r.witness);
+  BOOST_TEST(r.witness->t == Exact(3, 8));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
