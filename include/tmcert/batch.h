@@ -32,7 +32,7 @@ struct BatchOptions {
   Kernel kernel = Kernel::Filtered;
   std::optional<Number> epsilon;  // none: the environment's, else its default refined; "auto": refined
   std::optional<int> max_depth;   // 1 to 200; none: the environment's
-  std::optional<double> time_limit;  // seconds per check
+  std::optional<double> time_limit;  // seconds per check (none: 30 s when refined, else none)
   int threads = 1;                // requests run in parallel (the output is the same)
   bool stats = false;             // each check's stats (seconds included: not reproducible)
   // As VerifyOptions::progress: called about every progress_interval

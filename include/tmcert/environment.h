@@ -18,7 +18,7 @@
 // Options: as VerifyOptions say, with epsilon given, else the scene's,
 // else 1/1000 of the diagonal of the box of everything the scene's bodies
 // sweep, refined (undecided parts searched again at epsilon/10, ... down
-// to epsilon/10^6, within time_limit, else 30 s); "auto" refines even when
+// to epsilon/10^6, within time_limit, else 30 s for the whole check); "auto" refines even when
 // the scene gives an epsilon.  The fast kernel is refused (not certified);
 // threads and certificate are not used (a motion is one search).
 //

@@ -25,7 +25,7 @@
 // else the scene's, else 1/1000 of the diagonal of the box of everything
 // the scene's bodies sweep along their motions as written, refined: an
 // edge's undecided parts are searched again at epsilon/10, ... down to
-// epsilon/10^6, within time_limit (else 30 s) per check (`tmcert batch`
+// epsilon/10^6, within time_limit (else 30 s, first search included) per check (`tmcert batch`
 // makes the same choice; "auto" refines even when the scene gives an
 // epsilon, a given number does not).  Also used: kernel (filtered or exact; the fast
 // kernel is not certified: InputError), max_depth (else the scene's),

@@ -44,9 +44,9 @@ struct VerifyOptions {
   std::optional<int> max_depth;
   // Worker threads, 1 to 256 (the result does not depend on it).
   int threads = 1;
-  // Seconds per check, > 0 and at most 1e9 (none: no limit).  Past it the
-  // rest of a check's interval is undecided (reason Limit), never safe; the
-  // result then depends on the machine's speed.
+  // Seconds per check, > 0 and at most 1e9 (none: 30 s for a refined check,
+  // its first search included; none with a given epsilon).  Past it the rest
+  // of a check's interval is undecided (reason Limit), never safe; the result then depends on the machine's speed.
   std::optional<double> time_limit;
   // Carry every feature pair from the start instead of the bounding-volume
   // hierarchies (the reference they are tested against; slow).

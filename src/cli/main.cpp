@@ -348,7 +348,8 @@ int main(int argc, char** argv) {
   verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
-                     "(reason limit), never safe; refinement (no --epsilon) stops at it, else at 30 s");
+                     "(reason limit), never safe; default: 30 with refinement (no --epsilon, or --epsilon auto: its first "
+                     "search and refinement together), none with a given epsilon");
   const char* package_help = "a folder searched for package://NAME/... (repeatable; before the scene's \"package_paths\" "
                              "and ROS_PACKAGE_PATH; each with its subfolders up to four levels)";
   verify->add_option("--package-path", args.package_paths, package_help)->allow_extra_args(false);
@@ -378,7 +379,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(tmcert::kMinDepth, tmcert::kMaxDepth));
   batch->add_option("--kernel", batch_args.kernel, "filtered (default, certified), exact (certified), fast (not certified)")
       ->check(CLI::IsMember({"filtered", "exact", "fast"}));
-  batch->add_option("--time-limit", batch_args.time_limit, "seconds per check (the rest of a check past it is undecided)");
+  batch->add_option("--time-limit", batch_args.time_limit, "seconds per check (the rest of a check past it is undecided; default: 30 with "
+                                                      "refinement, none with a given epsilon)");
   batch->add_option("--threads", batch_args.options.verify.threads, "requests run in parallel (the output is the same)")
       ->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   batch->add_option("--package-path", batch_args.options.package_paths, package_help)->allow_extra_args(false);

@@ -543,77 +543,119 @@ std::string readable_box(const std::array<std::array<Exact, 2>, 3>& box) {
   return centre + ") ± " + half + ")";
 }
 
-// The epsilon a hint suggests: a tenth of the check's, unless that is
-// still larger than the check's whole box (1000 times its default
-// epsilon, the diagonal of its two bodies' box), where no smaller epsilon
-// of that size can help: then the default (a given epsilon of 1e16 for
-// bodies of size 1 gets the suggestion 0.00173205, not 1e15).
-Exact smaller_epsilon(const Scene& scene, const CheckResult& c) {
-  const Exact tenth = c.epsilon / 10;
-  const Exact fallback = default_epsilon(scene.bodies[c.bodies[0]], scene.bodies[c.bodies[1]]);
-  return tenth > 1000 * fallback ? fallback : tenth;
+// The epsilon a hint suggests: a tenth of the check's, not below the
+// refinement's floor, unless that is still larger than the check's whole
+// box (1000 times its default epsilon, the diagonal of its two bodies'
+// box), where no smaller epsilon of that size can help: then the default
+// (a given epsilon of 1e16 for bodies of size 1 gets the suggestion
+// 0.00173205, not 1e15).  The floor is the check's default epsilon / 10^6
+// (1e-9 of the diagonal of its two bodies' box; SCENE_FORMAT.md "Decisive
+// by default").  None when the check's epsilon is at or below the floor
+// already: the bodies come within 1e-9 of their box there.
+Exact epsilon_floor(const Scene& scene, const CheckResult& c) {
+  return default_epsilon(scene.bodies[c.bodies[0]], scene.bodies[c.bodies[1]]) / 1000000;
 }
 
-// What to try when a check stops undecided for `reason`.  `smaller` is
-// the epsilon a hint suggests (smaller_epsilon).
-// A hint never suggests a smaller epsilon where that cannot help: a check
+std::optional<Exact> smaller_epsilon(const Scene& scene, const CheckResult& c) {
+  const Exact fallback = default_epsilon(scene.bodies[c.bodies[0]], scene.bodies[c.bodies[1]]);
+  const Exact floor = fallback / 1000000;
+  if (c.epsilon <= floor) return std::nullopt;
+  const Exact tenth = c.epsilon / 10;
+  if (tenth > 1000 * fallback) return fallback;
+  return tenth < floor ? floor : tenth;
+}
+
+// What to try when a check stops undecided for `reason` (issue 23 item 7:
+// hints that lead somewhere).  `smaller`: the epsilon a hint suggests
+// (smaller_epsilon; none at or below the floor).  A hint suggests a
+// smaller epsilon only where one could decide the part: never for a check
 // undecided without a single subdivision node (its start configuration, an
 // enclosed pose within rounding of contact or a solid's containment at an
-// enclosed start, is what is undecided), or one whose refinement reached
-// its floor.
-std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason, const Exact& smaller) {
-  const std::string time_limit_text = [&] {
+// enclosed start, is what is undecided), after refinement reached its floor
+// or could not search its parts again, at a given epsilon already at or
+// below the floor, or where the time limit cut the check short (then a
+// larger --time-limit is the lever).
+// `stuck`: refinement ended because every part left could not be searched
+// again (refine_exhausted above the floor: a re-search that visited no node).
+std::string undecided_hint(const SceneResult& r, const CheckResult& c, StopReason reason,
+                           const std::optional<Exact>& smaller, bool stuck) {
+  const std::string epsilon = to_decimal(c.epsilon).text;
+  // SceneResult::time_limit: the given one, else with refinement the
+  // default (30 s).
+  const std::string time_limit = [&] {
     std::ostringstream t;
-    t << (r.time_limit > 0 ? r.time_limit : 30);
+    t << "the check's time limit (" << r.time_limit << " s)";
     return t.str();
   }();
-  const std::string out_of_time = "refinement stopped at epsilon " + to_decimal(c.epsilon).text +
-                                  " when the check's time limit (" + time_limit_text +
-                                  " s) ran out; try a larger --time-limit";
+  // The time limit cut the check short (or its run was cancelled).
+  const std::string out_of_time =
+      r.time_limit > 0 ? time_limit + " ran out; try a larger --time-limit" : "the run was cancelled";
+  const std::string try_smaller =
+      smaller ? "try a smaller --epsilon, e.g. --epsilon " + to_decimal(*smaller).text + (r.refine ? "" : ", or --epsilon auto")
+              : "";
+  const std::string at_floor = "epsilon (" + epsilon +
+                               ") is already at or below the refinement's floor (1e-9 of the check's box): the bodies "
+                               "touch or nearly touch there";
   switch (reason) {
     case StopReason::Epsilon:
       if (c.stats.nodes == 0)
         return "the start configuration could not be proven free (an enclosed pose within rounding of contact, "
                "or a solid's containment at an enclosed start); no epsilon changes that";
-      if (c.refine_out_of_time) return out_of_time;
+      if (c.refine_out_of_time)
+        return c.refined ? "the bodies come within about epsilon (" + epsilon + ") there; refinement stopped at it when " +
+                               out_of_time
+                         : "the bodies come within about epsilon (" + epsilon +
+                               ") there; refinement could not search it again: " + out_of_time;
+      if (stuck)
+        return "the bodies come within about epsilon (" + epsilon +
+               ") there, and searching it again at a smaller epsilon could not begin (its start, an enclosed pose "
+               "within rounding of contact, stays undecided); no epsilon changes that";
       if (c.refine_exhausted)
-        return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
+        return "the bodies come within about epsilon (" + epsilon +
                ") there even at the refinement's floor (epsilon/10^6 of the check's default); a smaller epsilon "
                "would not decide it";
-      return "the bodies come within about epsilon (" + to_decimal(c.epsilon).text +
-             ") there; try a smaller --epsilon, e.g. --epsilon " + to_decimal(smaller).text +
-             (r.refine ? "" : ", or --epsilon auto");
+      if (!smaller) return "the bodies come within about epsilon there; " + at_floor;
+      return "the bodies come within about epsilon (" + epsilon + ") there; " + try_smaller;
     case StopReason::Depth:
       if (r.max_depth < 62)
         return "the subdivision reached its depth limit (" + std::to_string(r.max_depth) + "); try --max-depth " +
                std::to_string(std::min(62, 2 * r.max_depth));
       return "the subdivision reached its finest depth (62): the bodies are within rounding of contact there";
     case StopReason::Limit:
-      if (c.refine_out_of_time) return out_of_time;
-      if (c.refine_exhausted && r.max_stops > 0 && c.stats.stops >= r.max_stops)
-        return "the stop budget (" + std::to_string(r.max_stops) +
-               " undecided pieces per search) was used up even at the refinement's floor (epsilon " +
-               to_decimal(c.epsilon).text + "): the bodies stay within about epsilon over a long stretch (resting on "
-               "each other); a smaller epsilon would not decide it";
-      if (r.max_stops > 0 && c.stats.stops >= r.max_stops)
-        return "the stop budget (" + std::to_string(r.max_stops) +
-               " undecided pieces) was used up, so the rest was not searched: the bodies stay within about "
-               "epsilon over a long stretch; try a smaller --epsilon, e.g. --epsilon " +
-               to_decimal(smaller).text;
+      // A refined check: its time limit ran out during the first search or
+      // the refinement (the node and stop budgets count per search there).
+      if (c.refine_out_of_time)
+        return r.time_limit > 0 ? time_limit + " ran out before this part was searched; try a larger --time-limit"
+                                : "the run was cancelled before this part was searched";
+      if (r.max_stops > 0 && c.stats.stops >= r.max_stops) {
+        const std::string stops = "the stop budget (" + std::to_string(r.max_stops) + " undecided pieces";
+        if (c.refine_exhausted)
+          return stops + " per search) was used up even at the refinement's floor (epsilon " + epsilon +
+                 "): the bodies stay within about epsilon over a long stretch (resting on each other); a smaller "
+                 "epsilon would not decide it";
+        if (!smaller)
+          return stops + ") was used up, so the rest was not searched: the bodies stay within about epsilon over a "
+                         "long stretch, and " + at_floor;
+        return stops + ") was used up, so the rest was not searched: the bodies stay within about epsilon over a "
+                       "long stretch; " + try_smaller;
+      }
       if (r.max_nodes > 0 && c.stats.nodes >= r.max_nodes)
         return "the node budget (" + std::to_string(r.max_nodes) +
                " nodes per check) was used up; try a larger --epsilon, or check shorter pieces of the motion";
-      if (r.time_limit > 0) {
-        std::ostringstream t;
-        t << r.time_limit;
-        return "--time-limit " + t.str() + " was reached; try a larger --time-limit";
-      }
+      if (r.time_limit > 0) return time_limit + " ran out before this part was searched; try a larger --time-limit";
       return "a budget of the check was used up";
-    case StopReason::AfterUndecided:
-      return "not claimed: the contact tests see only contact that begins here, and after the part not cleared "
-             "before it the bodies were not proven apart (a pose only enclosed, or a solid's inside left open); try a "
-             "smaller --epsilon, e.g. --epsilon " +
-             to_decimal(c.epsilon / 10).text;
+    case StopReason::AfterUndecided: {
+      const std::string not_claimed =
+          "not claimed: the contact tests see only contact that begins here, and after the part not cleared before "
+          "it the bodies were not proven apart (a pose only enclosed, or a solid's inside left open)";
+      if (c.refine_out_of_time) return not_claimed + "; " + out_of_time;
+      if (c.refine_exhausted)
+        return not_claimed + "; refinement " +
+               (stuck ? "could not search the part before it again" : "reached its floor") +
+               " without deciding it, so a smaller epsilon would not decide it";
+      if (!smaller) return not_claimed + "; " + at_floor;
+      return not_claimed + "; " + try_smaller;
+    }
     case StopReason::EnlargedModel:
       return c.verdict == Verdict::Collision
                  ? "a URDF cylinder's or sphere's circumscribed polyhedron touches there; the contact of the true "
@@ -709,17 +751,22 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
       out << "\n";
     }
     const std::vector<UndecidedInterval> undecided = merged_undecided(c.undecided);
-    std::optional<Exact> smaller;  // computed for the first hint that needs it
+    // The epsilon hints suggest, computed for the first hint that needs it.
+    std::optional<std::optional<Exact>> smaller;
+    bool stuck = false;
     for (std::size_t k = 0; k < undecided.size() && k < kUndecidedShown; ++k) {
       const UndecidedInterval& u = undecided[k];
       // The stopped piece a witness was found in, up to the witness.
       const bool before_witness =
           wit && !root && u.t1 == wit->t && (u.reason == StopReason::Epsilon || u.reason == StopReason::Depth);
-      if (!before_witness && !smaller && u.reason != StopReason::Depth) smaller = smaller_epsilon(scene, c);
+      if (!before_witness && !smaller && u.reason != StopReason::Depth && u.reason != StopReason::EnlargedModel) {
+        smaller = smaller_epsilon(scene, c);
+        stuck = c.refine_exhausted && c.epsilon > epsilon_floor(scene, c);
+      }
       out << "    undecided t in [" << to_decimal(u.t0).text << ", " << to_decimal(u.t1).text << "] ("
           << to_string(u.reason) << "): "
           << (before_witness ? "the bodies come within about epsilon there; the first contact lies in here or at the witness"
-                             : undecided_hint(r, c, u.reason, smaller ? *smaller : c.epsilon))
+                             : undecided_hint(r, c, u.reason, smaller ? *smaller : std::nullopt, stuck))
           << "\n";
     }
     if (undecided.size() > kUndecidedShown)

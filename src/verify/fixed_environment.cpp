@@ -832,13 +832,12 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         static_test(prepared_[a]->parts, start_of(a).map, start_of(a).exact, *index_, prepared_[0]->parts, &local_[a],
                     false, &shared_[a]).kind ==
             StaticOutcome::Kind::Free;
-    // VerifyOptions::time_limit bounds each check, as in Verifier::check.
+    // check_time_limit bounds each check, as in Verifier::check (with
+    // refinement and none given: 30 s for the first search and the
+    // refinement together).
     VerifyOptions options = options_;
-    if (options.time_limit > 0)
-      options.deadline = std::chrono::steady_clock::now() +
-                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                             std::chrono::duration<double>(options.time_limit));
     const auto started = std::chrono::steady_clock::now();
+    options.deadline = detail::check_deadline(options, started);
     CheckResult result = windows.size() == 1 && windows.front() == std::pair{t0, t1}
                              ? detail::check_prepared_pair(*prepared_[a], *prepared_[b], {a, b}, Exact(0), options, start_free)
                              : search_windows(*prepared_[a], *prepared_[b], {a, b}, windows, t0, t1, options, start_free);

@@ -4,6 +4,7 @@
 #include "src/verify/search.h"
 
 #include <algorithm>
+#include <atomic>
 #include <set>
 #include <utility>
 #include <vector>
@@ -52,7 +53,26 @@ bool as_dyadic(CoverPiece& c, const Exact& t0, const Exact& t1) {
   return true;
 }
 
+// set_default_time_limit_for_tests (0: kDefaultTimeLimit).
+std::atomic<double> default_time_limit_for_tests{0};
+
 }  // namespace
+
+double check_time_limit(const VerifyOptions& options) {
+  if (options.time_limit > 0) return options.time_limit;
+  if (!options.refine) return 0;
+  const double shortened = default_time_limit_for_tests.load();
+  return shortened > 0 ? shortened : kDefaultTimeLimit;
+}
+
+std::chrono::steady_clock::time_point check_deadline(const VerifyOptions& options,
+                                                     std::chrono::steady_clock::time_point start) {
+  const double seconds = check_time_limit(options);
+  if (!(seconds > 0)) return std::chrono::steady_clock::time_point::max();
+  return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+void set_default_time_limit_for_tests(double seconds) { default_time_limit_for_tests.store(seconds); }
 
 void refine_check(CheckResult& result, const Exact& check_t0, const Exact& check_t1, bool dyadic,
                   const VerifyOptions& options, std::chrono::steady_clock::time_point started,
@@ -62,9 +82,6 @@ void refine_check(CheckResult& result, const Exact& check_t0, const Exact& check
   VerifyOptions o = options;
   o.slot = nullptr;  // the check's progress share was reported by its first search
   o.slot_span = 0;
-  if (options.time_limit <= 0)
-    o.deadline = started + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                               std::chrono::duration<double>(kRefineSeconds));
   Exact eps = *options.epsilon;
   // Parts whose re-search visited no node and stayed undecided: the start
   // test there cannot decide (an enclosed pose within rounding of contact),

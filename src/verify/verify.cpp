@@ -457,10 +457,9 @@ CheckResult Verifier::check(int a, int b, const Exact& clearance) const {
     options.slot_span = RunProgress::kUnit;
     options.run->set_activity("checking " + scene_.bodies[a].name + " x " + scene_.bodies[b].name);
   }
-  if (options.time_limit > 0)
-    options.deadline = std::chrono::steady_clock::now() +
-                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                           std::chrono::duration<double>(options.time_limit));
+  // With refinement and no time limit given, 30 s (check_time_limit): the
+  // first search and the refinement share it.
+  options.deadline = detail::check_deadline(options, std::chrono::steady_clock::now());
   // Without a given epsilon, the check's own: from the box of its two
   // bodies (default_epsilon(a, b)), not of the whole scene.
   if (!options.epsilon) options.epsilon = thousandth_of_diagonal(merged(reach_[a], reach_[b]));
@@ -623,7 +622,7 @@ SceneResult verify_scene(const Scene& scene, const VerifyOptions& options, int t
   out.max_depth = options.max_depth;
   out.max_nodes = options.max_nodes;
   out.max_stops = options.max_stops;
-  out.time_limit = options.time_limit;
+  out.time_limit = detail::check_time_limit(options);
 
   // Threads go to the checks first; when there are fewer checks than
   // threads, each check spreads its pieces over the rest.  Progress: a lone

@@ -59,10 +59,10 @@ struct VerifyOptions {
   // everywhere; the verdict is undecided from the first stop on anyway, and
   // the first-contact bracket comes from the first stop.
   std::uint64_t max_stops = 256;
-  // Per check, in seconds (0: none; `tmcert verify --time-limit`).  When a
-  // check runs past it, the pieces not yet searched are undecided "limit",
-  // never cleared: the search looks at the clock where it counts its node
-  // budget.  With a time limit the result depends on the machine's speed.
+  // Per check, in seconds (0: none given; `--time-limit`; with refinement
+  // then 30 s: detail::check_time_limit).  When a check runs past it, the
+  // pieces not yet searched are undecided "limit", never cleared: the search
+  // looks at the clock where it counts its node budget (results then vary).
   double time_limit = 0;
   // The running check's deadline (set by Verifier from time_limit when the
   // check starts; max(): none).

@@ -5,6 +5,7 @@
 // rounding mode (also under the sanitizers of make test).
 #include "kernels/number_types.h"
 #include "src/io/parse.h"
+#include "src/verify/refine.h"
 #include "src/verify/verify.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -98,6 +99,54 @@ BOOST_AUTO_TEST_CASE(time_limit_returns_promptly) {
   BOOST_TEST(seconds < 30.0);
   BOOST_TEST(r.checks[0].stats.nodes > 0u);
   BOOST_TEST(std::string(tmcert::to_string(r.checks[0].undecided.back().reason)) == "limit");
+}
+
+// Refinement by default bounds the whole check, its first search at the
+// starting epsilon included, by the default time limit when none is given
+// (SCENE_FORMAT.md "Decisive by default"); a given epsilon has none.
+BOOST_AUTO_TEST_CASE(default_time_limit_with_refinement_only) {
+  tmcert::VerifyOptions options;
+  BOOST_TEST(tmcert::detail::check_time_limit(options) == 0.0);  // a given epsilon: no limit
+  BOOST_TEST((tmcert::detail::check_deadline(options, std::chrono::steady_clock::now()) ==
+              std::chrono::steady_clock::time_point::max()));
+  options.refine = true;
+  BOOST_TEST(tmcert::detail::check_time_limit(options) == 30.0);
+  BOOST_TEST(tmcert::detail::kDefaultTimeLimit == 30.0);
+  const auto now = std::chrono::steady_clock::now();
+  BOOST_TEST((tmcert::detail::check_deadline(options, now) == now + std::chrono::seconds(30)));
+  options.time_limit = 2.5;  // a given limit wins
+  BOOST_TEST(tmcert::detail::check_time_limit(options) == 2.5);
+  options.refine = false;
+  BOOST_TEST(tmcert::detail::check_time_limit(options) == 2.5);
+}
+
+BOOST_AUTO_TEST_CASE(default_time_limit_bounds_the_first_search) {
+  // The search of time_limit_returns_promptly (hours without a limit), now
+  // refined with no time limit given: the default limit (shortened to 1/2
+  // s here) must stop its first search, the rest "limit"; when the default
+  // bounded only the refinement, the first search ran on.
+  const tmcert::Scene scene =
+      tmcert::parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/resting-within-epsilon.json");
+  tmcert::VerifyOptions options;
+  options.epsilon = Exact(1, CGAL::Gmpz("1000000000000"));
+  options.refine = true;
+  options.max_depth = 200;
+  options.max_nodes = std::uint64_t(1) << 40;
+  options.max_stops = std::uint64_t(1) << 40;
+  options.exact_resolution = false;
+  tmcert::detail::set_default_time_limit_for_tests(0.5);
+  const auto start = std::chrono::steady_clock::now();
+  const tmcert::SceneResult r = tmcert::verify_scene(scene, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  tmcert::detail::set_default_time_limit_for_tests(0);
+  require_limit(r);
+  BOOST_TEST(seconds < 30.0);
+  BOOST_TEST(r.time_limit == 0.5);  // what the report's hints name
+  const tmcert::CheckResult& c = r.checks[0];
+  BOOST_TEST(c.stats.nodes > 0u);
+  BOOST_TEST(c.refine_out_of_time);  // the hint: a larger --time-limit
+  BOOST_TEST(!c.refined);            // refinement never began
+  BOOST_TEST(std::string(tmcert::to_string(c.undecided.back().reason)) == "limit");
 }
 
 BOOST_AUTO_TEST_CASE(interval_rounding_encloses) {

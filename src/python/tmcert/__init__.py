@@ -786,7 +786,9 @@ def verify(scene: SceneLike, epsilon: Optional[NumberLike] = None, kernel: str =
         "fast" (plain doubles: NOT certified, and the result says so).
     max_depth: subdivision depth limit, 1 to 200 (default: the scene's).
     threads: worker threads, 1 to 256 (the result does not depend on it).
-    time_limit: seconds per check; past it the rest of a check is undecided.
+    time_limit: seconds per check; past it the rest of a check is undecided
+        (default: 30 s per check when refined, the first search included;
+        none with a given epsilon).
     all_pairs: carry every feature pair instead of the bounding volumes.
     certificate: keep what :meth:`Result.certificate` needs.
     progress: called with a :class:`Progress` about every
