@@ -27,6 +27,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -266,29 +268,33 @@ struct SlabSide {
   Interval shift;
   double nb_up = 0;
 };
-inline SlabSide slab_side(const SphereFrame<Interval>& f, const BvNode& b) {
+// Of the map g (its 12 entries, row-major [A | t]).
+inline SlabSide slab_side(const std::array<Interval, 12>& g, const BvNode& b) {
   SlabSide s;
   for (int j = 0; j < 3; ++j)
-    s.m[j] = f.g1[j] * Interval(b.slab_n[0]) + f.g1[4 + j] * Interval(b.slab_n[1]) + f.g1[8 + j] * Interval(b.slab_n[2]);
+    s.m[j] = g[j] * Interval(b.slab_n[0]) + g[4 + j] * Interval(b.slab_n[1]) + g[8 + j] * Interval(b.slab_n[2]);
   Interval nb2(0), shift(0);
   for (int i = 0; i < 3; ++i) {
     nb2 += CGAL::square(Interval(b.slab_n[i]));
-    shift += Interval(b.slab_n[i]) * f.g1[4 * i + 3];
+    shift += Interval(b.slab_n[i]) * g[4 * i + 3];
   }
   s.shift = shift;
   s.nb_up = std::sqrt(nb2.sup());  // upward rounding: an upper bound of |n_b|
   return s;
 }
+inline SlabSide slab_side(const SphereFrame<Interval>& f, const BvNode& b) { return slab_side(f.g1, b); }
 
-// Call under RoundingGuard.  `side`: slab_side(f, b), when the caller keeps
-// it per piece (it is computed here otherwise).
-inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const BvNode& b,
-                          const SlabSide* side = nullptr) {
-  SlabTest out;
-  if (!a.slab || !b.slab || f.body2_moving) return out;
+// The unfattened range of n_b.g(x) over the points x of a flat node a under
+// the map g of `sb`: within [-(base_negdown + size_up), base_up + size_up]
+// (three upper bounds; proofs/hierarchy.md §1b).  Not valid with a NaN or
+// an infinite bound.  Call under RoundingGuard.
+struct SlabBase {
+  bool valid = false;
+  double base_up = 0, base_negdown = 0, size_up = 0;
+};
+inline SlabBase slab_base(const SlabSide& sb, const BvNode& a) {
+  SlabBase out;
   CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
-  const SlabSide own = side ? SlabSide{} : slab_side(f, b);
-  const SlabSide& sb = side ? *side : own;
   const Interval* m = sb.m;
   double alpha = 0;
   for (int j = 0; j < 3; ++j) alpha += CGAL::to_double(m[j]) * a.slab_n[j];
@@ -315,17 +321,33 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   // Upper bounds only: under the guard the rounding is upward, so sqrt,
   // products and sums of non-negative upper bounds round up (cheaper than
   // interval square roots, which switch the rounding mode).
-  const double size_up = std::sqrt(perp2_up) * a.r;
+  out.size_up = std::sqrt(perp2_up) * a.r;
+  // alpha (n_a.x) over a's slab [slab_lo, slab_hi], plus perp.c and the shift.
+  const double s_hi = alpha >= 0 ? a.slab_hi : a.slab_lo, s_lo = alpha >= 0 ? a.slab_lo : a.slab_hi;
+  out.base_up = alpha * s_hi + c_up + shift.sup();
+  out.base_negdown = neg(alpha) * s_lo + c_negdown + neg(shift.inf());
+  out.valid = true;
+  return out;
+}
+
+// Call under RoundingGuard.  `side`: slab_side(f, b), when the caller keeps
+// it per piece (it is computed here otherwise).
+inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const BvNode& b,
+                          const SlabSide* side = nullptr) {
+  SlabTest out;
+  if (!a.slab || !b.slab || f.body2_moving) return out;
+  CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
+  const SlabSide own = side ? SlabSide{} : slab_side(f, b);
+  const SlabSide& sb = side ? *side : own;
+  const SlabBase base = slab_base(sb, a);
+  if (!base.valid) return out;
+  const double size_up = base.size_up, base_up = base.base_up, base_negdown = base.base_negdown;
   const double fat_up = sb.nb_up * f.R.sup() * a.p;
   // A clearance d: every point within d of a's features projects within
   // d |n_b| of theirs (proofs/clearance.md); no piece shrinks it.
   const double clear_up = f.clear > 0 ? sb.nb_up * f.clear : 0.0;
   const double spread = size_up + fat_up + clear_up;
   if (!(spread >= 0) || !std::isfinite(spread)) return out;  // NaN or unbounded: no claim
-  // alpha (n_a.x) over a's slab [slab_lo, slab_hi], plus perp.c and the shift.
-  const double s_hi = alpha >= 0 ? a.slab_hi : a.slab_lo, s_lo = alpha >= 0 ? a.slab_lo : a.slab_hi;
-  const double base_up = alpha * s_hi + c_up + shift.sup();
-  const double base_negdown = neg(alpha) * s_lo + c_negdown + neg(shift.inf());
   // Opacified: computed here, under the caller's upward rounding.
   const double hi_up = CGAL::IA_opacify(base_up + spread), lo_negdown = CGAL::IA_opacify(base_negdown + spread);
   if (!std::isfinite(hi_up) || !std::isfinite(lo_negdown) || !(-lo_negdown <= hi_up)) return out;  // NaN or unbounded: no claim
@@ -342,45 +364,47 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
 }
 inline SlabTest slab_test(const SphereFrame<double>&, const BvNode&, const BvNode&, const void* = nullptr) { return {}; }
 
-// slab_side per node of the fixed body's tree, computed once per piece
-// (a fixed node meets many moving ones on a piece).
-struct SlabSideCache {
-  std::vector<std::uint64_t> stamp;
-  std::vector<SlabSide> side;
+// A value per node of one tree (or per feature of one table), computed at
+// most once per piece: `stamp[i]` says for which piece entry i is current
+// (pieces are numbered from 1 by a 64-bit counter that never wraps around
+// to a stale entry; 0: none yet).  `make()` computes entry i for the
+// current piece.  The entries are raw storage until first written (a
+// search makes one cache per table: initializing every entry would cost
+// more than the entries a short check uses); an entry is read only after
+// it was written for the current piece.
+template <class T>
+class StampedCache {
+  static_assert(std::is_trivially_destructible_v<T>);
+  struct Slot {
+    alignas(T) unsigned char bytes[sizeof(T)];
+  };
+
+ public:
   void reset(std::size_t nodes) {
-    stamp.assign(nodes, 0);
-    side.resize(nodes);
+    stamp_.assign(nodes, 0);
+    slot_.reset(new Slot[nodes]);  // not initialized
   }
-  const SlabSide& get(std::uint64_t piece, const SphereFrame<Interval>& f, const std::vector<BvNode>& nodes,
-                      std::uint32_t i) {
-    if (stamp[i] != piece) {
-      stamp[i] = piece;
-      side[i] = slab_side(f, nodes[i]);
+  template <class Make>
+  const T& get(std::uint64_t piece, std::uint32_t i, Make&& make) {
+    if (stamp_[i] != piece) {
+      stamp_[i] = piece;
+      return *::new (static_cast<void*>(slot_[i].bytes)) T(make());  // over a trivially destructible old entry
     }
-    return side[i];
+    return *std::launder(reinterpret_cast<const T*>(slot_[i].bytes));
   }
+
+ private:
+  std::vector<std::uint64_t> stamp_;
+  std::unique_ptr<Slot[]> slot_;
 };
 
-// The placed spheres of the nodes of one tree (or of one feature table),
-// computed once per piece (`stamp` says for which piece an entry is current;
-// 64 bits: the counter never wraps around to a stale entry).
+// slab_side per node of the fixed body's tree (a fixed node meets many
+// moving ones on a piece).
+using SlabSideCache = StampedCache<SlabSide>;
+
+// The placed spheres of the nodes of one tree (or of one feature table).
 template <class FT>
-struct SphereCache {
-  std::vector<std::uint64_t> stamp;
-  std::vector<WorldSphere<FT>> sphere;
-  void reset(std::size_t nodes) {
-    stamp.assign(nodes, 0);
-    sphere.resize(nodes);
-  }
-  const WorldSphere<FT>& get(std::uint64_t piece, const SphereFrame<FT>& fr, bool body1,
-                             const std::vector<BvNode>& nodes, std::uint32_t i) {
-    if (stamp[i] != piece) {
-      stamp[i] = piece;
-      sphere[i] = world_sphere(fr, body1, nodes[i]);
-    }
-    return sphere[i];
-  }
-};
+using SphereCache = StampedCache<WorldSphere<FT>>;
 
 // Holds upward rounding for interval arithmetic, nothing for double.
 template <class FT>

@@ -102,11 +102,11 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
   auto feature = [&](const PairRef& p, bool hull_tested) {
     const int a = moving_index(p.kind), b = other_index(p.kind);
     ++stats.sphere_tests;
-    if (world_spheres_apart(spheres.moving[a].get(piece, frame, true, moving_tables[a]->spheres, p.i),
-                            spheres.other[b].get(piece, frame, false, other_tables[b]->spheres, p.j)))
+    if (world_spheres_apart(spheres.moving[a].get(piece, p.i, [&] { return world_sphere(frame, true, moving_tables[a]->spheres[p.i]); }),
+                            spheres.other[b].get(piece, p.j, [&] { return world_sphere(frame, false, other_tables[b]->spheres[p.j]); })))
       return;
     if (swept.valid &&
-        swept_apart(spheres.moving_swept[a].get(piece, swept, moving_tables[a]->spheres, p.i), other_tables[b]->spheres[p.j])) {
+        swept_apart(spheres.moving_swept[a].get(piece, p.i, [&] { return swept_sphere(swept, moving_tables[a]->spheres[p.i]); }), other_tables[b]->spheres[p.j])) {
       ++stats.swept_clears;
       return;
     }
@@ -127,10 +127,10 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
       continue;
     }
     ++stats.sphere_tests;
-    if (world_spheres_apart(spheres.moving_cells.get(piece, frame, true, X.tree.nodes, p.i),
-                            spheres.other_cells.get(piece, frame, false, Y.tree.nodes, p.j)))
+    if (world_spheres_apart(spheres.moving_cells.get(piece, p.i, [&] { return world_sphere(frame, true, X.tree.nodes[p.i]); }),
+                            spheres.other_cells.get(piece, p.j, [&] { return world_sphere(frame, false, Y.tree.nodes[p.j]); })))
       continue;
-    if (swept.valid && swept_apart(spheres.moving_swept_cells.get(piece, swept, X.tree.nodes, p.i), Y.tree.nodes[p.j])) {
+    if (swept.valid && swept_apart(spheres.moving_swept_cells.get(piece, p.i, [&] { return swept_sphere(swept, X.tree.nodes[p.i]); }), Y.tree.nodes[p.j])) {
       ++stats.swept_clears;
       continue;
     }
@@ -139,8 +139,18 @@ void Check<B>::prune(const Policy& policy, GetBall&& get_ball, const typename Po
     if constexpr (std::is_same_v<FT, Interval>) {
       const BvNode& a = X.tree.nodes[p.i];
       const BvNode& b = Y.tree.nodes[p.j];
-      if (a.slab && b.slab && !frame.body2_moving)
-        slab = slab_test(frame, a, b, &spheres.other_slabs.get(piece, frame, Y.tree.nodes, p.j));
+      if (a.slab && b.slab && !frame.body2_moving) {
+        slab = slab_test(frame, a, b, &spheres.other_slabs.get(piece, p.j, [&] { return slab_side(frame, b); }));
+        // On an enclosed piece: the slabs under the segment's end maps,
+        // fattened by the tube (proofs/hierarchy.md §1d); only where the
+        // ball's slabs are apart unfattened (otherwise the range under
+        // the ball's centre, a pose of the segment up to rounding, meets
+        // b's slab, and so would the swept range: a filter only).
+        if (!slab.apart && slab.apart_unfattened && swept.valid) {
+          const SweptSlabSide& side = spheres.other_swept_slabs.get(piece, p.j, [&] { return swept_slab_side(swept, b); });
+          slab.apart = swept_slab_apart(swept, side.s0, side.s1, a, b);
+        }
+      }
     }
     if (slab.apart) {
       ++stats.slab_clears;

@@ -160,6 +160,7 @@ struct Check {
     std::array<SphereCache<FT>, 3> moving, other;  // by table: vertices, edges, faces
     SweptCache moving_swept_cells;                 // enclosed pieces of one moving body
     std::array<SweptCache, 3> moving_swept;        // by table, as `moving`
+    SweptSlabCache other_swept_slabs;              // the fixed body's side of the swept slab test
     std::uint64_t piece = 0;
     std::vector<PairRef> scratch;  // prune's work stack
     Spheres(const PreparedBody& m, const PreparedBody& f) {
@@ -167,6 +168,7 @@ struct Check {
       moving_swept_cells.reset(m.cells.tree.nodes.size());
       other_cells.reset(f.cells.tree.nodes.size());
       other_slabs.reset(f.cells.tree.nodes.size());
+      other_swept_slabs.reset(f.cells.tree.nodes.size());
       int t = 0;
       for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) {
         moving_swept[t].reset(x->size());

@@ -121,22 +121,44 @@ inline bool swept_apart(const SweptSphere& s, const BvNode& b) {
   return false;
 }
 
-// The swept spheres of one tree's (or one feature table's) nodes, computed
-// once per piece (as SphereCache).
-struct SweptCache {
-  std::vector<std::uint64_t> stamp;
-  std::vector<SweptSphere> sphere;
-  void reset(std::size_t nodes) {
-    stamp.assign(nodes, 0);
-    sphere.resize(nodes);
-  }
-  const SweptSphere& get(std::uint64_t piece, const SweptFrame& fr, const std::vector<BvNode>& nodes, std::uint32_t i) {
-    if (stamp[i] != piece) {
-      stamp[i] = piece;
-      sphere[i] = swept_sphere(fr, nodes[i]);
-    }
-    return sphere[i];
-  }
+// The swept slab test of a flat node a of the moving body against a flat
+// fixed node b on an enclosed piece (proofs/hierarchy.md §1d).  For a
+// feature point x of a, n_b.L(l)(x) = (1 - l) n_b.P0(x) + l n_b.P1(x) lies
+// between its values at the segment's two ends, each within the
+// unfattened range of slab_base under that end's map; a pose of the piece
+// adds n_b.delta(x) with |delta(x)| <= tube rho(x) <= tube p_a, and the
+// clearance d |n_b|.  `apart`: the union of the two ranges, so widened,
+// misses b's slab.  `s0`, `s1`: slab_side(P0, b), slab_side(P1, b).  Call
+// under RoundingGuard; a NaN or an infinite bound gives false.
+inline bool swept_slab_apart(const SweptFrame& fr, const SlabSide& s0, const SlabSide& s1, const BvNode& a,
+                             const BvNode& b) {
+  CGAL_assertion(CGAL::FPU_get_cw() == CGAL_FE_UPWARD);
+  if (!fr.valid || !a.slab || !b.slab) return false;
+  const SlabBase r0 = slab_base(s0, a), r1 = slab_base(s1, a);
+  if (!r0.valid || !r1.valid) return false;
+  // Products and sums of non-negative upper bounds round up under the guard.
+  const double nb_up = std::max(s0.nb_up, s1.nb_up);
+  const double fat_up = nb_up * CGAL::IA_opacify(fr.tube_up * a.p + fr.clear_up);
+  // Each end's range [-(base_negdown + size + fat), base_up + size + fat].
+  const double hi_up = CGAL::IA_opacify(std::max(r0.base_up + r0.size_up + fat_up, r1.base_up + r1.size_up + fat_up));
+  const double lo_negdown =
+      CGAL::IA_opacify(std::max(r0.base_negdown + r0.size_up + fat_up, r1.base_negdown + r1.size_up + fat_up));
+  if (!std::isfinite(hi_up) || !std::isfinite(lo_negdown) || !(-lo_negdown <= hi_up)) return false;
+  return hi_up < b.slab_lo || -lo_negdown > b.slab_hi;
+}
+
+// slab_side of a fixed node under the segment's two end maps.
+struct SweptSlabSide {
+  SlabSide s0, s1;
 };
+inline SweptSlabSide swept_slab_side(const SweptFrame& fr, const BvNode& b) {
+  return {slab_side(fr.g0, b), slab_side(fr.g1, b)};
+}
+
+// The swept spheres of one tree's (or one feature table's) nodes, computed
+// once per piece.
+using SweptCache = StampedCache<SweptSphere>;
+// The fixed body's side of the swept slab test, per node and piece.
+using SweptSlabCache = StampedCache<SweptSlabSide>;
 
 }  // namespace tmcert
