@@ -196,6 +196,30 @@ BOOST_AUTO_TEST_CASE(a_touching_end_pose_gets_the_exact_point) {
   BOOST_TEST(got.checks[0].stats.nodes == 0u);
 }
 
+BOOST_AUTO_TEST_CASE(an_exact_end_pose_is_computed_only_for_candidate_pairs) {
+  // Turning a quarter about x (the quaternion (1, 1, 0, 0): the same cube)
+  // while moving: the end test gets the slerp model's enclosure of the end
+  // pose, and the exact end pose only for the candidate pairs the
+  // enclosures do not decide (proofs/sample-first.md section 2c).  A face
+  // ending on the wall (touching, no certain crossing) is still the exact
+  // contact at t = 1; a face ending 10^-20 short of it (closer than the
+  // enclosures' width: candidate pairs) is certified free there, and the
+  // edge safe, as check() says.
+  const Scene scene = cube_and_wall("0");
+  const FixedEnvironment env(scene.bodies[0], {scene.bodies[1]}, {}, options());
+  const MotionCheck touching = env.decide({along_x(Exact(-1), Exact(-1, 5), 1)});
+  BOOST_TEST(touching.verdict == Verdict::Collision);
+  BOOST_REQUIRE(touching.witness);
+  BOOST_TEST(touching.witness->t == Exact(1));
+  BOOST_TEST(!touching.witness->point_box);
+  BOOST_TEST(touching.witness->point[0] == Exact(0));
+  BOOST_TEST(touching.checks[0].stats.nodes == 0u);
+  const Exact tiny = Exact(1, 10000000000L) * Exact(1, 10000000000L);  // 10^-20
+  const Trajectory short_of = along_x(Exact(-1), Exact(-1, 5) - tiny, 1);
+  BOOST_TEST(env.decide({short_of}).verdict == Verdict::Safe);
+  BOOST_TEST(env.check({short_of}).verdict == Verdict::Safe);
+}
+
 BOOST_AUTO_TEST_CASE(an_enclosed_pose_gives_a_certain_crossing) {
   // Turning while it moves (slerp): the poses at the samples are enclosed,
   // and a contact there is a certain transversal crossing with a box.
