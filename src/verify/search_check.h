@@ -175,6 +175,30 @@ struct Check {
       t = 0;
       for (const FeatureTable* x : {&f.vertices, &f.edges, &f.faces}) other[t++].reset(x->size());
     }
+    // The same caches for another check (the next edge of a planner, the
+    // next link): sized for its bodies, nothing zeroed.  `piece` goes on
+    // counting, so every entry left from an earlier check carries a stamp
+    // below every piece of this one and is computed again before use (the
+    // same values as in fresh caches; proofs/search-and-pruning.md,
+    // "Caches reused across checks").
+    void rebind(const PreparedBody& m, const PreparedBody& f) {
+      auto size = [](auto& cache, std::size_t n) {
+        cache.stamp.resize(n, 0);
+        cache.sphere.resize(n);
+      };
+      size(moving_cells, m.cells.tree.nodes.size());
+      size(moving_swept_cells, m.cells.tree.nodes.size());
+      size(other_cells, f.cells.tree.nodes.size());
+      other_slabs.stamp.resize(f.cells.tree.nodes.size(), 0);
+      other_slabs.side.resize(f.cells.tree.nodes.size());
+      int t = 0;
+      for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) {
+        size(moving_swept[t], x->size());
+        size(moving[t++], x->size());
+      }
+      t = 0;
+      for (const FeatureTable* x : {&f.vertices, &f.edges, &f.faces}) size(other[t++], x->size());
+    }
   };
 
   // The table (0 vertices, 1 edges, 2 faces) of each body for a kind.
