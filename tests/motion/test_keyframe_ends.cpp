@@ -87,7 +87,7 @@ BOOST_AUTO_TEST_CASE(the_arc_is_decided_exactly_near_a_half_turn) {
   // slerp takes the arc through the identity (p1 negated: R[1][1] = 1 at
   // s = 1/2, not -1 as on the other arc).  Exactly a half turn apart
   // (dot product 0): no shorter arc, refused.
-  const Exact tiny = Exact(1, 1L << 30) * Exact(1, 1L << 30);  // 2^-60
+  const Exact tiny = Exact(1, 1 << 30) * Exact(1, 1 << 30);  // 2^-60
   Pose a = quaternion_pose(1, 1, 0, 0, 0);
   Pose b = quaternion_pose(-1, 1, 0, 0, 0);
   b.rotation.quaternion[0] = Exact(-1) - tiny;
