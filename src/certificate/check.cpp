@@ -390,7 +390,10 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
     // At a pose that is only enclosed (a transcendental motion): a
     // point_box and, on each side, the vertices of an edge or a triangle.
     ctx.enclosed_witness = in_.find(w, "point") == nullptr && in_.find(w, "point_box") != nullptr;
-    if (!ctx.enclosed_witness) ctx.witness_point = in_.vec3(in_.member(w, "point", wp), mem(wp, "point"));
+    // A clearance violation at an enclosed pose: "points_box" (informative)
+    // and, on each side, an element and weights in the body's frame.
+    ctx.enclosed_clearance = !ctx.enclosed_witness && in_.find(w, "point") == nullptr && in_.find(w, "points_box") != nullptr;
+    if (!ctx.enclosed_witness && !ctx.enclosed_clearance) ctx.witness_point = in_.vec3(in_.member(w, "point", wp), mem(wp, "point"));
   }
   if (const json* d = in_.find(w, "displacement")) {
     ctx.displacement = in_.vec3(*d, mem(wp, "displacement"));
@@ -406,6 +409,8 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
   if (ctx.witness_root && (ctx.displacement || ctx.points))
     in_.bad(wp, "a witness at an irrational time has no displacement and no points");
   if (ctx.enclosed_witness && ctx.points) in_.bad(wp, "a witness at an enclosed pose has no points");
+  if (ctx.enclosed_clearance && (ctx.points || ctx.displacement))
+    in_.bad(wp, "a clearance witness at an enclosed pose has no points and no displacement");
   for (int s = 0; s < 2; ++s) {
     WitnessSide& side = ctx.side[s];
     const std::string sp = mem(wp, s == 0 ? "a" : "b");

@@ -237,11 +237,54 @@ void Checker::check_enclosed_witness(const CheckContext& ctx) {
            " is not certain over the enclosed poses (grazing, or not crossing)");
 }
 
+// A clearance violation at an enclosed pose: the weighted points p, q of
+// the two elements (in their bodies' frames) placed by the checker's own
+// pose boxes at t as rational boxes; the largest squared distance between
+// two points of the boxes, sum_r max(|hi_a - lo_b|, |hi_b - lo_a|)^2, exact,
+// is at most the clearance squared, so |M_a p - M_b q| <= d for every pose
+// of the boxes, the true poses at t among them (proofs/clearance.md §6).
+void Checker::check_enclosed_clearance(const CheckContext& ctx) {
+  const std::string L = ctx.label + ": witness";
+  const Exact& t = ctx.witness_t;
+  if (t < ctx.t0 || t > ctx.t1)
+    reject(L + ": t = " + str(t) + " is outside the check's interval [" + str(ctx.t0) + ", " + str(ctx.t1) + "]");
+  if (!(ctx.clearance > 0)) reject(L + ": points_box: the check has no clearance");
+  RBox placed_point[2];
+  for (int s = 0; s < 2; ++s) {
+    const char* key = s == 0 ? "a" : "b";
+    const WitnessSide& side = ctx.side[s];
+    if (side.interior) reject(L + "." + key + ": a clearance witness at an enclosed pose needs an element and weights");
+    const std::vector<Vec3E>& verts = ctx.data[s]->elems[side.element];
+    Exact sum(0);
+    Vec3E x{Exact(0), Exact(0), Exact(0)};
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+      const Exact& wi = side.weights[i];
+      if (sgn(wi) < 0) reject(L + "." + key + ".weights[" + std::to_string(i) + "] = " + str(wi) + " is negative");
+      sum += wi;
+      for (int r = 0; r < 3; ++r) x[r] += wi * verts[i][r];
+    }
+    if (sum != 1) reject(L + "." + key + ".weights sum to " + str(sum) + ", not 1");
+    const std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
+    if (!box) reject(L + ": the pose of " + quote_text(ctx.body[s]->name) + " at t = " + str(t) + " has no finite enclosure");
+    placed_point[s] = place_box(*box, x);
+  }
+  Exact far2(0);
+  for (int r = 0; r < 3; ++r) {
+    const Exact u = placed_point[0][r].hi - placed_point[1][r].lo, v = placed_point[1][r].hi - placed_point[0][r].lo;
+    const Exact m = std::max(CGAL::abs(u), CGAL::abs(v));
+    far2 += m * m;
+  }
+  if (far2 > ctx.clearance * ctx.clearance)
+    reject(L + ": the two weighted points may be farther apart than the clearance " + str(ctx.clearance) + " at t = " +
+           str(t) + " over the enclosed poses (squared distance up to " + str(far2) + ")");
+}
+
 void Checker::check_witness(const CheckContext& ctx) {
   require_true_shape_sides(ctx);
   if (ctx.true_shape_witness) return check_true_shape_witness(ctx);
   if (ctx.witness_root) return check_algebraic_witness(ctx);
   if (ctx.enclosed_witness) return check_enclosed_witness(ctx);
+  if (ctx.enclosed_clearance) return check_enclosed_clearance(ctx);
   const Exact& t = ctx.witness_t;
   const std::string L = ctx.label + ": witness";
   if (t < ctx.t0 || t > ctx.t1)

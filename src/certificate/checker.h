@@ -95,6 +95,10 @@ struct CheckContext {
   int displaced = 0;
   std::optional<std::array<Vec3E, 2>> points;
   bool enclosed_witness = false;
+  // A clearance violation at an enclosed pose ("points_box" in place of
+  // "point"): a weighted point of each side's element, within the
+  // clearance of each other for every pose of the two pose boxes at t.
+  bool enclosed_clearance = false;
   // A witness with a {"true_shape": true} side (check_primitive.h); without
   // `has_point`, the point is the other side's element point.
   bool true_shape_witness = false;
@@ -177,6 +181,7 @@ class Checker {
   void check_algebraic_witness(const CheckContext& ctx);
 
   void check_enclosed_witness(const CheckContext& ctx);
+  void check_enclosed_clearance(const CheckContext& ctx);
   void check_displacement(const CheckContext& ctx);
 
   void check_witness(const CheckContext& ctx);

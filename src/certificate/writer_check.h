@@ -87,6 +87,7 @@ struct CheckWriter {
                    json& pieces);
 
   json enclosed_witness(const Witness& w) const;
+  json enclosed_clearance_witness(const Witness& w) const;
 
   json witness() const;
 

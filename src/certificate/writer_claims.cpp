@@ -201,10 +201,44 @@ json CheckWriter::enclosed_witness(const Witness& w) const {
   fail("the enclosed witness at t = " + to_string(w.t) + " is not a certain edge-triangle crossing over the checker's pose boxes");
 }
 
+// A clearance violation at an enclosed pose: each side's point in its
+// body's frame as the weights of a named element; the checker places them
+// by its own pose boxes at t and bounds their distance (check_judge.cpp).
+json CheckWriter::enclosed_clearance_witness(const Witness& w) const {
+  if (!w.local_points) fail("the clearance witness at an enclosed pose has no points in the bodies' frames");
+  const Body* bodies[2] = {&a, &b};
+  const char* keys[2] = {"a", "b"};
+  const Mat34E identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  json boxes = json::array();
+  for (const auto& box : *w.points_box) {
+    json b3 = json::array();
+    for (const auto& range : box) b3.push_back(json::array({rational(range[0]), rational(range[1])}));
+    boxes.push_back(std::move(b3));
+  }
+  json out{{"t", rational(w.t)}, {"points_box", std::move(boxes)}};
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<std::vector<Vec3E>> el = elements(*bodies[k]);
+    bool found = false;
+    for (int e : named_elements(*bodies[k], w.features[k])) {
+      if (e < 0 || e >= static_cast<int>(el.size())) continue;
+      if (auto weights = weights_at(el[e], identity, (*w.local_points)[k])) {
+        json ws = json::array();
+        for (const Exact& x : *weights) ws.push_back(rational(x));
+        out[keys[k]] = {{"element", e}, {"weights", std::move(ws)}};
+        found = true;
+        break;
+      }
+    }
+    if (!found) fail("the clearance witness's point was not found on " + w.features[k]);
+  }
+  return out;
+}
+
 json CheckWriter::witness() const {
   const Witness& w = *r.witness;
   if (w.true_shape) return true_shape_witness(w);
   if (w.root) return algebraic_witness(w);
+  if (w.points_box) return enclosed_clearance_witness(w);
   if (w.point_box) return enclosed_witness(w);
   json out{{"t", rational(w.t)}, {"point", vec(w.point)}};
   if (w.displacement) {

@@ -406,7 +406,7 @@ std::string timeline_html(const Scene& scene, const CheckResult& c, int index, b
          to_string(c.verdict) + "</span> <b>" + html_escape(a) + "</b> &times; <b>" + html_escape(b) + "</b>";
   if (c.witness) {
     const Witness& w = *c.witness;
-    out += ": " + html_escape(w.features[0]) + (w.points ? " comes within the clearance of " : " meets ") +
+    out += ": " + html_escape(w.features[0]) + (w.points || w.points_box ? " comes within the clearance of " : " meets ") +
            html_escape(w.features[1]) + " at t = " +
            html_escape(w.root ? "~" + w.root->approx : to_string(w.t));
     if (w.displacement)

@@ -279,6 +279,35 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
       for (const Vec3E& p : *wit.points) write_point_approx(w, p);
       w.end_array();
     }
+    if (wit.points_box) {
+      // Clearance at an enclosed pose: a box per body holding its point.
+      w.key("points_box");
+      w.begin_array();
+      for (const auto& box : *wit.points_box) {
+        w.begin_array();
+        for (const auto& range : box) {
+          w.begin_array();
+          w.value(to_string(range[0]));
+          w.value(to_string(range[1]));
+          w.end_array();
+        }
+        w.end_array();
+      }
+      w.end_array();
+      w.key("points_box_approx");
+      w.begin_array();
+      for (const auto& box : *wit.points_box) {
+        w.begin_array();
+        for (const auto& range : box) {
+          w.begin_array();
+          w.approx(range[0]);
+          w.approx(range[1]);
+          w.end_array();
+        }
+        w.end_array();
+      }
+      w.end_array();
+    }
     if (wit.displacement) {
       w.key("displacement");
       w.begin_array();
@@ -662,10 +691,13 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
           << c.stats.contact.exact_fallbacks << " exact, " << seconds_text(c.stats.seconds) << " s)\n";
     }
     if (wit) {
-      out << "    " << (wit->points ? "closest: " : "contact: ") << wit->features[0]
-          << (wit->points ? " comes within the clearance of " : " meets ") << wit->features[1];
+      const bool closest = wit->points || wit->points_box;
+      out << "    " << (closest ? "closest: " : "contact: ") << wit->features[0]
+          << (closest ? " comes within the clearance of " : " meets ") << wit->features[1];
       if (wit->points) {
         out << ": " << readable_point((*wit->points)[0]) << " and " << readable_point((*wit->points)[1]);
+      } else if (wit->points_box) {
+        out << ": " << readable_box((*wit->points_box)[0]) << " and " << readable_box((*wit->points_box)[1]);
       } else if (wit->point_box) {
         out << " at " << readable_box(*wit->point_box);
       } else {

@@ -13,7 +13,7 @@ std::optional<DistanceHit> closest_within(const std::vector<StaticPart>& a, cons
     reach = CGAL::sqrt(to_interval(bound2)).sup();
   }
   struct Placed {
-    int part;
+    int part, index;
     Simplex s;
     std::array<double, 3> lo, hi;
   };
@@ -24,7 +24,8 @@ std::optional<DistanceHit> closest_within(const std::vector<StaticPart>& a, cons
     std::vector<Placed> out;
     for (std::size_t i = 0; i < parts.size(); ++i) {
       if (!use[i]) continue;
-      for (Simplex s : parts[i].simplices) {
+      for (std::size_t n = 0; n < parts[i].simplices.size(); ++n) {
+        Simplex s = parts[i].simplices[n];
         if (m)
           for (int k = 0; k < s.count; ++k) {
             Vec3E r;
@@ -32,7 +33,7 @@ std::optional<DistanceHit> closest_within(const std::vector<StaticPart>& a, cons
               r[c] = (*m)[4 * c] * s.p[k][0] + (*m)[4 * c + 1] * s.p[k][1] + (*m)[4 * c + 2] * s.p[k][2] + (*m)[4 * c + 3];
             s.p[k] = r;
           }
-        Placed p{static_cast<int>(i), s, {}, {}};
+        Placed p{static_cast<int>(i), static_cast<int>(n), s, {}, {}};
         for (int c = 0; c < 3; ++c) {
           p.lo[c] = std::numeric_limits<double>::infinity();
           p.hi[c] = -p.lo[c];
@@ -59,7 +60,7 @@ std::optional<DistanceHit> closest_within(const std::vector<StaticPart>& a, cons
       if (far) continue;
       ++stats.static_tests;
       ClosestPoints cp = closest_points(x.s, y.s);
-      if (cp.d2 <= bound2 && (!best || cp.d2 < best->points.d2)) best = DistanceHit{x.part, y.part, std::move(cp)};
+      if (cp.d2 <= bound2 && (!best || cp.d2 < best->points.d2)) best = DistanceHit{x.part, y.part, std::move(cp), x.index, y.index};
     }
   return best;
 }

@@ -42,6 +42,8 @@ enum class Apartness { Free, Contact, Unknown };
 struct DistanceHit {
   int part_a, part_b;
   ClosestPoints points;
+  // The simplices (indices into the parts' `simplices`) holding the points.
+  int simplex_a = 0, simplex_b = 0;
 };
 
 std::optional<DistanceHit> closest_within(const std::vector<StaticPart>& a, const Mat34E* ma,

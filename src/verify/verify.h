@@ -126,6 +126,14 @@ struct Witness {
   // Clearance: a point of each body (in the check's order) no farther apart
   // than the clearance; `point` is the first of them.
   std::optional<std::array<Vec3E, 2>> points;
+  // Clearance at a pose that is only enclosed (a transcendental motion), in
+  // place of `points`: a rational box per body (in the check's order)
+  // holding its point for every pose of the enclosure at `t`, the two
+  // points no farther apart than the clearance for every such pose;
+  // `point_box` is the first box.  `local_points`: the two points in their
+  // bodies' own frames, exact (the certificate writer's witness).
+  std::optional<std::array<std::array<std::array<Exact, 2>, 3>, 2>> points_box;
+  std::optional<std::array<Vec3E, 2>> local_points;
   // Proven on the true shape of a URDF cylinder or sphere (a body of the
   // check has Body::primitive; src/verify/true_shape.h).
   bool true_shape = false;

@@ -8,6 +8,7 @@
 
 #include "src/verify/search_check.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -296,6 +297,149 @@ bool displaced_crossing(Check<B>& c, const Exact& u, const std::set<std::pair<in
   return false;
 }
 
+// Weights of a point x of simplex s (exactly on it), as short decimals
+// (multiples of 10^-9, >= 0, sum exactly 1): a point of s near x.
+inline std::array<Exact, 3> short_weights(const Simplex& s, const Vec3E& x) {
+  std::array<double, 3> w = {1, 0, 0};
+  auto dot = [](const Vec3E& a, const Vec3E& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  auto sub = [](const Vec3E& a, const Vec3E& b) { return Vec3E{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  if (s.count == 2) {
+    const Vec3E e = sub(s.p[1], s.p[0]);
+    const Exact ee = dot(e, e);
+    if (ee > 0) {
+      const double l = CGAL::to_double(dot(sub(x, s.p[0]), e) / ee);
+      w = {1 - l, l, 0};
+    }
+  } else if (s.count == 3) {  // the Gram system of the two edges from p0
+    const Vec3E e1 = sub(s.p[1], s.p[0]), e2 = sub(s.p[2], s.p[0]), r = sub(x, s.p[0]);
+    const Exact a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2), det = a * c - b * b;
+    if (det > 0) {
+      const Exact r1 = dot(r, e1), r2 = dot(r, e2);
+      const double l1 = CGAL::to_double((c * r1 - b * r2) / det), l2 = CGAL::to_double((a * r2 - b * r1) / det);
+      w = {1 - l1 - l2, l1, l2};
+    }
+  }
+  constexpr long kScale = 1000000000;
+  std::array<long, 3> n{};
+  long sum = 0;
+  for (int k = 1; k < s.count; ++k) {
+    n[k] = std::isfinite(w[k]) ? std::clamp(std::llround(w[k] * kScale), 0LL, static_cast<long long>(kScale)) : 0;
+    sum += n[k];
+  }
+  if (sum > kScale)  // rounded past the simplex: scale back
+    for (int k = 1; k < s.count; ++k) n[k] = n[k] * kScale / sum;
+  n[0] = kScale;
+  for (int k = 1; k < s.count; ++k) n[0] -= n[k];
+  std::array<Exact, 3> out;
+  for (int k = 0; k < 3; ++k) out[k] = k < s.count ? Exact(CGAL::Gmpz(n[k]), CGAL::Gmpz(kScale)) : Exact(0);
+  return out;
+}
+
+// The exact inverse of an affine map [A | a] (nullopt when singular).
+inline std::optional<Mat34E> inverse_affine(const Mat34E& m) {
+  auto at = [&](int i, int j) -> const Exact& { return m[4 * i + j]; };
+  const Exact det = at(0, 0) * (at(1, 1) * at(2, 2) - at(1, 2) * at(2, 1)) -
+                    at(0, 1) * (at(1, 0) * at(2, 2) - at(1, 2) * at(2, 0)) +
+                    at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
+  if (det == 0) return std::nullopt;
+  Mat34E inv;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {  // cofactor of (j, i) over det
+      const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      inv[4 * i + j] = (at(r0, c0) * at(r1, c1) - at(r0, c1) * at(r1, c0)) / det;
+    }
+  for (int i = 0; i < 3; ++i) inv[4 * i + 3] = -(inv[4 * i] * at(0, 3) + inv[4 * i + 1] * at(1, 3) + inv[4 * i + 2] * at(2, 3));
+  return inv;
+}
+
+// Clearance at an enclosed pose (a transcendental motion at u, where the
+// poses are known only as boxes): a point p of one body and a point q of
+// the other, fixed in their bodies' frames (short decimal weights of two
+// simplices, aimed by the exact closest pair at a rational pose near the
+// boxes' centres), such that |M1 p - M2 q|^2 <= d^2 for every pose M1, M2
+// of the boxes, decided by an interval upper bound (rounded up) compared
+// exactly with d^2.  The true poses at u are in the boxes, so the bodies
+// are within d at u.  The witness gives the two points' boxes and their
+// exact body coordinates (proofs/clearance.md section 6).
+template <int B>
+bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<int, int>>* only) {
+  const CheckExtras<B>& x = c.extras;
+  if (!(x.clearance2 > 0)) return false;
+  const std::array<PoseInterval, B> maps = x.enclosed->poses(u);
+  std::array<Mat34E, B> near;
+  for (int b = 0; b < B; ++b)
+    for (int e = 0; e < 12; ++e) {
+      const double lo = maps[b][e].inf(), hi = maps[b][e].sup();
+      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+      near[b][e] = Exact(lo) + (Exact(hi) - Exact(lo)) / 2;
+    }
+  const auto hit = closest_within(c.moving.parts, &near[0], c.other.parts, B == 2 ? &near[B - 1] : nullptr, x.clearance2,
+                                  only, c.result.stats);
+  if (!hit) return false;
+  // The simplices in their own frames (the other body's in world
+  // coordinates when it stands still), and the closest points there.
+  const Simplex& sa = c.moving.parts[hit->part_a].simplices[hit->simplex_a];
+  const Simplex& sb = c.other.parts[hit->part_b].simplices[hit->simplex_b];
+  auto place = [](const Mat34E& m, const Vec3E& v) {
+    Vec3E r;
+    for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * v[0] + m[4 * i + 1] * v[1] + m[4 * i + 2] * v[2] + m[4 * i + 3];
+    return r;
+  };
+  auto local_point = [&](const Simplex& s, const Mat34E* m, const Vec3E& world) {
+    Simplex placed = s;
+    if (m)
+      for (int k = 0; k < s.count; ++k) placed.p[k] = place(*m, s.p[k]);
+    const std::array<Exact, 3> w = short_weights(placed, world);  // the same weights in the simplex's frame
+    Vec3E p{Exact(0), Exact(0), Exact(0)};
+    for (int k = 0; k < s.count; ++k)
+      for (int i = 0; i < 3; ++i) p[i] += w[k] * s.p[k][i];
+    return p;
+  };
+  const Vec3E p = local_point(sa, &near[0], hit->points.a);
+  const Vec3E q = local_point(sb, B == 2 ? &near[B - 1] : nullptr, hit->points.b);
+  std::array<std::array<Interval, 3>, 2> box;
+  bool within = false;
+  {
+    RoundingGuard guard;
+    auto place_interval = [](const PoseInterval& m, const Vec3E& v) {
+      const std::array<Interval, 3> vi = {to_interval(v[0]), to_interval(v[1]), to_interval(v[2])};
+      std::array<Interval, 3> r;
+      for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * vi[0] + m[4 * i + 1] * vi[1] + m[4 * i + 2] * vi[2] + m[4 * i + 3];
+      return r;
+    };
+    box[0] = place_interval(maps[0], p);
+    if constexpr (B == 2) box[1] = place_interval(maps[B - 1], q);
+    else box[1] = {to_interval(q[0]), to_interval(q[1]), to_interval(q[2])};
+    Interval d2(0);
+    for (int i = 0; i < 3; ++i) d2 += CGAL::square(box[0][i] - box[1][i]);
+    within = std::isfinite(d2.sup()) && Exact(d2.sup()) <= x.clearance2;
+  }
+  ++c.result.stats.static_tests;
+  if (!within) return false;
+  // The points in their bodies' frames: the other body's, when it stands
+  // still, from world coordinates through its fixed pose.
+  Vec3E q_body = q;
+  if constexpr (B == 1) {
+    const std::optional<Mat34E> inv = inverse_affine(fixed_pose(*c.other.body));
+    if (!inv) return false;
+    q_body = place(*inv, q);
+  }
+  const std::string a = c.moving.body->name + " " + c.moving.parts[hit->part_a].name;
+  const std::string b = c.other.body->name + " " + c.other.parts[hit->part_b].name;
+  std::array<std::array<std::array<Exact, 2>, 3>, 2> boxes;
+  for (int s = 0; s < 2; ++s)
+    for (int i = 0; i < 3; ++i) boxes[s][i] = {Exact(box[s][i].inf()), Exact(box[s][i].sup())};
+  Witness w;
+  w.t = c.scene_t(u);
+  w.features = c.swapped ? std::array<std::string, 2>{b, a} : std::array<std::string, 2>{a, b};
+  w.points_box = c.swapped ? decltype(boxes){boxes[1], boxes[0]} : boxes;
+  w.point_box = (*w.points_box)[0];
+  w.local_points = c.swapped ? std::array<Vec3E, 2>{q_body, p} : std::array<Vec3E, 2>{p, q_body};
+  c.result.witness = w;
+  c.result.verdict = Verdict::Collision;
+  return true;
+}
+
 // Tolerance and clearance (SCENE_FORMAT.md): at curve parameter u, where
 // the poses are exact, the exact closest points of the two bodies; they
 // prove a clearance violation when no farther apart than the clearance,
@@ -308,7 +452,7 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
   std::optional<Mat34E> m2;
   if (extras.enclosed) {
     const auto exact = extras.enclosed->exact_poses(u);
-    if (!exact) return displaced_crossing(*this, u, only);
+    if (!exact) return enclosed_clearance(*this, u, only) || displaced_crossing(*this, u, only);
     m1 = (*exact)[0];
     if constexpr (B == 2) m2 = (*exact)[1];
   } else {

@@ -252,4 +252,45 @@ BOOST_AUTO_TEST_CASE(enclosed_witness_with_displacement) {
   }
 }
 
+// A clearance violated only between slerp keyframes (proofs/clearance.md
+// section 6): each side gives an element and weights in its body's frame;
+// the checker places the two points by its own pose boxes at t and bounds
+// their distance by the clearance, exactly.
+BOOST_AUTO_TEST_CASE(enclosed_clearance_witness) {
+  Case c;
+  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/clearance-slerp-between-keyframes-violated.json");
+  tmcert::VerifyOptions options;
+  options.record_cover = true;
+  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  const json& w = check0(c)["witness"];
+  BOOST_REQUIRE(w.contains("points_box"));
+  BOOST_TEST(!w.contains("point"));
+  BOOST_TEST(check(c).ok, check(c).message);
+  {
+    Case d = c;  // at the start the plate is 3/2 or more from the post
+    check0(d)["witness"]["t"] = "0";
+    expect_rejected(d, "may be farther apart than the clearance");
+  }
+  {
+    Case d = c;  // the post's point moved to its end z = -1, the plate's to its far corner
+    json& wa = check0(d)["witness"]["a"]["weights"];
+    BOOST_REQUIRE(wa.size() == 2);
+    wa = json::array({"1", "0"});
+    json& wb = check0(d)["witness"]["b"]["weights"];
+    BOOST_REQUIRE(wb.size() == 3);
+    wb = json::array({"0", "0", "1"});
+    expect_rejected(d, "may be farther apart than the clearance");
+  }
+  {
+    Case d = c;
+    check0(d)["witness"]["a"]["weights"][0] = "2";
+    expect_rejected(d, "weights sum to");
+  }
+  {
+    Case d = c;
+    check0(d)["witness"]["points"] = json::array({json::array({"0", "0", "0"}), json::array({"0", "0", "0"})});
+    expect_malformed(d, "a clearance witness at an enclosed pose has no points and no displacement");
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

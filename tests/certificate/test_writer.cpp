@@ -401,9 +401,11 @@ BOOST_AUTO_TEST_CASE(planner_certificates_are_checked) {
     altered["checks"][0]["witness"].erase("displaced");
     expect_rejected(v.scene, altered, "displacement dropped");
   }
-  // A clearance violation: both points on their bodies and within d.
+  // A clearance violation at exact poses: both points on their bodies and
+  // within d (the planner scene's plate turns by slerp: its witness is at
+  // an enclosed pose, tests/certificate/test_check_judge.cpp).
   {
-    const Verified v = verified(scene_file("planner-clearance-violated.json"));
+    const Verified v = verified(scene_file("clearance-translation-030-violated.json"));
     BOOST_REQUIRE(accepted(v, v.certificate));
     BOOST_REQUIRE(v.certificate["checks"][0]["witness"].contains("points"));
     for (int k = 0; k < 2; ++k) {

@@ -487,7 +487,7 @@ def main():
             browser = Browser(chromium, profile, log)
             # Small scenes: undecided spans (the depth limit) between safe
             # ones; a clearance violated after an undecided span (safe,
-            # undecided and not-searched spans, a witness of two points); a
+            # undecided and not-searched spans, a witness of two point boxes); a
             # point entering a solid after an undecided stop (after_undecided);
             # a safe one; then the gripper collision (5,700 triangles, a
             # witness at an algebraic time).

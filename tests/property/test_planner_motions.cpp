@@ -408,6 +408,31 @@ std::string witness_problem(const KeyScene& k, const CheckResult& r) {
   std::vector<P3> m = placed_moving(k, *pose);
   const std::array<P3, 3> oa = placed_obstacle(k, w.t);
   const std::vector<P3> o(oa.begin(), oa.end());
+  if (w.points_box) {
+    // Clearance at an enclosed pose (proofs/clearance.md section 6): a box
+    // per body, in the check's order, every two points of the boxes within
+    // the clearance, each box at a point of its feature at t.
+    if (k.clearance == 0) return "points_box without a clearance";
+    Exact far2 = 0;
+    for (int c = 0; c < 3; ++c) {
+      const auto& a = (*w.points_box)[0][c];
+      const auto& b = (*w.points_box)[1][c];
+      const Exact x = std::max(CGAL::abs(a[1] - b[0]), CGAL::abs(b[1] - a[0]));
+      far2 += x * x;
+    }
+    if (far2 > k.clearance * k.clearance) return "clearance boxes farther apart than the clearance";
+    for (int s = 0; s < 2; ++s) {
+      const std::vector<P3>& f = (s == tri_side) ? o : m;
+      P3 center;
+      Mp diameter(0);
+      for (int c = 0; c < 3; ++c) {
+        center[c] = (Mp((*w.points_box)[s][c][0]) + Mp((*w.points_box)[s][c][1])) / Mp(2);
+        diameter = diameter + (Mp((*w.points_box)[s][c][1]) - Mp((*w.points_box)[s][c][0]));
+      }
+      if (diameter + kOn < dist_feature(center, f)) return "clearance box " + std::to_string(s) + " not on its feature";
+    }
+    return "";
+  }
   if (w.points) {
     // Clearance: one exact point on each body, in the check's order, no
     // farther apart than the clearance.

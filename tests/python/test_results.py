@@ -43,8 +43,13 @@ def test_clearance_and_undecided_intervals() -> None:
     result = tmcert.verify(SCENES / "planner-clearance-violated.json")
     (check,) = result.checks
     assert check.clearance == Fraction(1, 2) and check.clearance_violated
-    a, b = check.witness.points
-    assert sum((x - y) ** 2 for x, y in zip(a, b)) <= check.clearance ** 2
+    # Between the plate's slerp keyframes (an enclosed pose): a box per body,
+    # every two points of the boxes within the clearance.
+    assert check.witness.points is None
+    w = result.to_dict()["checks"][0]["witness"]
+    far2 = sum(max(abs(Fraction(a[1]) - Fraction(b[0])), abs(Fraction(b[1]) - Fraction(a[0]))) ** 2
+               for a, b in zip(*w["points_box"]))
+    assert far2 <= check.clearance ** 2
     # The first violation: the pin at x = -2 + 4t comes within 1/2 of the
     # plate when (|x| - 1/2)^2 + (3/10)^2 <= (1/2)^2, i.e. from t = 11/40 on;
     # the one undecided interval (reason epsilon) holds it, before the witness.

@@ -400,9 +400,14 @@ if [ -f "$sc/planner-tolerance-collision.json" ]; then
     "w['displaced'] == 'pin' and 4 * sum(F(x) ** 2 for x in w['displacement']) <= F(1, 100) and 'point' in w"
   expect_json "$sc/planner-fixed-tolerance-collision.json" \
     "w['displaced'] == 'plate' and 4 * sum(F(x) ** 2 for x in w['displacement']) <= F(1, 100)"
-  # Two exact points no farther apart than the clearance; the pin's point on its segment (x = 4t - 2, y = 0).
+  # Between the plate's slerp keyframes (an enclosed pose): a box per body,
+  # every two points of the boxes within the clearance; the pin's box on its
+  # segment (x = 4t - 2, y = 0).
   expect_json "$sc/planner-clearance-violated.json" \
-    "c['clearance_violated'] is True and F(c['clearance']) == F(1, 2) and sum((F(a) - F(b)) ** 2 for a, b in zip(*w['points'])) <= F(1, 4) and [F(x) for x in w['points'][1][:2]] == [4 * F(w['t']) - 2, 0]"
+    "c['clearance_violated'] is True and F(c['clearance']) == F(1, 2) and 'points' not in w and sum(max(abs(F(a[1]) - F(b[0])), abs(F(b[1]) - F(a[0]))) ** 2 for a, b in zip(*w['points_box'])) <= F(1, 4) and F(w['points_box'][1][0][0]) <= 4 * F(w['t']) - 2 <= F(w['points_box'][1][0][1]) and F(w['points_box'][1][1][0]) <= 0 <= F(w['points_box'][1][1][1])"
+  # At an exact pose (a translation): two exact points within the clearance.
+  expect_json "$sc/clearance-translation-030-violated.json" \
+    "c['clearance_violated'] is True and 'points_box' not in w and sum((F(a) - F(b)) ** 2 for a, b in zip(*w['points'])) <= F(31, 100) ** 2"
   expect_json "$sc/planner-clearance-check-safe.json" "c['verdict'] == 'safe' and F(c['clearance']) == F(1, 10)"
   expect_json "$sc/planner-clearance-check-violated.json" "c['clearance_violated'] is True and F(c['clearance']) == F(1, 2)"
   # An enclosed witness: a rational box, on the wall's plane x = 1, at the bar's height z = 2t - 1, within the wall's y range.
