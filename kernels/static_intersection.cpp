@@ -105,16 +105,19 @@ bool certainly_disjoint(const SimplexI& a, const SimplexI& b) {
   V pa[3], pb[3];
   for (int i = 0; i < a.count; ++i) pa[i] = mid(a.p[i]);
   for (int i = 0; i < b.count; ++i) pb[i] = mid(b.p[i]);
-  std::vector<V> edges_a, edges_b, axes = {V{1, 0, 0}, V{0, 1, 0}, V{0, 0, 1}};
+  // Fixed arrays (no allocation per pair; the same axes in the same order).
+  V edges_a[3], edges_b[3], axes[3 + 2 + 9] = {V{1, 0, 0}, V{0, 1, 0}, V{0, 0, 1}};
+  int na = 0, nb = 0, n_axes = 3;
   for (int i = 0; i < a.count; ++i)
-    for (int j = i + 1; j < a.count; ++j) edges_a.push_back(diff(pa[j], pa[i]));
+    for (int j = i + 1; j < a.count; ++j) edges_a[na++] = diff(pa[j], pa[i]);
   for (int i = 0; i < b.count; ++i)
-    for (int j = i + 1; j < b.count; ++j) edges_b.push_back(diff(pb[j], pb[i]));
-  if (a.count == 3) axes.push_back(cross(edges_a[0], edges_a[1]));
-  if (b.count == 3) axes.push_back(cross(edges_b[0], edges_b[1]));
-  for (const V& e : edges_a)
-    for (const V& f : edges_b) axes.push_back(cross(e, f));
-  for (const V& n : axes) {
+    for (int j = i + 1; j < b.count; ++j) edges_b[nb++] = diff(pb[j], pb[i]);
+  if (a.count == 3) axes[n_axes++] = cross(edges_a[0], edges_a[1]);
+  if (b.count == 3) axes[n_axes++] = cross(edges_b[0], edges_b[1]);
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j) axes[n_axes++] = cross(edges_a[i], edges_b[j]);
+  for (int k = 0; k < n_axes; ++k) {
+    const V& n = axes[k];
     if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
     // Projection range of a simplex; false when a bound is NaN (std::min
     // and std::max would silently drop it).

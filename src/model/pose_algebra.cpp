@@ -211,8 +211,21 @@ void require_interpolable(const Pose& a, const Pose& b, Interpolation how) {
   const auto qa = exact_quaternion(a.rotation), qb = exact_quaternion(b.rotation);
   if (qa && qb) {
     // nlerp's sign rule (negate when the dot product is negative) is
-    // decided exactly; a zero dot product leaves nlerp well defined.
-    if (how != Interpolation::Nlerp && qdot(*qa, *qb) == 0)
+    // decided exactly; a zero dot product leaves nlerp well defined.  An
+    // interval enclosure of the dot product that excludes 0 proves it
+    // nonzero (proofs/enclosures.md section 3c); exact only otherwise.
+    if (how == Interpolation::Nlerp) return;
+    {
+      RoundingGuard guard;
+      Quat<Interval> ia, ib;
+      for (int i = 0; i < 4; ++i) {
+        ia[i] = to_interval((*qa)[i]);
+        ib[i] = to_interval((*qb)[i]);
+      }
+      const Interval d = qdot(ia, ib);
+      if (d.inf() > 0 || d.sup() < 0) return;
+    }
+    if (qdot(*qa, *qb) == 0)
       throw InputError("the two rotations are exactly 180 degrees apart: the interpolation has no shorter arc");
     return;
   }

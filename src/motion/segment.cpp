@@ -135,7 +135,21 @@ class KeyframeModel final : public SegmentModel {
     // The shorter arc: require_interpolable has proven the sign of p0 . p1
     // (for nlerp with exact quaternions the exact sign decides).
     const auto qa = exact_quaternion(a.rotation), qb = exact_quaternion(b.rotation);
-    const bool negate = qa && qb ? qdot(*qa, *qb) < 0 : qdot(p0_, p1_).sup() < 0;
+    // With exact quaternions, the sign of their dot product from its
+    // interval enclosure when that excludes 0 (proofs/enclosures.md
+    // section 3c), else exactly.
+    auto exact_negative = [&]() {
+      Quat<Interval> ia, ib;
+      for (int i = 0; i < 4; ++i) {
+        ia[i] = to_interval((*qa)[i]);
+        ib[i] = to_interval((*qb)[i]);
+      }
+      const Interval d = qdot(ia, ib);
+      if (d.sup() < 0) return true;
+      if (d.inf() > 0) return false;
+      return qdot(*qa, *qb) < 0;
+    };
+    const bool negate = qa && qb ? exact_negative() : qdot(p0_, p1_).sup() < 0;
     if (negate)
       for (Interval& x : p1_) x = -x;
     for (int i = 0; i < 3; ++i) {

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -190,7 +191,8 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
                           const std::vector<StaticPart>& environment,
                           const std::vector<std::vector<SimplexI>>* local = nullptr, bool crossing_first = false,
                           const LocalVertices* shared = nullptr,
-                          std::vector<std::array<Interval, 3>>* preplaced = nullptr) {
+                          std::vector<std::array<Interval, 3>>* preplaced = nullptr,
+                          const std::function<std::optional<Mat34E>()>* exact_later = nullptr) {
   struct Candidate {
     int pi, pj, si, sj;
     SimplexI x, y;
@@ -260,11 +262,18 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
     return std::tie(x.pi, x.pj, x.si, x.sj) < std::tie(y.pi, y.pj, y.si, y.sj);
   });
   if (candidates.empty()) return out;
-  if (!exact && crossing_first) {
+  // Without `exact`, the exact pose from `exact_later` (when the caller
+  // can give one): asked only now, with candidate pairs left that the
+  // enclosures did not decide (proofs/sample-first.md section 2c: `map`
+  // encloses that pose, so its candidates are the pairs to test exactly).
+  std::optional<Mat34E> later;
+  if (!exact && exact_later) later = (*exact_later)();
+  const std::optional<Mat34E>& exact_pose = exact ? exact : later;
+  if (!exact_pose && crossing_first) {
     out.kind = StaticOutcome::Kind::Unknown;  // every candidate tested above
     return out;
   }
-  if (!exact) {
+  if (!exact_pose) {
     RoundingGuard guard;
     for (const Candidate& c : candidates)
       if (const auto box = certain_crossing(c.x, c.y)) {
@@ -282,8 +291,8 @@ StaticOutcome static_test(const std::vector<StaticPart>& parts, const std::array
     for (int k = 0; k < x.count; ++k) {
       Vec3E r;
       for (int i = 0; i < 3; ++i)
-        r[i] = (*exact)[4 * i] * x.p[k][0] + (*exact)[4 * i + 1] * x.p[k][1] + (*exact)[4 * i + 2] * x.p[k][2] +
-               (*exact)[4 * i + 3];
+        r[i] = (*exact_pose)[4 * i] * x.p[k][0] + (*exact_pose)[4 * i + 1] * x.p[k][1] +
+               (*exact_pose)[4 * i + 2] * x.p[k][2] + (*exact_pose)[4 * i + 3];
       x.p[k] = r;
     }
     if (auto p = common_point(x, environment[c.pj].simplices[c.sj])) {
@@ -569,7 +578,12 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       const int a = static_cast<int>(k);
       if (enlarged_pair(bodies_[a], bodies_[0])) continue;
       end_tested[a] = 1;
-      const StartPose p = pose_at(motions[a - 1], t1, &models[a]);
+      // The enclosure of the end pose; its exact pose (GMP) only when the
+      // static test is left with candidate pairs (sample-first.md 2c).
+      const StartPose p = pose_at(motions[a - 1], t1, &models[a], false);
+      const std::function<std::optional<Mat34E>()> exact_end = [&]() {
+        return pose_at(motions[a - 1], t1, &models[a]).exact;
+      };
       // Two gates, each a box holding every placed simplex's box of the
       // static test: the coarse box (the map applied to the box of the
       // vertex enclosures), then the box of the placed vertex enclosures.
@@ -613,7 +627,7 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       ++configurations;
       const StaticOutcome o =
           static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
-                      &shared_[a], &placed);
+                      &shared_[a], &placed, &exact_end);
       if (o.kind != StaticOutcome::Kind::Hit) continue;
       // As the sample pass's hit below: record(0), then finish().
       out.checks.push_back(sampled_collision({a, 0}, t0, t1, mover_witness(a, o, t1), configurations));
@@ -701,17 +715,26 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
       if (!enlarged_pair(bodies_[a], bodies_[b]) && !boxes_clear(a, b) && !pair_windows(k).empty()) sampled.push_back(k);
     }
     const std::vector<Exact> times = sample_times(t0, t1, kSampledParameters);
-    std::vector<std::optional<StartPose>> at(bodies_.size());
+    // Per body at the current sampled parameter: the pose's enclosure
+    // alone (a mover against the environment: its exact pose only when the
+    // static test is left with candidate pairs, sample-first.md 2c), and
+    // the pose with its exact form (mover pairs).
+    std::vector<std::optional<StartPose>> at(bodies_.size()), at_exact(bodies_.size());
     const Exact* at_time = nullptr;
     std::uint64_t configurations = 0;
     const auto hit = first_sampled_contact(times, sampled.size(), [&](std::size_t i, const Exact& t) -> std::optional<Witness> {
       if (at_time != &t) {
         for (auto& p : at) p.reset();
+        for (auto& p : at_exact) p.reset();
         at_time = &t;
       }
-      auto pose = [&](int body) -> const StartPose& {
-        if (!at[body]) at[body] = pose_at(motions[body - 1], t, &models[body]);
+      auto enclosed = [&](int body) -> const StartPose& {
+        if (!at[body]) at[body] = pose_at(motions[body - 1], t, &models[body], false);
         return *at[body];
+      };
+      auto pose = [&](int body) -> const StartPose& {
+        if (!at_exact[body]) at_exact[body] = pose_at(motions[body - 1], t, &models[body]);
+        return *at_exact[body];
       };
       const auto [a, b] = pairs[sampled[i]];
       // A mover's end configuration was tested above.
@@ -723,12 +746,13 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
         return std::nullopt;
       ++configurations;
       if (b == 0) {
-        const StartPose& p = pose(a);
-        // A certain crossing of the enclosures first, also at an exact
-        // pose (cheaper than the exact tests; its witness is a box).
+        const StartPose& p = enclosed(a);
+        const std::function<std::optional<Mat34E>()> exact_later = [&]() { return pose(a).exact; };
+        // A certain crossing of the enclosures first, also where an exact
+        // pose exists (cheaper than the exact tests; its witness is a box).
         const StaticOutcome o =
             static_test(prepared_[a]->parts, p.map, p.exact, *index_, prepared_[0]->parts, &local_[a], true,
-                      &shared_[a]);
+                      &shared_[a], nullptr, &exact_later);
         if (o.kind != StaticOutcome::Kind::Hit) return std::nullopt;
         return mover_witness(a, o, t);
       }
@@ -827,11 +851,19 @@ MotionCheck FixedEnvironment::run(const std::vector<Trajectory>& motions, bool d
     // unknown outcome leaves the start test to the search, which then
     // reports the collision with its witness, or stops undecided.  Only
     // when the first window starts at t0.
+    // Without a start pose yet (no solid), the enclosure at t0 first and
+    // the exact start pose only for candidate pairs (sample-first.md 2c).
+    auto start_test = [&]() {
+      if (has_start[a])
+        return static_test(prepared_[a]->parts, start[a].map, start[a].exact, *index_, prepared_[0]->parts,
+                           &local_[a], false, &shared_[a]);
+      const StartPose p = pose_at(motions[a - 1], t0, &models[a], false);
+      const std::function<std::optional<Mat34E>()> exact_later = [&]() { return start_of(a).exact; };
+      return static_test(prepared_[a]->parts, p.map, std::nullopt, *index_, prepared_[0]->parts, &local_[a], false,
+                         &shared_[a], nullptr, &exact_later);
+    };
     const bool start_free =
-        b == 0 && windows.front().first == t0 &&
-        static_test(prepared_[a]->parts, start_of(a).map, start_of(a).exact, *index_, prepared_[0]->parts, &local_[a],
-                    false, &shared_[a]).kind ==
-            StaticOutcome::Kind::Free;
+        b == 0 && windows.front().first == t0 && start_test().kind == StaticOutcome::Kind::Free;
     // check_time_limit bounds each check, as in Verifier::check (with
     // refinement and none given: 30 s for the first search and the
     // refinement together).

@@ -383,6 +383,19 @@ class StampedCache {
   void reset(std::size_t nodes) {
     stamp_.assign(nodes, 0);
     slot_.reset(new Slot[nodes]);  // not initialized
+    capacity_ = nodes;
+  }
+  // Sized for another check's bodies (Spheres::rebind), nothing zeroed that
+  // the stamps already guard: entries kept in place keep their stamps, which
+  // lie below every piece of the next check (the piece counter goes on);
+  // new or reallocated slots get stamp 0, below every piece (pieces count
+  // from 1).
+  void resize(std::size_t nodes) {
+    if (nodes > capacity_) {
+      reset(nodes);
+      return;
+    }
+    stamp_.resize(nodes, 0);
   }
   template <class Make>
   const T& get(std::uint64_t piece, std::uint32_t i, Make&& make) {
@@ -396,6 +409,7 @@ class StampedCache {
  private:
   std::vector<std::uint64_t> stamp_;
   std::unique_ptr<Slot[]> slot_;
+  std::size_t capacity_ = 0;
 };
 
 // slab_side per node of the fixed body's tree (a fixed node meets many

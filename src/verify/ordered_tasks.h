@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -149,7 +150,30 @@ void Check<B>::search(const Policy& policy) {
     CheckResult part;
   };
   std::vector<Entry> entries;  // in parameter order
-  Spheres<Policy> spheres(moving, other);
+  // The sphere caches of this thread's last search, reused (a planner's
+  // edges and a robot's links are many small checks of the same bodies:
+  // fresh caches cost an allocation and zeroing of every entry per check);
+  // a search nested in another on this thread gets its own.
+  static thread_local std::unique_ptr<Spheres<Policy>> kept;
+  static thread_local bool kept_busy = false;
+  std::unique_ptr<Spheres<Policy>> own_spheres;
+  Spheres<Policy>* chosen = nullptr;
+  if (kept_busy) {
+    own_spheres = std::make_unique<Spheres<Policy>>(moving, other);
+    chosen = own_spheres.get();
+  } else {
+    if (kept) kept->rebind(moving, other);
+    else kept = std::make_unique<Spheres<Policy>>(moving, other);
+    chosen = kept.get();
+    kept_busy = true;
+  }
+  struct Release {
+    bool* busy;
+    ~Release() {
+      if (busy) *busy = false;
+    }
+  } release{chosen == kept.get() ? &kept_busy : nullptr};
+  Spheres<Policy>& spheres = *chosen;
   {
     std::vector<Item<Policy>> stack;
     stack.push_back({Node{0, 0, root_pairs()}, policy.root(), nullptr});

@@ -16,7 +16,8 @@ std::vector<Exact> sample_times(const Exact& t0, const Exact& t1, std::size_t co
   return out;
 }
 
-StartPose pose_at(const Trajectory& motion, const Exact& t, std::vector<std::unique_ptr<SegmentModel>>* models) {
+StartPose pose_at(const Trajectory& motion, const Exact& t, std::vector<std::unique_ptr<SegmentModel>>* models,
+                  bool with_exact) {
   std::size_t index = motion.segments.size() - 1;
   for (std::size_t k = 0; k < motion.segments.size(); ++k)
     if (motion.segments[k].t0 <= t && t <= motion.segments[k].t1) {
@@ -31,7 +32,7 @@ StartPose pose_at(const Trajectory& motion, const Exact& t, std::vector<std::uni
   if (!slot) slot = make_segment_model(*seg);
   const SegmentModel* model = slot.get();
   StartPose out;
-  out.exact = model->exact_pose(s);
+  if (with_exact) out.exact = model->exact_pose(s);
   RoundingGuard guard;
   if (out.exact) {
     for (int e = 0; e < 12; ++e) out.map[e] = to_interval((*out.exact)[e]);

@@ -37,9 +37,14 @@ std::vector<Exact> sample_times(const Exact& t0, const Exact& t1, std::size_t co
 // segment whose closed interval holds t (segments join continuously).
 // `models`, when given, caches the segment models (one per segment of
 // `motion`, built on first use) across calls for the same motion.
+// `with_exact` false: no exact pose is computed (`exact` stays empty) and
+// the map is the segment model's enclosure of the pose at t (also where an
+// exact pose exists: a caller that may need it asks again with true, e.g.
+// only when the static test is left with candidate pairs;
+// proofs/sample-first.md section 2c).
 class SegmentModel;
 StartPose pose_at(const Trajectory& motion, const Exact& t,
-                  std::vector<std::unique_ptr<SegmentModel>>* models = nullptr);
+                  std::vector<std::unique_ptr<SegmentModel>>* models = nullptr, bool with_exact = true);
 
 // The result of a check decided by a contact at a sampled parameter
 // `witness.t` inside (t0, t1]: verdict collision with that witness; the

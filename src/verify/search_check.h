@@ -177,6 +177,26 @@ struct Check {
       t = 0;
       for (const FeatureTable* x : {&f.vertices, &f.edges, &f.faces}) other[t++].reset(x->size());
     }
+    // The same caches for another check (the next edge of a planner, the
+    // next link): sized for its bodies, nothing zeroed.  `piece` goes on
+    // counting, so every entry left from an earlier check carries a stamp
+    // below every piece of this one and is computed again before use (the
+    // same values as in fresh caches; proofs/search-and-pruning.md,
+    // "Caches reused across checks").
+    void rebind(const PreparedBody& m, const PreparedBody& f) {
+      moving_cells.resize(m.cells.tree.nodes.size());
+      moving_swept_cells.resize(m.cells.tree.nodes.size());
+      other_cells.resize(f.cells.tree.nodes.size());
+      other_slabs.resize(f.cells.tree.nodes.size());
+      other_swept_slabs.resize(f.cells.tree.nodes.size());
+      int t = 0;
+      for (const FeatureTable* x : {&m.vertices, &m.edges, &m.faces}) {
+        moving_swept[t].resize(x->size());
+        moving[t++].resize(x->size());
+      }
+      t = 0;
+      for (const FeatureTable* x : {&f.vertices, &f.edges, &f.faces}) other[t++].resize(x->size());
+    }
   };
 
   // The table (0 vertices, 1 edges, 2 faces) of each body for a kind.

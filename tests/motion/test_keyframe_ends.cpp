@@ -78,6 +78,34 @@ BOOST_AUTO_TEST_CASE(the_models_exact_ends_are_the_keyframes) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(the_arc_is_decided_exactly_near_a_half_turn) {
+  // The sign of the quaternions' dot product (which arc is shorter) is
+  // taken from its interval enclosure only when that excludes 0
+  // (proofs/enclosures.md section 3c).  (1, 1, 0, 0) against
+  // (-1 - 2^-60, 1, 0, 0): the dot product -2^-60 lies inside the
+  // enclosure's rounding, so the exact sign decides: accepted, and the
+  // slerp takes the arc through the identity (p1 negated: R[1][1] = 1 at
+  // s = 1/2, not -1 as on the other arc).  Exactly a half turn apart
+  // (dot product 0): no shorter arc, refused.
+  const Exact tiny = Exact(1, 1 << 30) * Exact(1, 1 << 30);  // 2^-60
+  Pose a = quaternion_pose(1, 1, 0, 0, 0);
+  Pose b = quaternion_pose(-1, 1, 0, 0, 0);
+  b.rotation.quaternion[0] = Exact(-1) - tiny;
+  for (Interpolation how : {Interpolation::Slerp, Interpolation::Screw}) {
+    BOOST_CHECK_NO_THROW(require_interpolable(a, b, how));
+    BOOST_CHECK_THROW(require_interpolable(a, quaternion_pose(-1, 1, 0, 0, 0), how), InputError);
+  }
+  const auto model = make_keyframe_model(a, b, Interpolation::Slerp);
+  RoundingGuard guard;
+  const auto mid = model->pose_values(Interval(0.5));
+  BOOST_TEST(mid[5].inf() > 0.99);  // R[1][1]: near the identity
+  const Exact minus_tiny = tiny - Exact(1);  // (-1 + 2^-60, 1, 0, 0): dot +2^-60, no negation
+  b.rotation.quaternion[0] = minus_tiny;
+  BOOST_CHECK_NO_THROW(require_interpolable(a, b, Interpolation::Slerp));
+  const auto other = make_keyframe_model(a, b, Interpolation::Slerp)->pose_values(Interval(0.5));
+  BOOST_TEST(other[5].sup() < -0.99);  // through the half turn about x
+}
+
 BOOST_AUTO_TEST_CASE(value_parts_are_the_jets_values_bit_for_bit) {
   // The model's value-only pose_values (slerp away from angle 0, nlerp,
   // equal rotations) against the value parts of pose(Jet(s)), at points

@@ -12,7 +12,9 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <cstdint>
 #include <random>
+#include <vector>
 #include <string>
 
 using namespace tmcert;
@@ -150,6 +152,62 @@ BOOST_AUTO_TEST_CASE(motions_agree_with_the_verifier) {
   }
   BOOST_TEST(verdicts[static_cast<int>(Verdict::Safe)] > 0);
   BOOST_TEST(verdicts[static_cast<int>(Verdict::Collision)] > 0);
+}
+
+BOOST_AUTO_TEST_CASE(searches_reuse_their_caches_across_checks) {
+  // Each thread's search keeps its sphere caches for the next check
+  // (src/verify/ordered_tasks.h; proofs/search-and-pruning.md section 2b):
+  // an entry from an earlier check must never be taken as current.  The
+  // same motions checked again in the opposite order, with checks of
+  // other bodies (other cache sizes) in between, give the same results
+  // entry for entry, statistics included.
+  const Scene base = cube_and_slab();
+  VerifyOptions options;
+  options.epsilon = Exact(1, 1000);
+  options.threads = 1;
+  const FixedEnvironment env(base.bodies[0], {base.bodies[1]}, {}, options);
+  const FixedEnvironment swapped(base.bodies[1], {base.bodies[0]}, {}, options);
+  std::mt19937 rng(20261129);
+  std::vector<Trajectory> motions;
+  while (motions.size() < 12) {
+    MotionSegment seg;
+    seg.t0 = 0;
+    seg.t1 = 1;
+    seg.from = random_pose(rng);
+    seg.to = random_pose(rng);
+    seg.from.translation[0] = Exact(-3, 4);
+    seg.to.translation[0] = Exact(3, 4);
+    seg.interpolation = Interpolation::Slerp;
+    try {
+      require_interpolable(seg.from, seg.to, seg.interpolation);
+    } catch (const InputError&) {
+      continue;
+    }
+    seg.rational = rational_keyframe_segment(seg.from, seg.to, seg.interpolation, seg.t0, seg.t1);
+    motions.push_back(Trajectory{{seg}});
+  }
+  std::vector<MotionCheck> first;
+  for (const Trajectory& m : motions) first.push_back(env.check({m}));
+  std::uint64_t searched = 0;
+  for (std::size_t k = motions.size(); k-- > 0;) {
+    (void)swapped.check({motions[(k + 5) % motions.size()]});  // the other bodies' search in between
+    const MotionCheck again = env.check({motions[k]});
+    const MotionCheck& was = first[k];
+    BOOST_TEST(again.verdict == was.verdict, "motion " << k);
+    BOOST_TEST((again.first_contact == was.first_contact), "motion " << k);
+    BOOST_REQUIRE_EQUAL(again.checks.size(), was.checks.size());
+    for (std::size_t c = 0; c < was.checks.size(); ++c) {
+      BOOST_TEST(again.checks[c].stats.nodes == was.checks[c].stats.nodes, "motion " << k);
+      BOOST_TEST(again.checks[c].stats.sphere_tests == was.checks[c].stats.sphere_tests, "motion " << k);
+      BOOST_REQUIRE_EQUAL(again.checks[c].undecided.size(), was.checks[c].undecided.size());
+      for (std::size_t u = 0; u < was.checks[c].undecided.size(); ++u) {
+        BOOST_TEST(again.checks[c].undecided[u].t0 == was.checks[c].undecided[u].t0);
+        BOOST_TEST(again.checks[c].undecided[u].t1 == was.checks[c].undecided[u].t1);
+      }
+      searched += was.checks[c].stats.nodes;
+    }
+  }
+  BOOST_TEST(searched > 0u);  // some motions needed the search
 }
 
 BOOST_AUTO_TEST_CASE(a_solid_inside_counts_as_contact) {

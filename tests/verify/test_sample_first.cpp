@@ -196,6 +196,33 @@ BOOST_AUTO_TEST_CASE(a_touching_end_pose_gets_the_exact_point) {
   BOOST_TEST(got.checks[0].stats.nodes == 0u);
 }
 
+BOOST_AUTO_TEST_CASE(an_exact_end_pose_is_computed_only_for_candidate_pairs) {
+  // Turning a quarter about x (the quaternion (1, 1, 0, 0): the same cube)
+  // while moving: the end test gets the slerp model's enclosure of the end
+  // pose, and the exact end pose only for the candidate pairs the
+  // enclosures do not decide (proofs/sample-first.md section 2c).  A face
+  // ending on the wall (touching, no certain crossing) is still the exact
+  // contact at t = 1; a face ending 10^-20 short of it (closer than the
+  // enclosures' width: candidate pairs) is free there by the exact test,
+  // so no collision is claimed: the search then stops undecided near the
+  // end (a gap far below epsilon), as check() does.
+  const Scene scene = cube_and_wall("0");
+  const FixedEnvironment env(scene.bodies[0], {scene.bodies[1]}, {}, options());
+  const MotionCheck touching = env.decide({along_x(Exact(-1), Exact(-1, 5), 1)});
+  BOOST_TEST(touching.verdict == Verdict::Collision);
+  BOOST_REQUIRE(touching.witness);
+  BOOST_TEST(touching.witness->t == Exact(1));
+  BOOST_TEST(!touching.witness->point_box);
+  BOOST_TEST(touching.witness->point[0] == Exact(0));
+  BOOST_TEST(touching.checks[0].stats.nodes == 0u);
+  const Exact e5(1, 100000);
+  const Exact tiny = e5 * e5 * e5 * e5;  // 10^-20
+  const Trajectory short_of = along_x(Exact(-1), Exact(-1, 5) - tiny, 1);
+  const MotionCheck near = env.decide({short_of});
+  BOOST_TEST(near.verdict != Verdict::Collision);
+  BOOST_TEST(near.verdict == env.check({short_of}).verdict);
+}
+
 BOOST_AUTO_TEST_CASE(an_enclosed_pose_gives_a_certain_crossing) {
   // Turning while it moves (slerp): the poses at the samples are enclosed,
   // and a contact there is a certain transversal crossing with a box.
