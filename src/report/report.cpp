@@ -771,6 +771,18 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
     }
     if (undecided.size() > kUndecidedShown)
       out << "    ... and " << undecided.size() - kUndecidedShown << " more undecided intervals (--json lists them all)\n";
+    // A toleranced check left undecided: the one lever no hint can name
+    // (issue 23 item 7).  A collision's displacement is a translation, so
+    // where only an admissible affine map beyond a translation's reach could
+    // touch, no witness exists at any epsilon or time limit
+    // (docs/scene-format.md, "Tolerance and clearance").
+    if (c.verdict == Verdict::Undecided)
+      for (int side = 0; side < 2; ++side)
+        if (const Body& body = scene.bodies[c.bodies[side]]; body.tolerance > 0)
+          out << "    note: " << body.name
+              << " has a tolerance: a part where only an admissible affine deviation beyond the reach of a "
+                 "translation could touch stays undecided at every epsilon and time limit (a collision's "
+                 "displacement is a translation)\n";
     if (wit && wit->t < c.interval.second)
       out << "    not searched after the witness: t in [" << (root ? root->approx : to_decimal(wit->t).text) << ", "
           << to_decimal(c.interval.second).text << "]\n";

@@ -253,4 +253,31 @@ BOOST_AUTO_TEST_CASE(hints_name_the_lever_that_can_decide) {
   BOOST_TEST(has(s, "e.g. --epsilon 1e-09, or --epsilon auto"), s);
 }
 
+BOOST_AUTO_TEST_CASE(a_toleranced_undecided_check_notes_the_band_no_lever_decides) {
+  tmcert::Scene scene = two_bodies();
+  SceneResult r;
+  r.verdict = Verdict::Undecided;
+  r.epsilon_per_check = true;
+  r.refine = true;
+  r.time_limit = 30;
+  CheckResult c;
+  c.bodies = {0, 1};
+  c.verdict = Verdict::Undecided;
+  c.epsilon = Exact(1, 1000);
+  c.stats.nodes = 50;
+  c.first_contact = std::make_pair(Exact(1, 4), Exact(5, 16));
+  c.undecided = {{Exact(1, 4), Exact(5, 16), StopReason::Epsilon}};
+  r.checks.push_back(c);
+  const std::string note = "    note: b has a tolerance: a part where only an admissible affine deviation beyond the "
+                           "reach of a translation could touch stays undecided at every epsilon and time limit";
+  // Without a tolerance: no such note.
+  BOOST_TEST(!has(tmcert::result_summary(scene, r), "has a tolerance"));
+  scene.bodies[1].tolerance = Exact(1, 10);
+  BOOST_TEST(has(tmcert::result_summary(scene, r), note), tmcert::result_summary(scene, r));
+  // Decided checks need no note.
+  r.checks[0].verdict = Verdict::Safe;
+  r.checks[0].undecided.clear();
+  BOOST_TEST(!has(tmcert::result_summary(scene, r), "has a tolerance"));
+}
+
 BOOST_AUTO_TEST_SUITE_END()
