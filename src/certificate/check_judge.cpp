@@ -254,16 +254,7 @@ void Checker::check_enclosed_clearance(const CheckContext& ctx) {
     const char* key = s == 0 ? "a" : "b";
     const WitnessSide& side = ctx.side[s];
     if (side.interior) reject(L + "." + key + ": a clearance witness at an enclosed pose needs an element and weights");
-    const std::vector<Vec3E>& verts = ctx.data[s]->elems[side.element];
-    Exact sum(0);
-    Vec3E x{Exact(0), Exact(0), Exact(0)};
-    for (std::size_t i = 0; i < verts.size(); ++i) {
-      const Exact& wi = side.weights[i];
-      if (sgn(wi) < 0) reject(L + "." + key + ".weights[" + std::to_string(i) + "] = " + str(wi) + " is negative");
-      sum += wi;
-      for (int r = 0; r < 3; ++r) x[r] += wi * verts[i][r];
-    }
-    if (sum != 1) reject(L + "." + key + ".weights sum to " + str(sum) + ", not 1");
+    const Vec3E x = weighted_point(ctx.data[s]->elems[side.element], side, L + "." + key);
     const std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
     if (!box) reject(L + ": the pose of " + quote_text(ctx.body[s]->name) + " at t = " + str(t) + " has no finite enclosure");
     placed_point[s] = place_box(*box, x);
@@ -316,6 +307,19 @@ void Checker::check_witness(const CheckContext& ctx) {
   }
 }
 
+Vec3E Checker::weighted_point(const std::vector<Vec3E>& verts, const WitnessSide& side, const std::string& where) {
+  Exact sum(0);
+  Vec3E x{Exact(0), Exact(0), Exact(0)};
+  for (std::size_t i = 0; i < verts.size(); ++i) {
+    const Exact& wi = side.weights[i];
+    if (sgn(wi) < 0) reject(where + ".weights[" + std::to_string(i) + "] = " + str(wi) + " is negative");
+    sum += wi;
+    for (int r = 0; r < 3; ++r) x[r] += wi * verts[i][r];
+  }
+  if (sum != 1) reject(where + ".weights sum to " + str(sum) + ", not 1");
+  return x;
+}
+
 void Checker::check_side_at(const CheckContext& ctx, int s, const Mat34E& pose, const Vec3E& point) {
   const Exact& t = ctx.witness_t;
   const std::string L = ctx.label + ": witness";
@@ -338,16 +342,7 @@ void Checker::check_side_at(const CheckContext& ctx, int s, const Mat34E& pose, 
         reject(L + "." + key + ".interior: the ray crosses every shell of " + quote_text(body.name) +
                " an even number of times (" + counts_text(*n) + "): the point is not inside");
     } else {
-      const std::vector<Vec3E>& verts = ctx.data[s]->elems[side.element];
-      Exact sum(0);
-      Vec3E x{Exact(0), Exact(0), Exact(0)};
-      for (std::size_t i = 0; i < verts.size(); ++i) {
-        const Exact& wi = side.weights[i];
-        if (sgn(wi) < 0) reject(L + "." + key + ".weights[" + std::to_string(i) + "] = " + str(wi) + " is negative");
-        sum += wi;
-        for (int r = 0; r < 3; ++r) x[r] += wi * verts[i][r];
-      }
-      if (sum != 1) reject(L + "." + key + ".weights sum to " + str(sum) + ", not 1");
+      const Vec3E x = weighted_point(ctx.data[s]->elems[side.element], side, L + "." + key);
       const Vec3E placed_x = place_point(pose, x);
       if (placed_x != point)
         reject(L + "." + key + ": element " + std::to_string(side.element) + " of " + quote_text(body.name) +

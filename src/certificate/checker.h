@@ -189,6 +189,10 @@ class Checker {
   // One side of a point witness at an exact pose: the element's weighted
   // point placed at `point`, or `point` inside the solid by the ray.
   void check_side_at(const CheckContext& ctx, int s, const Mat34E& pose, const Vec3E& point);
+  // The point Σ wᵢ vᵢ of a witness side's element (its vertices vᵢ, the
+  // side's weights wᵢ), rejected unless every wᵢ >= 0 and Σ wᵢ = 1 (a point
+  // of the element); `where`: the side's path in the certificate.
+  static Vec3E weighted_point(const std::vector<Vec3E>& verts, const WitnessSide& side, const std::string& where);
 
   // Witnesses on the true shape of a URDF cylinder or sphere (check_primitive.cpp).
   static bool has_true_shape_side(const json& w);
