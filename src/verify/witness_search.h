@@ -217,6 +217,20 @@ Apartness Check<B>::interior_witness(const Exact& u) {
   return Apartness::Free;
 }
 
+// The rational poses at the centres of the pose boxes `maps` (only to aim a
+// witness: nothing rests on them); none when a box is not finite.
+template <int B>
+std::optional<std::array<Mat34E, B>> box_centres(const std::array<PoseInterval, B>& maps) {
+  std::array<Mat34E, B> near;
+  for (int b = 0; b < B; ++b)
+    for (int e = 0; e < 12; ++e) {
+      const double lo = maps[b][e].inf(), hi = maps[b][e].sup();
+      if (!std::isfinite(lo) || !std::isfinite(hi)) return std::nullopt;
+      near[b][e] = Exact(lo) + (Exact(hi) - Exact(lo)) / 2;
+    }
+  return near;
+}
+
 // Tolerance at an enclosed pose (a transcendental motion at u, where the
 // poses are known only as boxes): a translation v of one body within its
 // tolerance (|v|^2 <= reach2, exact) after which an edge of one body
@@ -234,13 +248,9 @@ bool displaced_crossing(Check<B>& c, const Exact& u, const std::set<std::pair<in
   const int k = x.reach2[1] > x.reach2[0] ? 1 : 0;  // the body translated: the longer reach
   if (!(x.reach2[k] > 0)) return false;
   std::array<PoseInterval, B> maps = x.enclosed->poses(u);
-  std::array<Mat34E, B> near;
-  for (int b = 0; b < B; ++b)
-    for (int e = 0; e < 12; ++e) {
-      const double lo = maps[b][e].inf(), hi = maps[b][e].sup();
-      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-      near[b][e] = Exact(lo) + (Exact(hi) - Exact(lo)) / 2;
-    }
+  const std::optional<std::array<Mat34E, B>> centres = box_centres<B>(maps);
+  if (!centres) return false;
+  const std::array<Mat34E, B>& near = *centres;
   const auto hit = closest_within(c.moving.parts, &near[0], c.other.parts, B == 2 ? &near[B - 1] : nullptr, x.reach2[k], only,
                                   c.result.stats);
   if (!hit || !(hit->points.d2 > 0)) return false;
@@ -366,13 +376,9 @@ bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<in
   const CheckExtras<B>& x = c.extras;
   if (!(x.clearance2 > 0)) return false;
   const std::array<PoseInterval, B> maps = x.enclosed->poses(u);
-  std::array<Mat34E, B> near;
-  for (int b = 0; b < B; ++b)
-    for (int e = 0; e < 12; ++e) {
-      const double lo = maps[b][e].inf(), hi = maps[b][e].sup();
-      if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
-      near[b][e] = Exact(lo) + (Exact(hi) - Exact(lo)) / 2;
-    }
+  const std::optional<std::array<Mat34E, B>> centres = box_centres<B>(maps);
+  if (!centres) return false;
+  const std::array<Mat34E, B>& near = *centres;
   const auto hit = closest_within(c.moving.parts, &near[0], c.other.parts, B == 2 ? &near[B - 1] : nullptr, x.clearance2,
                                   only, c.result.stats);
   if (!hit) return false;
