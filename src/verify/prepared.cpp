@@ -4,6 +4,7 @@
 
 #include <CGAL/number_utils.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -457,9 +458,31 @@ SweptBox swept_box(const Body& body) {
     box.vertices = static_cast<int>(all.size());
     box.points.resize(all.size() * imaps.size());
   }
+  // The vertices' enclosures; beyond the kept points, each distinct one
+  // once (a mesh lists a vertex in each of its polygons, about six times):
+  // the box is the same, a min and max over the same values.
+  std::vector<Vec3<Interval>> enclosed;
+  enclosed.reserve(all.size());
+  for (const Vec3E& x : all) enclosed.push_back(enclose3(x));
+  if (!keep) {
+    using Key = std::array<double, 6>;
+    std::vector<Key> keys;
+    keys.reserve(enclosed.size());
+    bool ordered = true;  // no NaN: the sort needs a strict weak order
+    for (const Vec3<Interval>& x : enclosed) {
+      keys.push_back({x[0].inf(), x[0].sup(), x[1].inf(), x[1].sup(), x[2].inf(), x[2].sup()});
+      for (double v : keys.back()) ordered = ordered && !std::isnan(v);
+    }
+    if (ordered) {
+      std::sort(keys.begin(), keys.end());
+      keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+      enclosed.clear();
+      for (const Key& k : keys)
+        enclosed.push_back({Interval(k[0], k[1]), Interval(k[2], k[3]), Interval(k[4], k[5])});
+    }
+  }
   int vertex = 0;
-  auto add_point = [&](const Vec3E& x) {
-    const Vec3<Interval> xi = enclose3(x);
+  auto add_point = [&](const Vec3<Interval>& xi) {
     RoundingGuard guard;
     for (std::size_t k = 0; k < imaps.size(); ++k) {
       const auto& m = imaps[k];
@@ -473,7 +496,7 @@ SweptBox swept_box(const Body& body) {
     }
     ++vertex;
   };
-  for (const Vec3E& x : all) add_point(x);
+  for (const Vec3<Interval>& x : enclosed) add_point(x);
   box.valid = !nan;
   for (int i = 0; i < 3; ++i)
     if (!std::isfinite(box.lo[i]) || !std::isfinite(box.hi[i]) || !(box.lo[i] <= box.hi[i])) box.valid = false;
