@@ -65,6 +65,48 @@ BOOST_AUTO_TEST_CASE(touching_bodies_are_never_prefiltered) {
   BOOST_TEST(contacts > 100);
 }
 
+// swept_box lists each distinct vertex enclosure once for a mesh (a vertex
+// is listed in each of its polygons) and so gets the same box; a body
+// whose vertex images are kept keeps every listed vertex, repeated ones
+// too, since the kept points are indexed by the list (proofs/prefilter.md
+// section 2).
+BOOST_AUTO_TEST_CASE(swept_box_of_a_mesh_is_that_of_its_distinct_vertices_and_kept_points_stay_listed) {
+  Motion motion;
+  motion.control_points = {Mat34E{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, Mat34E{0, -1, 0, 3, 1, 0, 0, Exact(1, 3), 0, 0, 1, -2}};
+  motion.weights = {1, 1};
+  const std::vector<Vec3E> corners{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {Exact(1, 7), 2, Exact(-5, 3)}};
+  Body mesh;
+  mesh.name = "mesh";
+  mesh.motion = motion;
+  for (int a = 0; a < 5; ++a)
+    for (int b = a + 1; b < 5; ++b)
+      for (int c = b + 1; c < 5; ++c) mesh.polygons.push_back({corners[a], corners[b], corners[c]});
+  Body cloud;
+  cloud.name = "cloud";
+  cloud.motion = motion;
+  cloud.points = corners;
+  const SweptBox m = swept_box(mesh), c = swept_box(cloud);
+  BOOST_TEST(m.valid);
+  BOOST_TEST(c.valid);
+  BOOST_TEST((m.lo == c.lo));
+  BOOST_TEST((m.hi == c.hi));
+  // Kept points: one point listed twice stays two kept points per pose.
+  Body twice;
+  twice.name = "twice";
+  twice.motion = motion;
+  twice.points = {corners[4], corners[4]};
+  const SweptBox t = swept_box(twice);
+  BOOST_TEST(t.vertices == 2);
+  BOOST_REQUIRE(t.points.size() == 4u);
+  for (std::size_t k = 0; k < 2; ++k)
+    for (int i = 0; i < 3; ++i) {
+      BOOST_TEST(t.points[2 * k][i].inf() == t.points[2 * k + 1][i].inf());
+      BOOST_TEST(t.points[2 * k][i].sup() == t.points[2 * k + 1][i].sup());
+      BOOST_TEST(t.points[2 * k][i].inf() <= t.points[2 * k][i].sup());
+      BOOST_TEST(t.points[2 * k][i].sup() != 0.0);
+    }
+}
+
 // A tiny node budget ends the search as "undecided" with reason "limit",
 // never "safe".
 BOOST_AUTO_TEST_CASE(node_budget_is_undecided_not_safe) {
