@@ -320,6 +320,17 @@ PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.moves() || b.tole
   for (const auto& [e, part] : list.edges) edge_points.push_back({enclose3(e[0]), enclose3(e[1])});
   for (const auto& [v, part] : list.vertices) vertex_points.push_back({enclose3(v)});
   RoundingGuard guard;
+  // Sized once (a mesh's tables hold tens of thousands of features).
+  faces.interval.reserve(list.faces.size());
+  faces.part.reserve(list.faces.size());
+  edges.interval.reserve(list.edges.size());
+  edges.part.reserve(list.edges.size());
+  vertices.interval.reserve(list.vertices.size());
+  vertices.part.reserve(list.vertices.size());
+  for (FeatureTable* t : {&vertices, &edges, &faces}) {
+    t->approx.reserve(t->interval.capacity());
+    if (!moving) t->image_first.reserve(t->interval.capacity() + 1);
+  }
   for (std::size_t i = 0; i < list.faces.size(); ++i) {
     faces.interval.push_back(make_face<Interval>(face_points[i], g));
     faces.part.push_back(list.faces[i].second);
