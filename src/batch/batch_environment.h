@@ -68,6 +68,9 @@ class BatchEnvironment {
     // (robot or -1, moved body or link, obstacle) -> the pair prepared,
     // made on first use; robot -1 and body -1 (an inline body) is never kept.
     std::map<std::tuple<int, int, int>, std::unique_ptr<FixedEnvironment>> prepared_;
+    // Environment body -> this worker's copy of it, moved by the requests
+    // that move that body (Worker::run).
+    std::map<int, Body> movers_;
   };
 
   const Scene& scene() const { return scene_; }
