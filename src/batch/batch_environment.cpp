@@ -72,7 +72,7 @@ BatchEnvironment::Worker::Worker(const BatchEnvironment& environment) : environm
 
 BatchEnvironment::Worker::~Worker() = default;
 
-CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory& trajectory, int obstacle,
+CheckResult BatchEnvironment::Worker::check(const Body& moved, const std::vector<Trajectory>& motion, int obstacle,
                                             const Exact& clearance, std::tuple<int, int, int> key,
                                             const std::string& source) {
   const BatchEnvironment& env = environment_;
@@ -85,7 +85,7 @@ CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory&
     pair.source = source;
     pair.bodies = {moved, other};
     pair.bodies[0].motion.reset();
-    pair.bodies[0].trajectory = trajectory;
+    pair.bodies[0].trajectory = motion.at(0);
     pair.checks = {{0, 1}};
     pair.clearance = clearance;
     return Verifier(pair, env.options_).check(0, 1, clearance);
@@ -104,7 +104,7 @@ CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory&
     if (!cached) cached = prepare();
     fixed = cached.get();
   }
-  return fixed->check({trajectory}).checks.at(0);  // bodies {1: the moved body, 0: the obstacle}
+  return fixed->check(motion).checks.at(0);  // bodies {1: the moved body, 0: the obstacle}
 }
 
 RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_t index, std::size_t line_number) {
@@ -212,10 +212,12 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
     };
     for (std::size_t m = 0; m < (own ? 1 : moved.bodies.size()); ++m) {
       const Body& body = own ? *own : moved.bodies[m];
-      const Trajectory trajectory = as_trajectory(body.motion, body.trajectory);
+      // One vector for every obstacle (FixedEnvironment::check takes one):
+      // not a copy of the motion's exact numbers per check.
+      const std::vector<Trajectory> motion{as_trajectory(body.motion, body.trajectory)};
       for (const int o : obstacles) {
         const std::tuple<int, int, int> key{robot, robot >= 0 ? static_cast<int>(m) : mover, o};
-        add(check(body, trajectory, o, clearance, key, source), body, scene.bodies[o]);
+        add(check(body, motion, o, clearance, key, source), body, scene.bodies[o]);
       }
     }
     if (!self_pairs.empty()) {

@@ -60,8 +60,9 @@ class BatchEnvironment {
 
    private:
     // One check of the moved body (the request's body, or a robot's link
-    // moving along its path) against an obstacle of the environment.
-    CheckResult check(const Body& moved, const Trajectory& trajectory, int obstacle, const Exact& clearance,
+    // moving along its path; `motion`: its one trajectory) against an
+    // obstacle of the environment.
+    CheckResult check(const Body& moved, const std::vector<Trajectory>& motion, int obstacle, const Exact& clearance,
                       std::tuple<int, int, int> key, const std::string& source);
 
     const BatchEnvironment& environment_;
