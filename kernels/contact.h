@@ -18,6 +18,7 @@
 #pragma once
 
 #include "kernels/quadratic_min.h"
+#include "kernels/vec3.h"
 
 #include <CGAL/Interval_nt.h>
 
@@ -72,23 +73,16 @@ enum class ContactKind : std::uint8_t { VertexFace = 0, EdgeEdge = 1, FaceVertex
 
 namespace detail {
 
+// The verifier's vocabulary (kernels/vec3.h) under the names this header's
+// callers use: g applied to a point, and its linear part to a vector.
 template <class FT>
 Vec3<FT> apply_point(const std::array<FT, 12>& g, const Vec3<FT>& x) {
-  Vec3<FT> r;
-  for (int i = 0; i < 3; ++i) r[i] = g[4 * i] * x[0] + g[4 * i + 1] * x[1] + g[4 * i + 2] * x[2] + g[4 * i + 3];
-  return r;
+  return vec3::apply(g, x);
 }
 
 template <class FT>
 Vec3<FT> apply_vector(const std::array<FT, 12>& g, const Vec3<FT>& v) {
-  Vec3<FT> r;
-  for (int i = 0; i < 3; ++i) r[i] = g[4 * i] * v[0] + g[4 * i + 1] * v[1] + g[4 * i + 2] * v[2];
-  return r;
-}
-
-template <class FT>
-FT dot(const Vec3<FT>& a, const Vec3<FT>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  return vec3::apply_linear(g, v);
 }
 
 // max of rho^2 over a feature, as an upper bound: rho^2 = [s; 1]^T Q [s; 1]
@@ -136,7 +130,7 @@ Quadratic2<FT> contact_quadratic(const FeatureGeometry<FT>& X, const FeatureGeom
                                  const Placement<FT>& p) {
   using detail::apply_point;
   using detail::apply_vector;
-  using detail::dot;
+  using vec3::dot;
   const int kx = X.dim, ky = Y.dim;
   // World difference g1(x(s)) - g2(y(s)) = a + L s.
   Vec3<FT> a = apply_point(p.g1, X.origin);
@@ -243,9 +237,7 @@ bool apart_along_axis(ContactKind kind, const Vec3<FT>* xs, std::size_t nx, cons
     auto d = [&](const Vec3<FT>& a, const Vec3<FT>& b) {
       return std::array<double, 3>{mid(a[0]) - mid(b[0]), mid(a[1]) - mid(b[1]), mid(a[2]) - mid(b[2])};
     };
-    auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-      return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    };
+    using vec3::cross;
     // Two directions: the normal of the face, or of both edges (where the
     // features face each other across a plane), then the line between the
     // centroids (features side by side in one plane, where the first

@@ -52,12 +52,10 @@ constexpr int kClearIterations = 24;
 
 using V3 = std::array<double, 3>;
 
-inline V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+using vec3::cross;
+using vec3::dot;
+using vec3::sub;
 inline V3 add_scaled(const V3& a, double t, const V3& b) { return {a[0] + t * b[0], a[1] + t * b[1], a[2] + t * b[2]}; }
-inline double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 // The point of a simplex (1 to 4 points) closest to the origin; the simplex
 // is reduced to the face that holds it.  Returns false when the origin is

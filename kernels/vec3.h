@@ -39,4 +39,12 @@ std::array<T, 3> apply(const std::array<T, 12>& m, const std::array<T, 3>& x) {
   return out;
 }
 
+// m's linear part A applied to the vector v: A v, row by row.
+template <class T>
+std::array<T, 3> apply_linear(const std::array<T, 12>& m, const std::array<T, 3>& v) {
+  std::array<T, 3> out;
+  for (int r = 0; r < 3; ++r) out[r] = m[4 * r] * v[0] + m[4 * r + 1] * v[1] + m[4 * r + 2] * v[2];
+  return out;
+}
+
 }  // namespace tmcert::vec3

@@ -1,6 +1,7 @@
 #include "src/verify/prepared.h"
 
 #include "src/motion/segment.h"
+#include "kernels/vec3.h"
 
 #include <CGAL/number_utils.h>
 
@@ -16,21 +17,6 @@ namespace tmcert {
 namespace {
 
 const Mat34E kIdentity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-
-Vec3E apply_map(const Mat34E& m, const Vec3E& x) {
-  Vec3E r;
-  for (int i = 0; i < 3; ++i) r[i] = m[4 * i] * x[0] + m[4 * i + 1] * x[1] + m[4 * i + 2] * x[2] + m[4 * i + 3];
-  return r;
-}
-
-template <class FT>
-Vec3<FT> sub(const Vec3<FT>& a, const Vec3<FT>& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-template <class FT>
-FT dot(const Vec3<FT>& a, const Vec3<FT>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // ---------------------------------------------------------------- geometry
 // Feature geometry written once over FT: exact with Exact, an enclosure with
@@ -82,7 +68,7 @@ FeatureGeometry<FT> make_edge(const Vec3<FT>& p, const Vec3<FT>& q, const std::a
   FeatureGeometry<FT> f;
   f.dim = 1;
   f.origin = p;
-  f.axis = {sub(q, p), Vec3<FT>{FT(0), FT(0), FT(0)}};
+  f.axis = {vec3::sub(q, p), Vec3<FT>{FT(0), FT(0), FT(0)}};
   set_rho2(f, gi);
   return f;
 }
@@ -95,17 +81,17 @@ FeatureGeometry<FT> make_face(const std::vector<Vec3<FT>>& v, const std::array<F
   FeatureGeometry<FT> f;
   f.dim = 2;
   f.origin = v[0];
-  f.axis = {sub(v[1], v[0]), sub(v[2], v[0])};
+  f.axis = {vec3::sub(v[1], v[0]), vec3::sub(v[2], v[0])};
   set_rho2(f, gi);
   f.orientation = 1;
   f.domain = {{FT(0), FT(0)}, {FT(1), FT(0)}, {FT(0), FT(1)}};
   if (v.size() > 3) {
     // Parameter coordinates of the other vertices: the 2x2 Gram system.
-    const FT g00 = dot(f.axis[0], f.axis[0]), g01 = dot(f.axis[0], f.axis[1]), g11 = dot(f.axis[1], f.axis[1]);
+    const FT g00 = vec3::dot(f.axis[0], f.axis[0]), g01 = vec3::dot(f.axis[0], f.axis[1]), g11 = vec3::dot(f.axis[1], f.axis[1]);
     const FT det = g00 * g11 - g01 * g01;
     for (std::size_t i = 3; i < v.size(); ++i) {
-      const Vec3<FT> d = sub(v[i], v[0]);
-      const FT r0 = dot(f.axis[0], d), r1 = dot(f.axis[1], d);
+      const Vec3<FT> d = vec3::sub(v[i], v[0]);
+      const FT r0 = vec3::dot(f.axis[0], d), r1 = vec3::dot(f.axis[1], d);
       f.domain.push_back({(g11 * r0 - g01 * r1) / det, (g00 * r1 - g01 * r0) / det});
     }
   }
@@ -263,7 +249,7 @@ std::optional<std::array<Interval, 16>> interval_inverse(const std::array<Interv
 PreparedBody::PreparedBody(const Body& b) : body(&b), moving(b.moves() || b.tolerance > 0), pose_(kIdentity) {
   if (b.motion && !moving) pose_ = b.motion->control_points[0];
   const bool identity = pose_ == kIdentity;
-  auto place = [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); };
+  auto place = [&](const Vec3E& x) { return moving || identity ? x : vec3::apply(pose_, x); };
 
   // Static parts, exact.
   for (std::size_t i = 0; i < b.polygons.size(); ++i) parts.push_back({"polygon " + std::to_string(i), {}});
@@ -380,7 +366,7 @@ const Metric& PreparedBody::exact_metric() const {
 
 std::vector<Vec3E> PreparedBody::placed(const std::vector<Vec3E>& points) const {
   std::vector<Vec3E> out;
-  for (const Vec3E& x : points) out.push_back(moving || pose_ == kIdentity ? x : apply_map(pose_, x));
+  for (const Vec3E& x : points) out.push_back(moving || pose_ == kIdentity ? x : vec3::apply(pose_, x));
   return out;
 }
 
@@ -389,7 +375,7 @@ const ExactFeatureVertices& PreparedBody::exact_vertices() const {
     auto e = std::make_unique<ExactFeatureVertices>();
     const bool identity = pose_ == kIdentity;
     const FeatureList list =
-        feature_list(*body, [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); });
+        feature_list(*body, [&](const Vec3E& x) { return moving || identity ? x : vec3::apply(pose_, x); });
     for (const auto& [v, part] : list.faces) e->faces.push_back(v);
     for (const auto& [ed, part] : list.edges) e->edges.push_back({ed[0], ed[1]});
     for (const auto& [v, part] : list.vertices) e->vertices.push_back({v});
@@ -404,7 +390,7 @@ const ExactFeatures& PreparedBody::exact() const {
     const Mat44E* gi = moving ? &exact_metric().inverse() : nullptr;
     const bool identity = pose_ == kIdentity;
     const FeatureList list =
-        feature_list(*body, [&](const Vec3E& x) { return moving || identity ? x : apply_map(pose_, x); });
+        feature_list(*body, [&](const Vec3E& x) { return moving || identity ? x : vec3::apply(pose_, x); });
     for (const auto& [v, part] : list.faces) e->faces.push_back(make_face<Exact>(v, gi));
     for (const auto& [ed, part] : list.edges) e->edges.push_back(make_edge<Exact>(ed[0], ed[1], gi));
     for (const auto& [v, part] : list.vertices) e->vertices.push_back(make_vertex<Exact>(v, gi));
@@ -485,10 +471,6 @@ namespace {
 using V3 = std::array<double, 3>;
 
 V3 mid(const std::array<Interval, 3>& x) { return {CGAL::to_double(x[0]), CGAL::to_double(x[1]), CGAL::to_double(x[2])}; }
-V3 minus(const V3& x, const V3& y) { return {x[0] - y[0], x[1] - y[1], x[2] - y[2]}; }
-V3 cross(const V3& x, const V3& y) {
-  return {x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
-}
 
 // Projection range of interval points on a fixed axis; false on NaN.
 bool project(const std::vector<std::array<Interval, 3>>& pts, const V3& n, double& lo, double& hi) {
@@ -513,27 +495,27 @@ bool separated_hulls(const SweptBox& a, const SweptBox& b) {
     std::vector<V3> e;
     for (int i = 0; i < s.vertices; ++i)
       for (int j = i + 1; j < s.vertices; ++j)
-        e.push_back(minus(mid(s.points[k * s.vertices + j]), mid(s.points[k * s.vertices + i])));
+        e.push_back(vec3::sub(mid(s.points[k * s.vertices + j]), mid(s.points[k * s.vertices + i])));
     return e;
   };
   for (std::size_t k : {std::size_t(0), poses_a - 1})
     for (std::size_t l : {std::size_t(0), poses_b - 1}) {
       const std::vector<V3> ea = edges(a, k), eb = edges(b, l);
       for (const V3& x : ea)
-        for (const V3& y : eb) axes.push_back(cross(x, y));
-      if (ea.size() >= 3) axes.push_back(cross(ea[0], ea[1]));
-      if (eb.size() >= 3) axes.push_back(cross(eb[0], eb[1]));
+        for (const V3& y : eb) axes.push_back(vec3::cross(x, y));
+      if (ea.size() >= 3) axes.push_back(vec3::cross(ea[0], ea[1]));
+      if (eb.size() >= 3) axes.push_back(vec3::cross(eb[0], eb[1]));
       // A moving vertex against the other body's edges: its path direction.
       if (a.vertices == 1 && poses_a > 1)
-        for (const V3& y : eb) axes.push_back(cross(minus(mid(a.points.back()), mid(a.points.front())), y));
+        for (const V3& y : eb) axes.push_back(vec3::cross(vec3::sub(mid(a.points.back()), mid(a.points.front())), y));
       if (b.vertices == 1 && poses_b > 1)
-        for (const V3& x : ea) axes.push_back(cross(minus(mid(b.points.back()), mid(b.points.front())), x));
+        for (const V3& x : ea) axes.push_back(vec3::cross(vec3::sub(mid(b.points.back()), mid(b.points.front())), x));
     }
   V3 ca{0, 0, 0}, cb{0, 0, 0};
   for (const auto& p : a.points) { const V3 m = mid(p); for (int i = 0; i < 3; ++i) ca[i] += m[i]; }
   for (const auto& p : b.points) { const V3 m = mid(p); for (int i = 0; i < 3; ++i) cb[i] += m[i]; }
   for (int i = 0; i < 3; ++i) { ca[i] /= a.points.size(); cb[i] /= b.points.size(); }
-  axes.push_back(minus(cb, ca));
+  axes.push_back(vec3::sub(cb, ca));
   RoundingGuard guard;
   for (const V3& n : axes) {
     if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) continue;
@@ -559,7 +541,7 @@ std::vector<StaticPart> transformed_parts(const PreparedBody& body, const Mat34E
   std::vector<StaticPart> out = body.parts;
   for (StaticPart& part : out)
     for (Simplex& s : part.simplices)
-      for (int k = 0; k < s.count; ++k) s.p[k] = apply_map(map, s.p[k]);
+      for (int k = 0; k < s.count; ++k) s.p[k] = vec3::apply(map, s.p[k]);
   return out;
 }
 

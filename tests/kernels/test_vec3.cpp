@@ -26,6 +26,8 @@ BOOST_AUTO_TEST_CASE(exact_operations) {
   // x -> A x + a with A a quarter turn about z and a = (1, 2, 3).
   const Mat34E m{0, -1, 0, 1, 1, 0, 0, 2, 0, 0, 1, 3};
   BOOST_TEST((vec3::apply(m, a) == Vec3E{Exact(-1), Exact(7, 3), Exact(2)}));
+  // The linear part alone leaves out the translation (a vector, not a point).
+  BOOST_TEST((vec3::apply_linear(m, a) == Vec3E{Exact(-2), Exact(1, 3), Exact(-1)}));
 }
 
 BOOST_AUTO_TEST_CASE(interval_enclosures) {
