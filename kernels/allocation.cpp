@@ -2,6 +2,7 @@
 
 #include <flint/flint.h>
 #include <gmp.h>
+#include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -60,24 +61,35 @@ void* checked_realloc(void* old, std::size_t n) {
 void* gmp_realloc(void* old, std::size_t, std::size_t n) { return checked_realloc(old, n); }
 void gmp_free(void* p, std::size_t) { std::free(p); }
 
-// The reserve for unwinding (see allocation.h): address space only, never
-// touched (so it costs no memory), given back at the first failed C++
-// allocation.
+// The reserve for unwinding (see allocation.h): address space only, mapped
+// without access and never touched (so it costs no memory), given back at
+// the first failed C++ allocation.  Mapped and unmapped directly, not
+// through malloc: an allocator that keeps freed address space for itself
+// (tcmalloc, which the command links: CMakeLists.txt) would keep a freed
+// reserve and hand it out again, beyond the limit it was taken within.
 std::atomic<void*> g_reserve{nullptr};
+std::atomic<std::size_t> g_reserve_bytes{0};
 constexpr std::size_t kMaxReserve = std::size_t{64} << 20;
 
+void give_back_reserve() {
+  if (void* p = g_reserve.exchange(nullptr)) ::munmap(p, g_reserve_bytes.load());
+}
+
 void take_reserve(std::size_t bytes) {
-  if (void* old = g_reserve.exchange(nullptr)) std::free(old);
+  give_back_reserve();
   // Smaller when the system refuses (a low limit set from outside).
-  for (; bytes >= (std::size_t{1} << 20); bytes /= 2)
-    if (void* p = std::malloc(bytes)) {
+  for (; bytes >= (std::size_t{1} << 20); bytes /= 2) {
+    void* p = ::mmap(nullptr, bytes, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (p != MAP_FAILED) {
+      g_reserve_bytes = bytes;
       g_reserve = p;
       return;
     }
+  }
 }
 
 void release_reserve_and_throw() {
-  if (void* p = g_reserve.exchange(nullptr)) std::free(p);
+  give_back_reserve();
   throw std::bad_alloc();
 }
 

@@ -15,6 +15,7 @@ packages=(
   liburdfdom-dev        # URDF robots (src/io/urdf.cpp; brings TinyXML and console_bridge)
   libtinyxml-dev libconsole-bridge-dev
   libassimp-dev         # COLLADA (.dae) meshes (src/io/mesh.cpp)
+  libtcmalloc-minimal4  # the command's thread-caching allocator (CMake option TMCERT_TCMALLOC; batch --threads)
   libfcl-dev            # only for bench/planner_path.cpp and bench/ompl_edges.cpp (FCL, the planners' checker)
   libassimp-dev         # only for bench/omplapp_fcl.cpp (OMPL.app's COLLADA meshes, as OMPL.app reads them)
   libompl-dev           # the OMPL motion validator (src/ompl/), its tests and examples

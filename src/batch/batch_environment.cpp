@@ -72,7 +72,7 @@ BatchEnvironment::Worker::Worker(const BatchEnvironment& environment) : environm
 
 BatchEnvironment::Worker::~Worker() = default;
 
-CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory& trajectory, int obstacle,
+CheckResult BatchEnvironment::Worker::check(const Body& moved, const std::vector<Trajectory>& motion, int obstacle,
                                             const Exact& clearance, std::tuple<int, int, int> key,
                                             const std::string& source) {
   const BatchEnvironment& env = environment_;
@@ -85,7 +85,7 @@ CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory&
     pair.source = source;
     pair.bodies = {moved, other};
     pair.bodies[0].motion.reset();
-    pair.bodies[0].trajectory = trajectory;
+    pair.bodies[0].trajectory = motion.at(0);
     pair.checks = {{0, 1}};
     pair.clearance = clearance;
     return Verifier(pair, env.options_).check(0, 1, clearance);
@@ -104,7 +104,7 @@ CheckResult BatchEnvironment::Worker::check(const Body& moved, const Trajectory&
     if (!cached) cached = prepare();
     fixed = cached.get();
   }
-  return fixed->check({trajectory}).checks.at(0);  // bodies {1: the moved body, 0: the obstacle}
+  return fixed->check(motion).checks.at(0);  // bodies {1: the moved body, 0: the obstacle}
 }
 
 RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_t index, std::size_t line_number) {
@@ -153,7 +153,7 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
     if (request.checks.empty())
       for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b)
         if (b != mover && env.robot_of_[b] < 0) obstacles.push_back(b);
-    const Exact clearance = request.clearance ? *request.clearance : scene.clearance;
+    const Exact& clearance = request.clearance ? *request.clearance : scene.clearance;  // not a copy (below)
 
     // The moved bodies and their motions: one body, or a robot's links.
     Scene moved;
@@ -169,10 +169,24 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
         throw InputError(source + ": " + path_field(e) + ": " + e.what());
       }
       if (r.self_collision) self_pairs = robot_default_checks(*r.robot, links, {}, true, r.allowed_pairs);
-    } else {
-      moved.bodies.push_back(request.inline_body ? *request.inline_body : scene.bodies[mover]);
-      moved.bodies[0].motion = request.motion;
-      moved.bodies[0].trajectory = request.trajectory;
+    } else if (request.inline_body) {
+      moved.bodies.push_back(std::move(*request.inline_body));
+      moved.bodies[0].motion = std::move(request.motion);
+      moved.bodies[0].trajectory = std::move(request.trajectory);
+    }
+    // A body of the environment moves as this worker's own copy of it, made
+    // on its first request, with the request's motion.  Not a copy per
+    // request: a copy shares the handles of the body's exact numbers, whose
+    // reference counts the environment's body shares with every worker:
+    // with several threads each copy and its destruction were atomic
+    // writes to the same memory from every thread.
+    Body* own = nullptr;
+    if (mover >= 0) {
+      auto it = movers_.find(mover);
+      if (it == movers_.end()) it = movers_.emplace(mover, scene.bodies[mover]).first;
+      own = &it->second;
+      own->motion = std::move(request.motion);
+      own->trajectory = std::move(request.trajectory);
     }
     if (obstacles.empty() && self_pairs.empty())
       throw InputError(source + ": " + (robot >= 0 ? "robot" : "body") +
@@ -196,12 +210,14 @@ RequestOutcome BatchEnvironment::Worker::run(const std::string& text, std::size_
       if (r.verdict == Verdict::Collision) verdict = Verdict::Collision;
       else if (r.verdict == Verdict::Undecided && verdict == Verdict::Safe) verdict = Verdict::Undecided;
     };
-    for (std::size_t m = 0; m < moved.bodies.size(); ++m) {
-      const Body& body = moved.bodies[m];
-      const Trajectory trajectory = as_trajectory(body.motion, body.trajectory);
+    for (std::size_t m = 0; m < (own ? 1 : moved.bodies.size()); ++m) {
+      const Body& body = own ? *own : moved.bodies[m];
+      // One vector for every obstacle (FixedEnvironment::check takes one):
+      // not a copy of the motion's exact numbers per check.
+      const std::vector<Trajectory> motion{as_trajectory(body.motion, body.trajectory)};
       for (const int o : obstacles) {
         const std::tuple<int, int, int> key{robot, robot >= 0 ? static_cast<int>(m) : mover, o};
-        add(check(body, trajectory, o, clearance, key, source), body, scene.bodies[o]);
+        add(check(body, motion, o, clearance, key, source), body, scene.bodies[o]);
       }
     }
     if (!self_pairs.empty()) {

@@ -60,14 +60,18 @@ class BatchEnvironment {
 
    private:
     // One check of the moved body (the request's body, or a robot's link
-    // moving along its path) against an obstacle of the environment.
-    CheckResult check(const Body& moved, const Trajectory& trajectory, int obstacle, const Exact& clearance,
+    // moving along its path; `motion`: its one trajectory) against an
+    // obstacle of the environment.
+    CheckResult check(const Body& moved, const std::vector<Trajectory>& motion, int obstacle, const Exact& clearance,
                       std::tuple<int, int, int> key, const std::string& source);
 
     const BatchEnvironment& environment_;
     // (robot or -1, moved body or link, obstacle) -> the pair prepared,
     // made on first use; robot -1 and body -1 (an inline body) is never kept.
     std::map<std::tuple<int, int, int>, std::unique_ptr<FixedEnvironment>> prepared_;
+    // Environment body -> this worker's copy of it, moved by the requests
+    // that move that body (Worker::run).
+    std::map<int, Body> movers_;
   };
 
   const Scene& scene() const { return scene_; }

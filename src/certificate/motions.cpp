@@ -666,6 +666,12 @@ struct CheckerKind {
   const Motion* (*rational)(const MotionSegment& seg);
   std::optional<Mat34E> (*exact_end)(const MotionSegment& seg, bool last);
   std::optional<BallPose> (*pose)(const MotionSegment& seg, const B& s);
+  // Over how many equal parts of a piece `pose` is taken (the union of
+  // their enclosures holds the piece's poses): a keyframe segment kSubBalls,
+  // each ball narrower, so less of the dependency blow-up of the
+  // interpolation's formula; a robot link one (its chain costs about ten
+  // times a slerp, and parts did not make its pieces fewer).
+  int parts;
 };
 
 const CheckerKind kCheckerKinds[] = {
@@ -674,24 +680,25 @@ const CheckerKind kCheckerKinds[] = {
      [](const MotionSegment& seg, bool last) -> std::optional<Mat34E> {
        return evaluate(*seg.rational, last ? seg.t1 : seg.t0);
      },
-     nullptr},
+     nullptr, 1},
     {"robot_link", [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() == 1; },
      [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) {  // exact at a waypoint where it is (revolute joints at 0, exact constants)
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
-     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }},
+     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(link_pose(*seg.link, s)); }, 1},
     {"robot_link_hermite",
      [](const MotionSegment& seg) { return !seg.rational && seg.link != nullptr && seg.link->degree() > 1; },
      [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) {  // the waypoint's joint values, as for linear joints
        return exact_link_pose(*seg.link->chain, last ? seg.link->to : seg.link->from);
      },
-     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(hermite_link_pose(*seg.link, s)); }},
+     [](const MotionSegment& seg, const B& s) { return std::optional<BallPose>(hermite_link_pose(*seg.link, s)); },
+     1},
     {"keyframe", [](const MotionSegment& seg) { return !seg.rational && !seg.link; },
      [](const MotionSegment&) -> const Motion* { return nullptr; },
      [](const MotionSegment& seg, bool last) { return exact_keyframe(last ? seg.to : seg.from); },
-     [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }},
+     [](const MotionSegment& seg, const B& s) { return keyframe_pose(seg, s); }, kSubBalls},
 };
 
 const CheckerKind& checker_kind(const MotionSegment& seg) {
@@ -718,12 +725,9 @@ std::optional<PieceMotion> piece_motion(const Body& body, const Exact& ta, const
       out.exact = restrict(*rational, ta, tb);
       return out;
     }
-    // A keyframe segment: the union of the enclosures over kSubBalls equal
-    // parts of the piece, each ball narrower, so less of the dependency
-    // blow-up of the interpolation's formula (a box over a cover of the
-    // piece holds its poses).  A robot link: one ball (its chain costs
-    // about ten times a slerp, and parts did not make its pieces fewer).
-    const int parts = seg->link ? 1 : kSubBalls;
+    // The union of the enclosures over the kind's number of equal parts of
+    // the piece (a box over a cover of the piece holds its poses).
+    const int parts = kind.parts;
     const Exact span = seg->t1 - seg->t0;
     const Exact u0 = (ta - seg->t0) / span, du = (tb - ta) / span / parts;
     std::optional<PoseBox> box;

@@ -3,6 +3,7 @@
 #include "kernels/real_roots.h"
 #include "src/report/report.h"
 #include "src/html/assets.h"
+#include "src/model/segment_kind.h"
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
 
@@ -66,7 +67,7 @@ class DisplayPose {
     std::size_t k = 0;
     while (k + 1 < segments.size() && segments[k].t1 < tc) ++k;
     const MotionSegment& seg = segments[k];
-    if (seg.rational) return to_display(motion_pose(*seg.rational, tc));
+    if (const Motion* rational = kind_of(seg).rational(seg)) return to_display(motion_pose(*rational, tc));
     if (!models_[k]) models_[k] = make_segment_model(seg);
     const Exact s = (tc - seg.t0) / (seg.t1 - seg.t0);
     if (const std::optional<Mat34E> exact = models_[k]->exact_pose(s)) return to_display(*exact);

@@ -54,7 +54,7 @@ PlacedRobot::PlacedRobot(std::shared_ptr<const RobotModel> model, std::string na
     for (const LinkPart& part : m.links[l].parts) {
       std::vector<std::vector<Pose>> c = constants;
       for (const Pose& p : part.frame) c.back().push_back(p);
-      chains_[l].push_back(std::make_shared<const LinkChain>(std::move(c), joints));
+      chains_[l].push_back(std::make_shared<const ChainDescription>(std::move(c), joints));
     }
   }
 }
@@ -331,7 +331,7 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
     // Cubic and quintic: segment k's motion of this link, when its joints'
     // polynomials are not all of degree <= 1 (then it is the linear motion
     // between its waypoint values, exactly); null otherwise.
-    auto hermite = [&](std::size_t k, const std::shared_ptr<const LinkChain>& chain) -> std::shared_ptr<const LinkMotion> {
+    auto hermite = [&](std::size_t k, const std::shared_ptr<const ChainDescription>& chain) -> std::shared_ptr<const LinkMotion> {
       if (degree == 1) return nullptr;
       const Exact T = path.times[k + 1] - path.times[k];
       bool linear = true;
@@ -362,7 +362,7 @@ RobotBodies add_robot(Scene& scene, const PlacedRobot& robot, const JointPath& p
     for (std::size_t k = 1; k < path.times.size() && still; ++k) still = values(k) == first;
     for (std::size_t k = 0; k + 1 < path.times.size() && still && degree > 1; ++k) still = !hermite(k, nullptr);
     for (std::size_t p = 0; p < link.parts.size(); ++p) {
-      const std::shared_ptr<const LinkChain>& chain = robot.chain(static_cast<int>(l), p);
+      const std::shared_ptr<const ChainDescription>& chain = robot.chain(static_cast<int>(l), p);
       Body b = link.parts[p].geometry;
       b.name = robot.name() + "/" + link.name + link.parts[p].suffix;
       if (still) {

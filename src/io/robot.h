@@ -14,10 +14,10 @@
 //   scene.checks.insert(scene.checks.end(), checks.begin(), checks.end());
 //
 // Every number of the URDF is read exactly from its text; link motions are
-// enclosed rigorously (src/motion/chain.h).
+// enclosed rigorously (src/motion/chain.h prepares each chain once).
 #pragma once
 
-#include "src/motion/chain.h"
+#include "src/model/chain.h"
 #include "src/model/model.h"
 
 #include <memory>
@@ -170,7 +170,9 @@ class JointPathError : public InputError {
 };
 
 // A robot at a base pose under a name (its bodies are "<name>/<link>"),
-// with the chain of every link prepared once.  Immutable; cheap to share.
+// with the chain of every link described once (the verifier prepares each
+// description's enclosures once, src/motion/chain.h).  Immutable; cheap to
+// share.
 class PlacedRobot {
  public:
   PlacedRobot(std::shared_ptr<const RobotModel> model, std::string name, Pose base);
@@ -182,14 +184,14 @@ class PlacedRobot {
   // `link`, in chain order.
   const std::vector<int>& chain_joints(int link) const { return chain_joints_[link]; }
   // The chain of part `part` of link `link` (its frame last).
-  const std::shared_ptr<const LinkChain>& chain(int link, std::size_t part = 0) const { return chains_[link][part]; }
+  const std::shared_ptr<const ChainDescription>& chain(int link, std::size_t part = 0) const { return chains_[link][part]; }
 
  private:
   std::shared_ptr<const RobotModel> model_;
   std::string name_;
   Pose base_;
   std::vector<std::vector<int>> chain_joints_;
-  std::vector<std::vector<std::shared_ptr<const LinkChain>>> chains_;  // per link, per part
+  std::vector<std::vector<std::shared_ptr<const ChainDescription>>> chains_;  // per link, per part
 };
 
 // Throws JointPathError unless `path` fits the robot: every joint named

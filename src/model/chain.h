@@ -3,15 +3,20 @@
 //     C_0 J_1(q_1) C_1 J_2(q_2) ... J_n(q_n) C_n
 // of constant poses C_k (each the product of a list of Poses) and joint
 // motions J_j (a rotation by q about a unit axis, or a translation by q
-// along it).  Both the verifier (src/motion/chain.h, which prepares the
-// chain's enclosures) and the certificate checker (src/certificate/
-// motions.cpp, its own evaluation) read it.  proofs/robot-links.md.
+// along it).  The description answers the exact questions (the rational
+// pose at given joint values, whether a segment is a rational motion); the
+// verifier's enclosures are prepared from it once (src/motion/chain.h,
+// kept in prepared()), and the certificate checker (src/certificate/
+// motions.cpp) makes its own evaluation from constant_poses() and joint().
+// proofs/robot-links.md.
 #pragma once
 
 #include "src/model/model.h"
 
 #include <cstddef>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -23,13 +28,15 @@ struct ChainJoint {
   Vec3E axis;  // as written, nonzero; normalized (exactly or enclosed)
 };
 
-// The constants and joints of a chain, as given.
+// The constants and joints of a chain, as given, with their exact parts.
+// Immutable (prepared() fills its slot once, thread-safely).
 class ChainDescription {
  public:
-  // constants.size() == joints.size() + 1 (LinkChain checks).
-  ChainDescription(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints)
-      : constant_poses_(std::move(constants)), chain_joints_(std::move(joints)) {}
-  virtual ~ChainDescription() = default;
+  // Throws std::invalid_argument unless constants.size() == joints.size()
+  // + 1 and every axis is nonzero (callers validate first).
+  ChainDescription(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints);
+  ChainDescription(const ChainDescription&) = delete;
+  ChainDescription& operator=(const ChainDescription&) = delete;
 
   std::size_t joint_count() const { return chain_joints_.size(); }
   // The constant poses as given (C_k is the product of its list, left to
@@ -37,14 +44,46 @@ class ChainDescription {
   const std::vector<std::vector<Pose>>& constant_poses() const { return constant_poses_; }
   const ChainJoint& joint(std::size_t j) const { return chain_joints_[j]; }
 
+  // C_k exactly, when every pose of its list is exact (exact_pose(Pose)).
+  const std::optional<Mat34E>& exact_constant(std::size_t k) const { return exact_constants_[k]; }
+  // Joint j's axis / |axis| exactly, when |axis| is rational.
+  const std::optional<Vec3E>& exact_unit_axis(std::size_t j) const { return unit_axes_[j]; }
+  // |axis|^2 of joint j, exactly.
+  const Exact& axis_norm2(std::size_t j) const { return axis_norms2_[j]; }
+
+  // The exact pose at joint values q (one per joint), when it is exact:
+  // every constant exact, every revolute joint at q = 0, every prismatic
+  // axis of rational length (or the joint at 0).  nullopt otherwise.
+  std::optional<Mat34E> exact_pose(const std::vector<Exact>& q) const;
+
+  // True when the pose is affine in the joint values of a segment from
+  // `from` to `to` and exact at both ends (every revolute joint stays at 0):
+  // the segment is then the rational degree-1 motion between its end poses.
+  bool rational_between(const std::vector<Exact>& from, const std::vector<Exact>& to) const;
+
+  // A layer above keeps its preparation of this chain here, made by
+  // make(*this) on the first call and shared by every later one (the
+  // verifier's enclosures, src/motion/chain.cpp: one preparation per chain
+  // however many segments use it).  T must be the same type at every call.
+  template <class T, class Make>
+  std::shared_ptr<const T> prepared(Make make) const {
+    std::call_once(prepared_once_, [&] { prepared_ = std::shared_ptr<const void>(make(*this)); });
+    return std::static_pointer_cast<const T>(prepared_);
+  }
+
  private:
   std::vector<std::vector<Pose>> constant_poses_;
   std::vector<ChainJoint> chain_joints_;
+  std::vector<std::optional<Mat34E>> exact_constants_;
+  std::vector<std::optional<Vec3E>> unit_axes_;
+  std::vector<Exact> axis_norms2_;
+  mutable std::once_flag prepared_once_;
+  mutable std::shared_ptr<const void> prepared_;
 };
 
 // One segment of a link's motion: the chain, and the joint values (one per
-// chain joint, in chain order) at s = 0 and s = 1.  The verifier's chains
-// are LinkChains (src/motion/chain.h), prepared once per link.
+// chain joint, in chain order) at s = 0 and s = 1.  The verifier prepares
+// the chain's enclosures once per description (src/motion/chain.h).
 //
 // Linear (no rates): every q_j is linear in s between `from` and `to`.
 // Cubic (`from_rate`, `to_rate`) and quintic (also `from_accel`,

@@ -21,18 +21,6 @@ std::array<T, 12> compose(const std::array<T, 12>& a, const std::array<T, 12>& b
   return out;
 }
 
-// A rational square root of q >= 0, when there is one.
-std::optional<Exact> rational_sqrt(const Exact& q) {
-  if (q < 0) return std::nullopt;
-  mpz_srcptr num = mpq_numref(q.mpq());
-  mpz_srcptr den = mpq_denref(q.mpq());
-  if (!mpz_perfect_square_p(num) || !mpz_perfect_square_p(den)) return std::nullopt;
-  CGAL::Gmpz n, d;
-  mpz_sqrt(n.mpz(), num);
-  mpz_sqrt(d.mpz(), den);
-  return Exact(n, d);
-}
-
 // sin and cos of a jet with one evaluation of each validated function.
 void sincos(const Jet& a, Jet& s, Jet& one_minus_c) {
   const Interval sv = validated::sin(a.v), cv = validated::cos(a.v);
@@ -44,39 +32,28 @@ void sincos(const Jet& a, Jet& s, Jet& one_minus_c) {
 
 }  // namespace
 
-LinkChain::LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints)
-    : ChainDescription(constants, joints) {
-  if (constants.size() != joints.size() + 1) throw std::invalid_argument("LinkChain: constants.size() != joints + 1");
+LinkChain::LinkChain(const ChainDescription& description) {
   RoundingGuard guard;
-  for (const std::vector<Pose>& list : constants) {
+  for (std::size_t k = 0; k < description.constant_poses().size(); ++k) {
     Constant c;
-    Mat34E exact = kIdentityE;
-    bool is_exact = true;
-    PoseInterval enclosed;
-    for (int e = 0; e < 12; ++e) enclosed[e] = to_interval(kIdentityE[e]);
-    for (const Pose& p : list) {
-      const std::optional<Mat34E> m = tmcert::exact_pose(p);
-      if (m && is_exact) exact = compose(exact, *m);
-      else is_exact = false;
-      enclosed = compose(enclosed, interval_pose(p));
+    if (const std::optional<Mat34E>& exact = description.exact_constant(k)) {
+      c.identity = *exact == kIdentityE;
+      for (int e = 0; e < 12; ++e) c.enclosed[e] = to_interval((*exact)[e]);  // tightest
+    } else {
+      PoseInterval enclosed;
+      for (int e = 0; e < 12; ++e) enclosed[e] = to_interval(kIdentityE[e]);
+      for (const Pose& p : description.constant_poses()[k]) enclosed = compose(enclosed, interval_pose(p));
+      c.enclosed = enclosed;
     }
-    if (is_exact) {
-      c.exact = exact;
-      c.identity = exact == kIdentityE;
-      for (int e = 0; e < 12; ++e) enclosed[e] = to_interval(exact[e]);  // tightest
-    }
-    c.enclosed = enclosed;
     constants_.push_back(std::move(c));
   }
-  for (const ChainJoint& j : joints) {
+  for (std::size_t j = 0; j < description.joint_count(); ++j) {
     Prepared p;
-    p.joint = j;
-    const Vec3E& k = j.axis;
-    const Exact n2 = k[0] * k[0] + k[1] * k[1] + k[2] * k[2];
-    if (n2 == 0) throw std::invalid_argument("LinkChain: zero joint axis");
-    if (const std::optional<Exact> n = rational_sqrt(n2)) {
-      p.unit_exact = Vec3E{k[0] / *n, k[1] / *n, k[2] / *n};
-      for (int i = 0; i < 3; ++i) p.unit[i] = to_interval((*p.unit_exact)[i]);
+    p.joint = description.joint(j);
+    const Vec3E& k = p.joint.axis;
+    const Exact& n2 = description.axis_norm2(j);
+    if (const std::optional<Vec3E>& unit = description.exact_unit_axis(j)) {
+      for (int i = 0; i < 3; ++i) p.unit[i] = to_interval((*unit)[i]);
     } else {
       const Interval norm = validated::sqrt(n2);
       for (int i = 0; i < 3; ++i) p.unit[i] = to_interval(k[i]) / norm;
@@ -90,38 +67,9 @@ LinkChain::LinkChain(std::vector<std::vector<Pose>> constants, std::vector<Chain
   }
 }
 
-std::optional<Mat34E> LinkChain::exact_pose(const std::vector<Exact>& q) const {
-  if (!constants_[0].exact) return std::nullopt;
-  Mat34E m = *constants_[0].exact;
-  for (std::size_t j = 0; j < joints_.size(); ++j) {
-    const Prepared& p = joints_[j];
-    if (p.joint.kind == ChainJoint::Kind::Revolute) {
-      if (q[j] != 0) return std::nullopt;  // sin and cos of a nonzero rational are irrational
-    } else if (q[j] != 0) {
-      if (!p.unit_exact) return std::nullopt;
-      Mat34E t = kIdentityE;
-      for (int i = 0; i < 3; ++i) t[4 * i + 3] = (*p.unit_exact)[i] * q[j];
-      m = compose(m, t);
-    }
-    const Constant& c = constants_[j + 1];
-    if (!c.exact) return std::nullopt;
-    if (!c.identity) m = compose(m, *c.exact);
-  }
-  return m;
-}
-
-bool LinkChain::rational_between(const std::vector<Exact>& from, const std::vector<Exact>& to) const {
-  for (const Constant& c : constants_)
-    if (!c.exact) return false;
-  for (std::size_t j = 0; j < joints_.size(); ++j) {
-    const Prepared& p = joints_[j];
-    if (p.joint.kind == ChainJoint::Kind::Revolute) {
-      if (from[j] != 0 || to[j] != 0) return false;
-    } else if (!p.unit_exact && (from[j] != 0 || to[j] != 0)) {
-      return false;  // a translation along an irrational direction
-    }
-  }
-  return true;
+std::shared_ptr<const LinkChain> LinkChain::of(const ChainDescription& description) {
+  return description.prepared<LinkChain>(
+      [](const ChainDescription& d) { return std::make_shared<const LinkChain>(d); });
 }
 
 PoseJet LinkChain::pose(const std::vector<Interval>& from, const std::vector<Interval>& delta, const Jet& s) const {
@@ -227,7 +175,7 @@ namespace {
 
 class LinkModel final : public SegmentModel {
  public:
-  explicit LinkModel(const LinkMotion& m) : motion_(m), chain_(prepared(m.chain)) {
+  explicit LinkModel(const LinkMotion& m) : motion_(m), chain_(LinkChain::of(*m.chain)) {
     RoundingGuard guard;
     for (std::size_t j = 0; j < m.from.size(); ++j) {
       from_.push_back(to_interval(m.from[j]));
@@ -240,18 +188,7 @@ class LinkModel final : public SegmentModel {
     std::vector<Exact> q;
     q.reserve(motion_.from.size());
     for (std::size_t j = 0; j < motion_.from.size(); ++j) q.push_back(motion_.from[j] + (motion_.to[j] - motion_.from[j]) * s);
-    return chain_->exact_pose(q);
-  }
-
- private:
-  // The chain with its enclosures: the verifier's chains are prepared once
-  // (PlacedRobot); any other description is prepared here.
- public:
-  static std::shared_ptr<const LinkChain> prepared(const std::shared_ptr<const ChainDescription>& d) {
-    if (auto chain = std::dynamic_pointer_cast<const LinkChain>(d)) return chain;
-    std::vector<ChainJoint> joints;
-    for (std::size_t j = 0; j < d->joint_count(); ++j) joints.push_back(d->joint(j));
-    return std::make_shared<const LinkChain>(d->constant_poses(), std::move(joints));
+    return motion_.chain->exact_pose(q);
   }
 
  private:
@@ -268,7 +205,7 @@ class LinkModel final : public SegmentModel {
 // joints (proofs/trajectories.md section 3).
 class HermiteLinkModel final : public SegmentModel {
  public:
-  explicit HermiteLinkModel(const LinkMotion& m) : motion_(m), chain_(LinkModel::prepared(m.chain)) {
+  explicit HermiteLinkModel(const LinkMotion& m) : motion_(m), chain_(LinkChain::of(*m.chain)) {
     for (std::size_t j = 0; j < m.from.size(); ++j) exact_.push_back(link_joint_coefficients(m, j));
     RoundingGuard guard;
     for (const std::vector<Exact>& c : exact_) {
@@ -295,7 +232,7 @@ class HermiteLinkModel final : public SegmentModel {
       for (std::size_t k = c.size() - 1; k-- > 0;) v = v * s + c[k];
       q.push_back(v);
     }
-    return chain_->exact_pose(q);
+    return motion_.chain->exact_pose(q);
   }
 
  private:

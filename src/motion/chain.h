@@ -22,18 +22,17 @@
 
 namespace tmcert {
 
-// An immutable chain description, shared by every segment of a link's
-// trajectory.  Build with make_link_chain.
-class LinkChain : public ChainDescription {
+// The verifier's preparation of a chain description: its constants and
+// joint axes enclosed, once per description (of()), for the pose jets of
+// every segment that uses the chain.  The exact questions (the rational
+// pose, rational segments) are the description's (src/model/chain.h).
+class LinkChain {
  public:
-  // constants.size() == joints.size() + 1.  Throws std::invalid_argument
-  // on a zero axis or mismatched counts (callers validate first).
-  LinkChain(std::vector<std::vector<Pose>> constants, std::vector<ChainJoint> joints);
+  explicit LinkChain(const ChainDescription& description);
 
-  // The exact pose at joint values q (one per joint), when it is exact:
-  // every constant exact, every revolute joint at q = 0, every prismatic
-  // axis of rational length.  nullopt otherwise.
-  std::optional<Mat34E> exact_pose(const std::vector<Exact>& q) const;
+  // The preparation of `description`, made on the first call and kept in
+  // the description (ChainDescription::prepared).
+  static std::shared_ptr<const LinkChain> of(const ChainDescription& description);
 
   // Jets of the pose for joint values q_j = from_j + (to_j - from_j) s,
   // given as intervals (from, delta).  Call under RoundingGuard.
@@ -48,20 +47,13 @@ class LinkChain : public ChainDescription {
   // under RoundingGuard.
   PoseJet pose(const std::vector<Jet>& values) const;
 
-  // True when the pose is affine in the joint values of a segment from
-  // `from` to `to` and exact at both ends (every revolute joint stays at 0):
-  // the segment is then the rational degree-1 motion between its end poses.
-  bool rational_between(const std::vector<Exact>& from, const std::vector<Exact>& to) const;
-
  private:
   struct Constant {
-    std::optional<Mat34E> exact;
     PoseInterval enclosed;
     bool identity = false;
   };
   struct Prepared {
     ChainJoint joint;
-    std::optional<Vec3E> unit_exact;      // axis / |axis| when |axis| is rational
     std::array<Interval, 3> unit;         // axis / |axis|, enclosed
     std::array<Interval, 9> cross;        // [u]x, rows
     std::array<Interval, 9> cross2;       // [u]x^2 = u u^T - I, from exact axis data

@@ -76,7 +76,7 @@ std::vector<Trajectory> JointMotions::segment(const ob::State* s1, const ob::Sta
   const std::vector<Exact> qb = joint_values(robot_->model(), column_joints_, b);
   std::vector<Trajectory> out;
   for (const auto& [l, p] : movers_) {
-    const std::shared_ptr<const LinkChain>& chain = robot_->chain(l, p);
+    const std::shared_ptr<const ChainDescription>& chain = robot_->chain(l, p);
     std::vector<Exact> from, to;
     for (int j : robot_->chain_joints(l)) {
       from.push_back(qa[j]);

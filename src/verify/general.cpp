@@ -13,6 +13,7 @@
 // motion runs the Taylor-enclosure search.
 #include "src/verify/verify.h"
 
+#include "src/model/segment_kind.h"
 #include "src/motion/segment.h"
 #include "src/verify/prepared.h"
 #include "src/verify/prepared_pair.h"
@@ -47,8 +48,8 @@ PartMotion part_motion(const Body& b, const Exact& t0, const Exact& t1) {
   if (b.trajectory) {
     for (const MotionSegment& seg : b.trajectory->segments) {
       if (!(seg.t0 <= t0 && t1 <= seg.t1)) continue;
-      if (seg.rational) {
-        out.rational = restrict_motion(*seg.rational, t0, t1);
+      if (const Motion* rational = kind_of(seg).rational(seg)) {
+        out.rational = restrict_motion(*rational, t0, t1);
       } else {
         out.segment = &seg;
         out.s0 = (t0 - seg.t0) / (seg.t1 - seg.t0);

@@ -1,5 +1,6 @@
 #include "src/verify/prepared.h"
 
+#include "src/model/segment_kind.h"
 #include "src/motion/segment.h"
 #include "kernels/vec3.h"
 
@@ -413,8 +414,8 @@ SweptBox swept_box(const Body& body) {
   }
   if (body.trajectory)
     for (const MotionSegment& seg : body.trajectory->segments) {
-      if (seg.rational) {  // the convex hull property, segment by segment
-        for (const Mat34E& m : seg.rational->control_points) {
+      if (const Motion* rational = kind_of(seg).rational(seg)) {  // the convex hull property, segment by segment
+        for (const Mat34E& m : rational->control_points) {
           std::array<Interval, 12> im;
           for (int e = 0; e < 12; ++e) im[e] = to_interval(m[e]);
           imaps.push_back(im);

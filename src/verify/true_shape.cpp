@@ -2,6 +2,7 @@
 // proofs/robot-links.md section 6).
 #include "src/verify/true_shape.h"
 
+#include "src/model/segment_kind.h"
 #include "src/motion/enclosure.h"
 #include "src/motion/segment.h"
 #include "src/verify/solid_contact.h"
@@ -390,13 +391,14 @@ ShapeSide side_at(const PreparedBody& body, const Exact& t) {
       }
     if (!segment) segment = t < b.trajectory->t0() ? &b.trajectory->segments.front() : &b.trajectory->segments.back();
   }
-  if (segment && !segment->rational) {
+  const Motion* rational = segment ? kind_of(*segment).rational(*segment) : nullptr;
+  if (segment && !rational) {
     const std::unique_ptr<SegmentModel> model = make_segment_model(*segment);
     const Exact s = (t - segment->t0) / (segment->t1 - segment->t0);
     exact = model->exact_pose(s);
     if (!exact) enclosed = enclose_pose(*model, s);
   } else {
-    const Motion& m = segment ? *segment->rational : *b.motion;
+    const Motion& m = segment ? *rational : *b.motion;
     exact = m.degree() == 0 ? m.control_points[0] : motion_pose(m, t);
   }
   return moving_side(body, exact, enclosed);

@@ -128,11 +128,11 @@ std::optional<ReachBox> reach_box(const Body& b) {
   else if (!b.trajectory) maps.push_back(interval_map({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}));
   if (b.trajectory)
     for (const MotionSegment& seg : b.trajectory->segments) {
-      if (seg.rational) {
-        add_curve_maps(*seg.rational, maps);
+      const VerifiedSegmentKind& kind = verified_kind_of(seg);
+      if (const Motion* rational = kind.rational(seg)) {
+        add_curve_maps(*rational, maps);
         continue;
       }
-      const VerifiedSegmentKind& kind = verified_kind_of(seg);
       for (const bool last : {false, true}) maps.push_back(kind.enclosed_end(seg, last));
     }
   RoundingGuard guard;

@@ -103,7 +103,7 @@ BOOST_AUTO_TEST_CASE(link_enclosure_matches_the_verifiers) {
   joints[2].kind = ChainJoint::Kind::Prismatic;
   joints[2].axis = v("1", "0", "0");
   auto link = std::make_shared<LinkMotion>();
-  link->chain = std::make_shared<const LinkChain>(constants, joints);
+  link->chain = std::make_shared<const ChainDescription>(constants, joints);
   link->from = {q("-0.5"), q("0.25"), q("0")};
   link->to = {q("1.2"), q("-0.75"), q("0.3")};
   MotionSegment seg;
@@ -146,7 +146,7 @@ BOOST_AUTO_TEST_CASE(link_enclosure_matches_the_verifiers) {
 
 // The checker's exact link pose at a waypoint (its own product of the
 // chain's constants and joints, src/certificate/motions.cpp) against the
-// verifier's LinkChain::exact_pose: equal where the pose is rational (exact
+// verifier's ChainDescription::exact_pose: equal where the pose is rational (exact
 // constants, revolute joints at 0, prismatic axes of rational length or at
 // 0), absent in both elsewhere (a revolute joint off 0, a prismatic axis of
 // irrational length off 0, an rpy constant).
@@ -176,7 +176,7 @@ BOOST_AUTO_TEST_CASE(exact_link_pose_matches_the_verifiers) {
     const std::vector<std::vector<Pose>> constants = {
         {quat, matrix}, {shift}, {}, {with_rpy ? rpy : shift, matrix}};
     auto link = std::make_shared<LinkMotion>();
-    const auto chain = std::make_shared<const LinkChain>(constants, joints);
+    const auto chain = std::make_shared<const ChainDescription>(constants, joints);
     link->chain = chain;
     for (const std::vector<const char*>& from : std::vector<std::vector<const char*>>{
              {"0", "0", "0"}, {"0", "-1/7", "0"}, {"0", "2", "0.5"}, {"0.5", "0", "0"}, {"0", "3", "0"}}) {

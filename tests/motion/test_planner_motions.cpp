@@ -432,7 +432,7 @@ BOOST_AUTO_TEST_CASE(pose_values_are_the_jet_values_bit_for_bit) {
   joints[3].kind = ChainJoint::Kind::Prismatic;
   joints[3].axis = {Exact(1), Exact(0), Exact(0)};
   auto link = std::make_shared<LinkMotion>();
-  link->chain = std::make_shared<const LinkChain>(constants, joints);
+  link->chain = std::make_shared<const ChainDescription>(constants, joints);
   link->from = {Exact(-1, 2), Exact(1, 4), Exact(2), Exact(0)};
   link->to = {Exact(6, 5), Exact(-3, 4), Exact(-1, 3), Exact(3, 10)};
   MotionSegment seg;
