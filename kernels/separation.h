@@ -43,6 +43,12 @@ namespace hull_detail {
 // the slowest check from 0.17 to 0.10 s).
 constexpr double kAccept = 0.1;
 constexpr int kIterations = 6;
+// With a clearance d the plane must also keep D farther than d along it
+// (claim HC of proofs/hull-test.md), which a margin of kAccept |n|^2 does
+// not give when D lies just beyond d: GJK then runs on, up to
+// kClearIterations steps, until the support along n exceeds d |n| or it
+// converges (the direction is then GJK's closest point of D, the best one).
+constexpr int kClearIterations = 24;
 
 using V3 = std::array<double, 3>;
 
@@ -218,7 +224,7 @@ struct Images {
   // A direction n with n.d >= kAccept |n|^2 > 0 for every d in D_first ..
   // D_last, from the difference of the centroids; nothing when GJK finds
   // the origin in their hull, makes no progress or runs out of steps.
-  std::optional<V3> gjk(std::size_t first, std::size_t last) const {
+  std::optional<V3> gjk(std::size_t first, std::size_t last, double clear = 0) const {
     V3 ca{0, 0, 0}, cb{0, 0, 0};
     for (std::size_t k = first * nx; k < (last + 1) * nx; ++k)
       for (int i = 0; i < 3; ++i) ca[i] += a[k][i];
@@ -250,13 +256,18 @@ struct Images {
       return w;
     };
     Simplex3 s;
-    for (int it = 0; it < kIterations; ++it) {
+    const int steps = clear > 0 ? kClearIterations : kIterations;
+    for (int it = 0; it < steps; ++it) {
       const double v2 = dot(v, v);
       if (!(v2 > 0) || !std::isfinite(v2)) return std::nullopt;
       const V3 w = support(v);
       const double vw = dot(v, w);
-      if (vw >= kAccept * v2) return v;                // separating, with a margin
-      if (v2 - vw <= 1e-12 * v2) return std::nullopt;  // converged without separating
+      // separating, with a margin (and beyond the clearance along v)
+      if (vw >= kAccept * v2 && (clear <= 0 || vw > clear * std::sqrt(v2) * (1 + 0x1p-30))) return v;
+      if (v2 - vw <= 1e-12 * v2) {  // converged: with a clearance, v is the best direction
+        if (clear > 0 && vw > 0) return v;
+        return std::nullopt;
+      }
       s.p[s.n++] = w;
       if (!closest(s, v)) return std::nullopt;         // the origin is in the hull
     }
@@ -284,18 +295,18 @@ inline V3 unit(const V3& v) {
 // on both paths.
 template <int B, class NT, class Certify>
 bool hull_search(const std::vector<std::array<NT, 12 * B + 1>>& piece, const FeatureGeometry<double>& X,
-                 const FeatureGeometry<double>& Y, Certify&& certify) {
+                 const FeatureGeometry<double>& Y, Certify&& certify, double clear = 0) {
   CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
   hull_detail::Images im;
   if (!im.build<B>(piece, X, Y)) return false;
-  if (const auto n = im.gjk(0, im.L - 1)) {
+  if (const auto n = im.gjk(0, im.L - 1, clear)) {
     const auto u = hull_detail::unit(*n);
     if (certify(HullPlane{u, u})) return true;
   }
   if (im.L < 2) return false;
-  const auto n0 = im.gjk(0, 0);
+  const auto n0 = im.gjk(0, 0, clear);
   if (!n0) return false;
-  const auto n1 = im.gjk(im.L - 1, im.L - 1);
+  const auto n1 = im.gjk(im.L - 1, im.L - 1, clear);
   if (!n1) return false;
   return certify(HullPlane{hull_detail::unit(*n0), hull_detail::unit(*n1)});
 }
@@ -365,6 +376,21 @@ void add_feature_values(const FeatureGeometry<NT>& f, const NT& m0, const NT& m1
 
 }  // namespace hull_detail
 
+namespace hull_detail {
+
+// With a clearance the hull test needs an upper bound of |n0| and |n1|:
+// the planes hull_search proposes are unit vectors in double, whose n.n,
+// computed in any rounding mode (at most 5 operations, each within a
+// relative 2^-52, plus at most 3 * 2^-1074 from underflow), is at most
+// 1 + 2^-45 only if the true |n|^2 is below 1 + 2^-44, so |n| <
+// kNormBound (proofs/hull-test.md, "With a clearance").
+constexpr double kNormBound = 1 + 0x1p-44;
+inline bool norm_bounded(const std::array<double, 3>& n) {
+  return n[0] * n[0] + n[1] * n[1] + n[2] * n[2] <= 1 + 0x1p-45;
+}
+
+}  // namespace hull_detail
+
 // The hull test of a feature pair on a piece for the plane n(u) =
 // (1 - u) n0 + u n1, in NT (Interval: call under RoundingGuard).  With
 // L = n + 1 control points, for k = 0 .. n + 1 the linear forms
@@ -373,14 +399,20 @@ void add_feature_values(const FeatureGeometry<NT>& f, const NT& m0, const NT& m1
 // coefficients, times n + 1, of n(u).(N1(u) x^ - N2(u) y^); true only when
 // for every k the smallest value of body 1's form over X's vertices is
 // certainly greater than the largest of body 2's over Y's
-// (proofs/hull-test.md, claim H).
+// (proofs/hull-test.md, claim H).  With a clearance `clear` > 0 (an upper
+// bound of d), greater by at least clear * kNormBound * ((n + 1 - k) W_k +
+// k W_(k-1)) (the weights W_l of the control points): then the feature
+// pair stays farther apart than d on the whole piece (claim HC); a plane
+// whose normals are not provably within kNormBound clears nothing.
 template <int B, class NT>
 bool hull_apart(const std::vector<std::array<NT, 12 * B + 1>>& piece, const FeatureGeometry<NT>& X,
-                const FeatureGeometry<NT>& Y, const HullPlane& plane) {
+                const FeatureGeometry<NT>& Y, const HullPlane& plane, double clear = 0) {
   using hull_detail::Range;
   using Form = std::array<NT, 4>;
   const std::size_t L = piece.size();
   if (L == 0) return false;
+  if (!(clear >= 0)) return false;
+  if (clear > 0 && !(hull_detail::norm_bounded(plane.n0) && hull_detail::norm_bounded(plane.n1))) return false;
   const bool fixed = plane.n0 == plane.n1;
   // Per control point and plane end: the forms of body 1 (x) and body 2 (y).
   constexpr std::size_t kLocal = 16;
@@ -426,7 +458,23 @@ bool hull_apart(const std::vector<std::array<NT, 12 * B + 1>>& piece, const Feat
     Range<NT> rx, ry;
     hull_detail::add_feature_values(X, mx[0], mx[1], mx[2], mx[3], rx);
     hull_detail::add_feature_values(Y, my[0], my[1], my[2], my[3], ry);
-    if (!rx.ok || !ry.ok || !hull_detail::certainly_greater(rx.lo, ry.hi)) return false;
+    if (!rx.ok || !ry.ok) return false;
+    if (clear > 0) {
+      // d |n(u)| W(u) <= clear kNormBound ((1 - u) + u) W(u), whose Bernstein
+      // coefficients (times n + 1) are clear kNormBound ((n + 1 - k) W_k + k W_(k-1)).
+      constexpr std::size_t w = 12 * B;
+      NT weights;
+      if (k == 0) weights = a * piece[0][w];
+      else if (k == L) weights = b * piece[L - 1][w];
+      else weights = a * piece[k][w] + b * piece[k - 1][w];
+      const NT margin = NT(clear) * NT(hull_detail::kNormBound) * weights;
+      if constexpr (std::is_same_v<NT, Interval>) {
+        if (std::isnan(margin.inf()) || std::isnan(margin.sup())) return false;
+      }
+      if (!hull_detail::certainly_greater(rx.lo, ry.hi + margin)) return false;
+    } else if (!hull_detail::certainly_greater(rx.lo, ry.hi)) {
+      return false;
+    }
   }
   return true;
 }

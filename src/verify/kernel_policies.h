@@ -201,13 +201,13 @@ struct FilteredPolicy {
   // over the intervals enclosing the control points and features.  An
   // uncertain comparison only means "not cleared": no exact fallback.
   bool hull(const Piece& piece, const PairRef& p) const {
-    if (tube > 0 || clear > 0) return false;  // the hull test knows no tube or clearance: it clears nothing then
+    if (tube > 0) return false;  // the hull test knows no tube: it clears nothing then
     const FeatureTable& X = moving_table(m, p.kind);
     const FeatureTable& Y = other_table(f, p.kind);
     return hull_search<B>(piece, X.approx[p.i], Y.approx[p.j], [&](const HullPlane& plane) {
       RoundingGuard guard;
-      return hull_apart<B>(piece, X.interval[p.i], Y.interval[p.j], plane);
-    });
+      return hull_apart<B>(piece, X.interval[p.i], Y.interval[p.j], plane, clear);  // a clearance widens it (claim HC)
+    }, clear);
   }
 };
 
@@ -272,11 +272,12 @@ struct ExactPolicy {
   }
   // The hull test, decided exactly (proofs/hull-test.md).
   bool hull(const Piece& piece, const PairRef& p) const {
-    if (tube > 0 || clear > 0) return false;
+    if (tube > 0) return false;
     return hull_search<B>(piece, moving_table(m, p.kind).approx[p.i], other_table(f, p.kind).approx[p.j],
                           [&](const HullPlane& plane) {
-                            return hull_apart<B>(piece, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], plane);
-                          });
+                            return hull_apart<B>(piece, moving_exact(m, p.kind)[p.i], other_exact(f, p.kind)[p.j], plane,
+                                                 clear);
+                          }, clear);
   }
 };
 
@@ -325,8 +326,7 @@ struct FastPolicy {
     if (tube > 0) return false;
     const FeatureGeometry<double>& X = moving_table(m, p.kind).approx[p.i];
     const FeatureGeometry<double>& Y = other_table(f, p.kind).approx[p.j];
-    if (clear > 0) return false;
-    return hull_search<B>(piece, X, Y, [&](const HullPlane& plane) { return hull_apart<B>(piece, X, Y, plane); });
+    return hull_search<B>(piece, X, Y, [&](const HullPlane& plane) { return hull_apart<B>(piece, X, Y, plane, clear); }, clear);
   }
 };
 

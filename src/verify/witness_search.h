@@ -446,11 +446,35 @@ bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<in
   return true;
 }
 
+// A clearance and a tolerance together (proofs/clearance.md section 7):
+// for closest points at squared distance d2 > c2 (the clearance squared),
+// a fraction lambda in [0, 1] of their difference, a short decimal, such
+// that translating one body by it leaves them within the clearance,
+// (1 - lambda)^2 d2 <= c2, and stays within that body's translation
+// reach, lambda^2 d2 <= r2; both decided exactly.  None when not found.
+inline std::optional<Exact> clearance_step(const Exact& d2, const Exact& c2, const Exact& r2) {
+  const double D = std::sqrt(CGAL::to_double(d2)), d = std::sqrt(CGAL::to_double(c2)),
+               r = std::sqrt(CGAL::to_double(r2));
+  if (!(D > 0) || !std::isfinite(D)) return std::nullopt;
+  const double lo = std::max(0.0, 1 - d / D), hi = std::min(1.0, r / D);
+  const double mid = (lo + hi) / 2;
+  CGAL::Gmpz scale(1);
+  for (int digits = 1; digits <= 15; ++digits) {
+    scale *= 10;
+    const Exact l(CGAL::Gmpz(static_cast<long>(std::llround(mid * std::pow(10.0, digits)))), scale);
+    if (l < 0 || l > 1) continue;
+    if ((1 - l) * (1 - l) * d2 <= c2 && l * l * d2 <= r2) return l;
+  }
+  return std::nullopt;
+}
+
 // Tolerance and clearance (SCENE_FORMAT.md): at curve parameter u, where
 // the poses are exact, the exact closest points of the two bodies; they
 // prove a clearance violation when no farther apart than the clearance,
-// and a toleranced contact when a translation within one body's tolerance
-// brings them together (proofs/enclosures.md section 6).
+// a toleranced contact when a translation within one body's tolerance
+// brings them together (proofs/enclosures.md section 6), and, with both,
+// a violation of the clearance after such a translation
+// (proofs/clearance.md section 7).
 template <int B>
 bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, int>>* only) {
   if (!extras.distance_witness()) return false;
@@ -467,6 +491,11 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
   }
   Exact bound2 = extras.clearance2;
   for (const Exact& r : extras.reach2) bound2 = std::max(bound2, r);
+  // Both a clearance and a tolerance: points up to d + r apart may serve,
+  // and (d + r)^2 <= 2 (d^2 + r^2).
+  const int k = extras.reach2[1] > extras.reach2[0] ? 1 : 0;  // the body translated: the longer reach
+  const bool combined = extras.clearance2 > 0 && extras.reach2[k] > 0;
+  if (combined) bound2 = 2 * (extras.clearance2 + extras.reach2[k]);
   const auto hit = closest_within(moving.parts, &m1, other.parts, m2 ? &*m2 : nullptr, bound2, only, result.stats);
   if (!hit) return false;
   const ClosestPoints* best = &hit->points;
@@ -478,14 +507,31 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
     if (extras.clearance2 > 0 && best->d2 <= extras.clearance2) {
       w.points = swapped ? std::array{best->b, best->a} : std::array{best->a, best->b};
       w.point = (*w.points)[0];
+    } else if (combined) {  // translate body k by lambda of the way: within the clearance after it
+      const std::optional<Exact> lambda = clearance_step(best->d2, extras.clearance2, extras.reach2[k]);
+      if (!lambda) return false;
+      const Vec3E& from = k == 0 ? best->a : best->b;  // the translated body's point
+      const Vec3E& to = k == 0 ? best->b : best->a;
+      Vec3E v, moved;
+      for (int i = 0; i < 3; ++i) {
+        v[i] = *lambda * (to[i] - from[i]);
+        moved[i] = from[i] + v[i];
+      }
+      w.displacement = v;
+      w.displaced = (k == 0) != swapped ? 0 : 1;
+      const std::array<Vec3E, 2> pts = k == 0 ? std::array{moved, best->b} : std::array{best->a, moved};
+      w.points = swapped ? std::array{pts[1], pts[0]} : pts;
+      w.point = (*w.points)[0];
     } else if (best->d2 <= extras.reach2[0]) {  // translate the moving body onto the other
       w.displacement = Vec3E{best->b[0] - best->a[0], best->b[1] - best->a[1], best->b[2] - best->a[2]};
       w.displaced = swapped ? 1 : 0;
       w.point = best->b;
-    } else {
+    } else if (best->d2 <= extras.reach2[1]) {
       w.displacement = Vec3E{best->a[0] - best->b[0], best->a[1] - best->b[1], best->a[2] - best->b[2]};
       w.displaced = swapped ? 0 : 1;
       w.point = best->a;
+    } else {
+      return false;
     }
   }
   result.witness = w;

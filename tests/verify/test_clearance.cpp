@@ -5,6 +5,7 @@
 // sampled points; and they do clear pairs whose gap exceeds that bound.
 #include "kernels/contact.h"
 #include "kernels/filtered.h"
+#include "kernels/separation.h"
 #include "src/metric/metric.h"
 #include "src/verify/kernel_policies.h"
 #include "src/verify/prepared.h"
@@ -134,6 +135,66 @@ BOOST_AUTO_TEST_CASE(sphere_test_keeps_the_clearance) {
   BOOST_TEST(spheres_clear(f, na, nb));        // 3 > 1 + 1 + 0.75
   f.clear = 1;
   BOOST_TEST(!spheres_clear(f, na, nb));       // 3 = 1 + 1 + 1: within the clearance
+}
+
+// The hull test with a clearance (proofs/hull-test.md, claim HC): a point
+// moving along the x axis from (-2, 0, 0) to (2, 0, 0) (rational Bezier
+// pieces of degree 1 and 2, constant and varying weights) and a fixed point
+// (0, D, 0), at distance exactly D at t = 1/2: the plane n = (0, -1, 0)
+// clears the pair with a clearance below D and never with D or more (the
+// pair comes within D), exactly and in interval arithmetic; the weights
+// W_l enter the margin (with weight 2 and the margin's W_l taken as 1, a
+// clearance of 3D/2 would pass); a normal of length 2 clears nothing with
+// a clearance (its length is not bounded by kNormBound).  Before claim HC
+// the policies' hull test cleared nothing with a clearance, and the
+// face-to-face scene below took 17 s at default settings
+// (tests/data/scenes/clearance-face-to-face-near-safe.json).
+BOOST_AUTO_TEST_CASE(hull_test_keeps_the_clearance) {
+  const Exact D(1, 4);
+  FeatureGeometry<Exact> X, Y;
+  X.dim = Y.dim = 0;
+  X.origin = {0, 0, 0};
+  Y.origin = {0, D, 0};
+  FeatureGeometry<Interval> Xi, Yi;
+  Xi.dim = Yi.dim = 0;
+  Xi.origin = {Interval(0), Interval(0), Interval(0)};
+  Yi.origin = {Interval(0), to_interval(D), Interval(0)};
+  auto control = [](const Exact& x, const Exact& w) {
+    std::array<Exact, 13> c{1, 0, 0, x, 0, 1, 0, 0, 0, 0, 1, 0, 1};
+    for (Exact& e : c) e *= w;
+    return c;
+  };
+  const HullPlane down{{0, -1, 0}, {0, -1, 0}};
+  const double below = CGAL::to_double(D) * (1 - 1e-9), at = CGAL::to_double(D);
+  int cases = 0;
+  for (const auto& weights : std::vector<std::vector<Exact>>{{1, 1}, {2, 2}, {1, 3}, {1, Exact(1, 2), 3}, {2, 2, 2}}) {
+    std::vector<std::array<Exact, 13>> piece;
+    const std::size_t L = weights.size();
+    for (std::size_t l = 0; l < L; ++l) piece.push_back(control(Exact(-2) + Exact(4 * static_cast<int>(l), static_cast<int>(L - 1)), weights[l]));
+    std::vector<std::array<Interval, 13>> piece_i;
+    for (const auto& c : piece) {
+      std::array<Interval, 13> ci;
+      for (int e = 0; e < 13; ++e) ci[e] = to_interval(c[e]);
+      piece_i.push_back(ci);
+    }
+    auto apart = [&](const HullPlane& plane, double clear) {
+      const bool exact = hull_apart<1>(piece, X, Y, plane, clear);
+      RoundingGuard guard;
+      const bool interval = hull_apart<1>(piece_i, Xi, Yi, plane, clear);
+      BOOST_CHECK(!interval || exact);  // interval "apart" implies exact "apart"
+      return exact;
+    };
+    BOOST_CHECK(apart(down, 0));
+    BOOST_CHECK(apart(down, below));
+    BOOST_CHECK(!apart(down, at));
+    BOOST_CHECK(!apart(down, 1.5 * at));
+    BOOST_CHECK(!apart(HullPlane{{0, -2, 0}, {0, -2, 0}}, 1.5 * at));
+    BOOST_CHECK(!apart(down, -1));
+    RoundingGuard guard;
+    BOOST_CHECK(hull_apart<1>(piece_i, Xi, Yi, down, below));
+    ++cases;
+  }
+  BOOST_TEST(cases == 5);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
