@@ -152,6 +152,18 @@ def turn_motions():
     return out
 
 
+def margin_case(kind, D, m):
+    """(distance, clearance, truth) of a case at distance D and margin m:
+    a clearance m below or above the distance, or a touch m apart or m deep."""
+    if kind == "clear-safe":
+        return D, D - m, "safe"
+    if kind == "clear-violated":
+        return D, D + m, "collision"
+    if kind == "touch-safe":
+        return m, F(0), "safe"
+    return -m, F(0), "collision"
+
+
 def scenes(rng):
     res = []
     rel_margins = [F(1, 100), F(1, 10**4), F(1, 10**5), F(2, 10**6)]
@@ -167,14 +179,7 @@ def scenes(rng):
         for rm in rel_margins:
             m = dec_above(to_dec(rm) * S, 14)  # an absolute margin >= rm * S
             for kind in ("clear-safe", "clear-violated", "touch-safe", "touch-collision"):
-                if kind == "clear-safe":
-                    dist, clr, truth = D, D - m, "safe"
-                elif kind == "clear-violated":
-                    dist, clr, truth = D, D + m, "collision"
-                elif kind == "touch-safe":
-                    dist, clr, truth = m, F(0), "safe"
-                else:
-                    dist, clr, truth = -m, F(0), "collision"
+                dist, clr, truth = margin_case(kind, D, m)
                 box = (-a, a, -b, b, -c, c)
                 if variant == "trans-diag":
                     # translation along x with a drift in z (the post covers it)
@@ -203,14 +208,7 @@ def scenes(rng):
             m = dec_above(to_dec(rm) * S, 14)
             ang = angles[(first + im) % len(angles)]  # every post angle at some margin
             for kind in ("clear-safe", "clear-violated", "touch-safe", "touch-collision"):
-                if kind == "clear-safe":
-                    dist, clr, truth = D, D - m, "safe"
-                elif kind == "clear-violated":
-                    dist, clr, truth = D, D + m, "collision"
-                elif kind == "touch-safe":
-                    dist, clr, truth = m, F(0), "safe"
-                else:
-                    dist, clr, truth = -m, F(0), "collision"
+                dist, clr, truth = margin_case(kind, D, m)
                 co, si = DIR[ang]
                 R = R0 + dist
                 post = post_body("post", co * R, si * R, F(-1), F(3, 2), mpost)
