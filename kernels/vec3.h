@@ -47,4 +47,24 @@ std::array<T, 3> apply_linear(const std::array<T, 12>& m, const std::array<T, 3>
   return out;
 }
 
+// The identity map [I | 0].
+template <class T>
+std::array<T, 12> identity() {
+  return {T(1), T(0), T(0), T(0), T(0), T(1), T(0), T(0), T(0), T(0), T(1), T(0)};
+}
+
+// The composition a o b (b first, then a): [A B | A b + a], row by row.
+template <class T>
+std::array<T, 12> compose(const std::array<T, 12>& a, const std::array<T, 12>& b) {
+  std::array<T, 12> out;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      T sum = a[4 * r] * b[c] + a[4 * r + 1] * b[4 + c] + a[4 * r + 2] * b[8 + c];
+      if (c == 3) sum = sum + a[4 * r + 3];
+      out[4 * r + c] = sum;
+    }
+  }
+  return out;
+}
+
 }  // namespace tmcert::vec3

@@ -1,5 +1,6 @@
 #include "src/model/chain.h"
 
+#include "kernels/vec3.h"
 #include "src/model/pose_algebra.h"
 
 #include <stdexcept>
@@ -8,19 +9,8 @@ namespace tmcert {
 
 namespace {
 
-const Mat34E kIdentityE = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-
-Mat34E compose(const Mat34E& a, const Mat34E& b) {
-  Mat34E out;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      Exact sum = a[4 * r] * b[c] + a[4 * r + 1] * b[4 + c] + a[4 * r + 2] * b[8 + c];
-      if (c == 3) sum = sum + a[4 * r + 3];
-      out[4 * r + c] = sum;
-    }
-  }
-  return out;
-}
+const Mat34E kIdentityE = vec3::identity<Exact>();
+using vec3::compose;
 
 // A rational square root of q >= 0, when there is one.
 std::optional<Exact> rational_sqrt(const Exact& q) {

@@ -1,25 +1,15 @@
 #include "src/motion/chain.h"
 
+#include "kernels/vec3.h"
+
 #include <stdexcept>
 
 namespace tmcert {
 
 namespace {
 
-const Mat34E kIdentityE = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-
-template <class T>
-std::array<T, 12> compose(const std::array<T, 12>& a, const std::array<T, 12>& b) {
-  std::array<T, 12> out;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 4; ++c) {
-      T sum = a[4 * r] * b[c] + a[4 * r + 1] * b[4 + c] + a[4 * r + 2] * b[8 + c];
-      if (c == 3) sum = sum + a[4 * r + 3];
-      out[4 * r + c] = sum;
-    }
-  }
-  return out;
-}
+const Mat34E kIdentityE = vec3::identity<Exact>();
+using vec3::compose;
 
 // sin and cos of a jet with one evaluation of each validated function.
 void sincos(const Jet& a, Jet& s, Jet& one_minus_c) {

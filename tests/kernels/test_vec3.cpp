@@ -30,6 +30,21 @@ BOOST_AUTO_TEST_CASE(exact_operations) {
   BOOST_TEST((vec3::apply_linear(m, a) == Vec3E{Exact(-2), Exact(1, 3), Exact(-1)}));
 }
 
+BOOST_AUTO_TEST_CASE(composition_applies_the_right_map_first) {
+  // m: a quarter turn about z, then (1, 2, 3); s: a scaling by 2 along x,
+  // then (0, 0, 1/3).  Neither commutes with the other.
+  const Mat34E m{0, -1, 0, 1, 1, 0, 0, 2, 0, 0, 1, 3};
+  const Mat34E s{2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, Exact(1, 3)};
+  const Vec3E x{Exact(1, 3), Exact(2), Exact(-1)};
+  BOOST_TEST((vec3::apply(vec3::compose(m, s), x) == vec3::apply(m, vec3::apply(s, x))));
+  BOOST_TEST((vec3::apply(vec3::compose(s, m), x) == vec3::apply(s, vec3::apply(m, x))));
+  BOOST_TEST((vec3::compose(m, s) != vec3::compose(s, m)));
+  const Mat34E id = vec3::identity<Exact>();
+  BOOST_TEST((vec3::compose(id, m) == m));
+  BOOST_TEST((vec3::compose(m, id) == m));
+  BOOST_TEST((vec3::apply(id, x) == x));
+}
+
 BOOST_AUTO_TEST_CASE(interval_enclosures) {
   tmcert::RoundingGuard guard;
   const std::array<Interval, 3> a{Interval(0.1), Interval(1, 2), Interval(-1)}, b{Interval(3), Interval(0), Interval(1)};
