@@ -12,7 +12,7 @@ printf '|---|---|--:|--:|--:|--:|--:|--:|\n'
 for scene in examples/octagons-near.json examples/octagons-collision.json examples/vertex-face-linear.json \
              tests/data/scenes/hover-grid-10.json tests/data/scenes/solid-entering.json \
              examples/gripper/gripper-safe.json examples/gripper/gripper-collision.json; do
-  "$tmcert" verify "$dir/$scene" --json --certificate "$work/c.json" >"$work/out.json" 2>"$work/err"
+  "$tmcert" verify "$dir/$scene" --json --threads 1 --certificate "$work/c.json" >"$work/out.json" 2>"$work/err"
   verdict=$(grep -o '"verdict": *"[a-z]*"' "$work/out.json" | head -1 | grep -o '[a-z]*"$' | tr -d '"')
   search=$(grep -o '"seconds": *[0-9.e-]*' "$work/out.json" | awk -F: '{s += $2} END {printf "%.4f", s}')
   read -r pieces seps write < <(sed -E 's/.*\(([0-9]+) pieces, ([0-9]+) separations, ([0-9.e-]+) s\).*/\1 \2 \3/' "$work/err")

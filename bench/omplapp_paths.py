@@ -14,7 +14,7 @@ one run:
     FCL as the state validity checker, on the whole path (PathGeometric::check,
     median of --reps runs) and on each shortcut query;
   - `tmcert verify` of the whole path at default settings (filtered kernel,
-    one thread, the default epsilon: 1/1000 of the box of the robot's sweep
+    one thread unless --threads says otherwise, the default epsilon: 1/1000 of the box of the robot's sweep
     and the environment), and at the default epsilon divided by each
     --factors value (default 10 and 100);
   - `tmcert verify` of each shortcut query (waypoint k to k+2 and k to k+4:
@@ -33,7 +33,7 @@ meshes, preparing the bodies, the search), from /usr/bin/time; OMPL's are
 the CPU time of the checks alone, in-process.
 
 Usage:
-  bench/omplapp_paths.py OMPLAPP [--scenes DIR] [--tmcert build/tmcert]
+  bench/omplapp_paths.py OMPLAPP [--scenes DIR] [--tmcert build/tmcert] [--threads N]
                          [--tool build/tmcert_omplapp_fcl] [--only NAME ...] [--all]
                          [--factors 10,100] [--timeout S] [--memory-limit MIB] [--reps N]
                          [--no-shortcuts] [--no-certificates] [--json OUT.json]
@@ -94,11 +94,12 @@ def run_timed(cmd, timeout, cwd=None):
 
 
 MEMORY_LIMIT = ["--memory-limit", "4096"]  # set from --memory-limit in main()
+THREADS = ["--threads", "1"]  # set from --threads in main()
 
 
 def verify(tmcert, scene, timeout, epsilon=None, certificate=None):
     """tmcert verify --json: a dict with verdict, epsilon, nodes, search s, wall s, peak MiB, undecided."""
-    cmd = [tmcert, "verify", scene, "--json"] + MEMORY_LIMIT
+    cmd = [tmcert, "verify", scene, "--json"] + MEMORY_LIMIT + THREADS
     if epsilon is not None:
         cmd += ["--epsilon", epsilon]
     if certificate is not None:
@@ -192,12 +193,15 @@ def main():
     ap.add_argument("--memory-limit", type=int, default=4096,
                     help="MiB, passed to every tmcert run (--memory-limit; exit 4 past it)")
     ap.add_argument("--reps", type=int, default=3, help="runs of OMPL's whole-path check (median)")
+    ap.add_argument("--threads", type=int, default=1,
+                    help="tmcert verify --threads (default 1: OMPL's checking is one thread; tmcert's own default is every CPU)")
     ap.add_argument("--no-shortcuts", action="store_true")
     ap.add_argument("--no-certificates", action="store_true")
     ap.add_argument("--json", help="write every measurement to this file")
     ap.add_argument("--from-json", help="print the tables of a run saved with --json (runs nothing else)")
     a = ap.parse_args()
     MEMORY_LIMIT[1] = str(a.memory_limit)
+    THREADS[1] = str(a.threads)
     if a.from_json:
         with open(a.from_json) as f:
             saved = json.load(f)
@@ -298,7 +302,8 @@ def main():
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"results": results, "factors": factors,
-                       "options": {"timeout": a.timeout, "reps": a.reps, "memory_limit": a.memory_limit}},
+                       "options": {"timeout": a.timeout, "reps": a.reps, "memory_limit": a.memory_limit,
+                                   "threads": a.threads}},
                       f, indent=1, default=str)
     report(results, factors, a)
     return 0
@@ -315,7 +320,8 @@ def fmt_cpu(r):
 
 def report(results, factors, a):
     some = results[0]["fcl"]["path"] if results else {}
-    print(f"tmcert (filtered kernel, one thread) against OMPL {some.get('ompl', '?')}'s DiscreteMotionValidator "
+    threads = getattr(a, "threads", 1)  # runs saved before --threads: one thread
+    print(f"tmcert (filtered kernel, {threads} thread{'s' if threads != 1 else ''}) against OMPL {some.get('ompl', '?')}'s DiscreteMotionValidator "
           f"at its default resolution with FCL {some.get('fcl', '?')} (OMPL.app's checker); "
           f"timeout {a.timeout:.0f} s per tmcert run. Times: CPU s (user + system) of the whole process, "
           "wall s in parentheses; OMPL: CPU s of the check alone (meshes loaded and models built before), "
