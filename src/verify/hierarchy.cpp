@@ -96,6 +96,50 @@ struct Builder {
     n.slab_hi = hi;
   }
 
+  // The points of the items order[first, last).
+  std::vector<Vec3<Interval>> points_under(std::size_t first, std::size_t last) const {
+    std::vector<Vec3<Interval>> pts;
+    for (std::size_t k = first; k < last; ++k)
+      pts.insert(pts.end(), features[order[k]].begin(), features[order[k]].end());
+    return pts;
+  }
+
+  // A curved node (items with different normals): a slab along the
+  // thinnest of the normals of up to kThickCandidates of its flat leaves,
+  // spread over its items, when that slab is thinner than the node's
+  // sphere (proofs/hierarchy.md §1b: any direction gives a sound slab).
+  // The candidates are compared by the widths of their slabs in double
+  // (a choice only); the chosen slab is measured over every point of every
+  // item under the node, rounded outward (set_slab).
+  static constexpr std::size_t kThickCandidates = 8;
+  void thick_slab(BvNode& n, std::size_t first, std::size_t last) const {
+    const std::size_t count = last - first;
+    const std::size_t step = std::max<std::size_t>(1, count / kThickCandidates);
+    double best_width = kInf;
+    std::array<double, 3> best{};
+    for (std::size_t k = first; k < last; k += step) {
+      const BvNode& l = tree.nodes[order[k]];
+      if (!l.slab) continue;
+      double lo = kInf, hi = -kInf;
+      for (std::size_t q = first; q < last; ++q)
+        for (const auto& x : features[order[q]]) {
+          const double d = l.slab_n[0] * CGAL::to_double(x[0]) + l.slab_n[1] * CGAL::to_double(x[1]) +
+                           l.slab_n[2] * CGAL::to_double(x[2]);
+          lo = std::min(lo, d);
+          hi = std::max(hi, d);
+        }
+      if (hi - lo < best_width) {
+        best_width = hi - lo;
+        best = l.slab_n;
+      }
+    }
+    if (!(best_width < n.r)) return;  // no candidate, or no thinner than the sphere
+    n.slab_n = best;
+    set_slab(n, points_under(first, last));
+    n.slab = n.slab && n.slab_hi - n.slab_lo < n.r;
+    n.slab_thick = n.slab;
+  }
+
   // Builds the subtree over order[first, last) and returns its node index.
   std::uint32_t build(std::size_t first, std::size_t last) {
     if (last - first == 1) return order[first];
@@ -144,10 +188,9 @@ struct Builder {
     }
     if (flat) {
       n.slab_n = first_leaf.slab_n;
-      std::vector<Vec3<Interval>> pts;
-      for (std::size_t k = first; k < last; ++k)
-        pts.insert(pts.end(), features[order[k]].begin(), features[order[k]].end());
-      set_slab(n, pts);
+      set_slab(n, points_under(first, last));
+    } else {
+      thick_slab(n, first, last);
     }
     n.left = left;
     n.right = right;

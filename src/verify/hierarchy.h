@@ -48,8 +48,12 @@ struct BvNode {
   std::uint32_t leaves = 1;           // items under the node
   // A slab {x : lo <= n.x <= hi} holding the node's items (n a unit-ish
   // double vector, lo and hi rounded outward), when the node is flat: its
-  // items have (nearly) parallel normals.  Used by slab_test.
+  // items have (nearly) parallel normals; or, for an internal node whose
+  // items are not, along the thinnest of a few of its leaves' normals when
+  // that is thinner than the node's sphere (`slab_thick`).  Used by
+  // slab_test.
   bool slab = false;
+  bool slab_thick = false;
   std::array<double, 3> slab_n{};
   double slab_lo = 0, slab_hi = 0;
 };
@@ -291,6 +295,7 @@ inline SlabSide slab_side(const SphereFrame<Interval>& f, const BvNode& b) { ret
 struct SlabBase {
   bool valid = false;
   double base_up = 0, base_negdown = 0, size_up = 0;
+  double alpha = 0;  // the coefficient of n_a.x (descent decisions only)
 };
 inline SlabBase slab_base(const SlabSide& sb, const BvNode& a) {
   SlabBase out;
@@ -326,6 +331,7 @@ inline SlabBase slab_base(const SlabSide& sb, const BvNode& a) {
   const double s_hi = alpha >= 0 ? a.slab_hi : a.slab_lo, s_lo = alpha >= 0 ? a.slab_lo : a.slab_hi;
   out.base_up = alpha * s_hi + c_up + shift.sup();
   out.base_negdown = neg(alpha) * s_lo + c_negdown + neg(shift.inf());
+  out.alpha = alpha;
   out.valid = true;
   return out;
 }
@@ -358,7 +364,12 @@ inline SlabTest slab_test(const SphereFrame<Interval>& f, const BvNode& a, const
   const double w0_hi = base_up + reach, w0_lo = -(base_negdown + reach);
   out.apart_unfattened = w0_hi < b.slab_lo || w0_lo > b.slab_hi;
   out.gap = std::max(b.slab_lo - w0_hi, w0_lo - b.slab_hi);
-  out.size = size_up;
+  // What splitting the nodes can shrink: a's spread across its normal and
+  // the widths of thick slabs (a flat node's is about 0 and left out).
+  double thickness = 0;
+  if (a.slab_thick) thickness += std::fabs(base.alpha) * (a.slab_hi - a.slab_lo);
+  if (b.slab_thick) thickness += b.slab_hi - b.slab_lo;
+  out.size = size_up + thickness;
   out.fat = fat_up;
   return out;
 }

@@ -350,6 +350,7 @@ std::vector<std::vector<Vec3E>> cell_features(const CellTree& ct, const ExactFea
 
 struct TreeStats {
   long vertex_checks = 0, rho_checks = 0, nodes = 0, cells = 0;
+  long slab_checks = 0, thick_slab_checks = 0;
 };
 
 // Every vertex of `features` and one random point of each inside S(c, r) of
@@ -366,6 +367,13 @@ void check_in_node(const std::string& where, const BvNode& n, const std::vector<
       const std::string what = (v < features[f].size() ? "vertex " + std::to_string(v) : std::string("a point")) +
                                " of feature " + std::to_string(f) + " of " + where;
       if (!(dist2(pts[v], c) <= r2)) fail(what + " outside the sphere");
+      // A node's slab (flat or thick) holds its features: lo <= n.x <= hi.
+      if (n.slab) {
+        ++stats.slab_checks;
+        if (n.slab_thick) ++stats.thick_slab_checks;
+        const Exact d = Exact(n.slab_n[0]) * pts[v][0] + Exact(n.slab_n[1]) * pts[v][1] + Exact(n.slab_n[2]) * pts[v][2];
+        if (!(Exact(n.slab_lo) <= d && d <= Exact(n.slab_hi))) fail(what + " outside the node's slab");
+      }
       if (metric) {
         ++stats.rho_checks;
         if (!(metric->rho2(pts[v]) <= p2)) fail("rho at " + what + " exceeds p");
@@ -569,6 +577,8 @@ BOOST_AUTO_TEST_CASE(tree_invariants_on_random_bodies) {
                               << " rho checks " << stats.rho_checks);
   BOOST_TEST(stats.vertex_checks > 20000);
   BOOST_TEST(stats.rho_checks > 10000);
+  BOOST_TEST_MESSAGE("slab checks " << stats.slab_checks << ", of thick slabs " << stats.thick_slab_checks);
+  BOOST_TEST(stats.thick_slab_checks > 1000);
 }
 
 namespace {
