@@ -64,6 +64,11 @@ struct Witness {
   // its tolerance) touches at the point.
   std::optional<std::array<Rational, 3>> displacement;
   std::string displaced;  // a body name, when displacement is set
+  // Both bodies toleranced, where neither translation alone suffices: the
+  // other body `displaced_other` translated too, by `displacement_other`
+  // (within its own tolerance).
+  std::optional<std::array<Rational, 3>> displacement_other;
+  std::string displaced_other;  // a body name, when displacement_other is set
   // The point (or the centre of point_box) as doubles, for people.
   std::array<double, 3> point_approx{0, 0, 0};
 };

@@ -92,6 +92,10 @@ Witness public_witness(const std::vector<tmcert::Body>& bodies, const tmcert::Ch
     out.displacement = public_point(*w.displacement);
     out.displaced = bodies[c.bodies[w.displaced]].name;
   }
+  if (w.displacement_other) {
+    out.displacement_other = public_point(*w.displacement_other);
+    out.displaced_other = bodies[c.bodies[1 - w.displaced]].name;
+  }
   return out;
 }
 

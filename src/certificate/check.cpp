@@ -400,6 +400,10 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
     const std::string& which = in_.string(in_.member(w, "displaced", wp), mem(wp, "displaced"));
     if (which != "a" && which != "b") in_.bad(mem(wp, "displaced"), "expected \"a\" or \"b\", got " + quote_text(which));
     ctx.displaced = which == "a" ? 0 : 1;
+    if (const json* o = in_.find(w, "displacement_other"))
+      ctx.displacement_other = in_.vec3(*o, mem(wp, "displacement_other"));
+  } else if (in_.find(w, "displacement_other")) {
+    in_.bad(mem(wp, "displacement_other"), "needs \"displacement\" and \"displaced\"");
   }
   if (const json* pts = in_.find(w, "points")) {
     const std::string pp = mem(wp, "points");
@@ -409,8 +413,7 @@ void Checker::read_witness(const json& w, CheckContext& ctx) {
   if (ctx.witness_root && (ctx.displacement || ctx.points))
     in_.bad(wp, "a witness at an irrational time has no displacement and no points");
   if (ctx.enclosed_witness && ctx.points) in_.bad(wp, "a witness at an enclosed pose has no points");
-  if (ctx.enclosed_clearance && (ctx.points || ctx.displacement))
-    in_.bad(wp, "a clearance witness at an enclosed pose has no points and no displacement");
+  if (ctx.enclosed_clearance && ctx.points) in_.bad(wp, "a clearance witness at an enclosed pose has no points");
   for (int s = 0; s < 2; ++s) {
     WitnessSide& side = ctx.side[s];
     const std::string sp = mem(wp, s == 0 ? "a" : "b");

@@ -197,16 +197,22 @@ void Checker::check_algebraic_witness(const CheckContext& ctx) {
 // A witness's displacement (if any) is a translation within the tolerance
 // of the body it moves: a translation by v has norm |v| sqrt(sum w) in the
 // body's metric.
+// With `displacement_other`, the other body's translation likewise within
+// its own tolerance (each body's tolerance bounds its own deviation).
 void Checker::check_displacement(const CheckContext& ctx) {
   if (!ctx.displacement) return;
-  const Body& body = *ctx.body[ctx.displaced];
-  const Vec3E& v = *ctx.displacement;
-  Exact w = 0;
-  for (const Exact& x : body.mass.weights) w += x;
-  const Exact norm2 = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * w;
-  if (norm2 > body.tolerance * body.tolerance)
-    reject(ctx.label + ": witness.displacement: " + str(v) + " is not within the tolerance " + str(body.tolerance) + " of " +
-           quote_text(body.name) + " (its norm squared in the body's metric is " + str(norm2) + ")");
+  for (int s = 0; s < 2; ++s) {
+    const Vec3E* v = ctx.displacement_of(s);
+    if (!v) continue;
+    const Body& body = *ctx.body[s];
+    Exact w = 0;
+    for (const Exact& x : body.mass.weights) w += x;
+    const Exact norm2 = ((*v)[0] * (*v)[0] + (*v)[1] * (*v)[1] + (*v)[2] * (*v)[2]) * w;
+    if (norm2 > body.tolerance * body.tolerance)
+      reject(ctx.label + ": witness." + (s == ctx.displaced ? "displacement" : "displacement_other") + ": " + str(*v) +
+             " is not within the tolerance " + str(body.tolerance) + " of " + quote_text(body.name) +
+             " (its norm squared in the body's metric is " + str(norm2) + ")");
+  }
 }
 
 // A witness at an enclosed pose: an edge of one body crosses a triangle
@@ -221,8 +227,8 @@ void Checker::check_enclosed_witness(const CheckContext& ctx) {
   for (int s = 0; s < 2; ++s) {
     std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
     if (!box) reject(L + ": the pose of " + quote_text(ctx.body[s]->name) + " at t = " + str(t) + " has no finite enclosure");
-    if (ctx.displacement && ctx.displaced == s)
-      for (int r = 0; r < 3; ++r) box->center[4 * r + 3] += (*ctx.displacement)[r];
+    if (const Vec3E* d = ctx.displacement_of(s))
+      for (int r = 0; r < 3; ++r) box->center[4 * r + 3] += (*d)[r];
     for (std::size_t v : ctx.side[s].vertices)
       placed_vertices[s].push_back(place_box(*box, ctx.data[s]->elems[ctx.side[s].element][v]));
   }
@@ -243,6 +249,8 @@ void Checker::check_enclosed_witness(const CheckContext& ctx) {
 // two points of the boxes, sum_r max(|hi_a - lo_b|, |hi_b - lo_a|)^2, exact,
 // is at most the clearance squared, so |M_a p - M_b q| <= d for every pose
 // of the boxes, the true poses at t among them (proofs/clearance.md §6).
+// With a displacement (a tolerance too, §8), each displaced body's box is
+// translated by its displacement, which must be within its tolerance.
 void Checker::check_enclosed_clearance(const CheckContext& ctx) {
   const std::string L = ctx.label + ": witness";
   const Exact& t = ctx.witness_t;
@@ -255,10 +263,13 @@ void Checker::check_enclosed_clearance(const CheckContext& ctx) {
     const WitnessSide& side = ctx.side[s];
     if (side.interior) reject(L + "." + key + ": a clearance witness at an enclosed pose needs an element and weights");
     const Vec3E x = weighted_point(ctx.data[s]->elems[side.element], side, L + "." + key);
-    const std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
+    std::optional<PoseBox> box = pose_box_at(*ctx.body[s], t);
     if (!box) reject(L + ": the pose of " + quote_text(ctx.body[s]->name) + " at t = " + str(t) + " has no finite enclosure");
+    if (const Vec3E* d = ctx.displacement_of(s))
+      for (int r = 0; r < 3; ++r) box->center[4 * r + 3] += (*d)[r];
     placed_point[s] = place_box(*box, x);
   }
+  check_displacement(ctx);
   Exact far2(0);
   for (int r = 0; r < 3; ++r) {
     const Exact u = placed_point[0][r].hi - placed_point[1][r].lo, v = placed_point[1][r].hi - placed_point[0][r].lo;
@@ -298,8 +309,8 @@ void Checker::check_witness(const CheckContext& ctx) {
         reject(L + "." + key + ": the pose of " + quote_text(body.name) + " at t = " + str(t) +
                " is not exact (an enclosed pose needs the edge-and-triangle witness)");
       pose = *p;
-      if (ctx.displacement && ctx.displaced == s)
-        for (int r = 0; r < 3; ++r) pose[4 * r + 3] += (*ctx.displacement)[r];
+      if (const Vec3E* d = ctx.displacement_of(s))
+        for (int r = 0; r < 3; ++r) pose[4 * r + 3] += (*d)[r];
     } else {
       pose = pose_at(body, t);
     }

@@ -93,6 +93,15 @@ struct CheckContext {
   // crossing a triangle, each side's vertices in `side[s].vertices`.
   std::optional<Vec3E> displacement;
   int displaced = 0;
+  // Both bodies translated: the other body (1 - displaced) by this, within
+  // its own tolerance ("displacement_other").
+  std::optional<Vec3E> displacement_other;
+  // The translation of side s that the witness states, if any.
+  const Vec3E* displacement_of(int s) const {
+    if (!displacement) return nullptr;
+    if (displaced == s) return &*displacement;
+    return displacement_other ? &*displacement_other : nullptr;
+  }
   std::optional<std::array<Vec3E, 2>> points;
   bool enclosed_witness = false;
   // A clearance violation at an enclosed pose ("points_box" in place of

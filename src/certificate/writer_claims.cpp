@@ -153,6 +153,27 @@ std::vector<std::size_t> component_roots(const std::vector<std::vector<Vec3E>>& 
 
 // ---------------------------------------------------------------- witnesses and start claims
 
+namespace {
+
+// The translation of body k (0: a, 1: b) that a witness states, if any:
+// `displacement` for body `displaced`, `displacement_other` for the other.
+const Vec3E* displacement_of(const Witness& w, int k) {
+  if (!w.displacement) return nullptr;
+  if (w.displaced == k) return &*w.displacement;
+  return w.displacement_other ? &*w.displacement_other : nullptr;
+}
+
+// A witness's translations as the certificate states them
+// (docs/certificate-format.md).
+void add_displacements(json& out, const Witness& w) {
+  if (!w.displacement) return;
+  out["displacement"] = vec(*w.displacement);
+  out["displaced"] = w.displaced == 0 ? "a" : "b";
+  if (w.displacement_other) out["displacement_other"] = vec(*w.displacement_other);
+}
+
+}  // namespace
+
 // A witness at an enclosed pose (a transcendental motion): an edge of one
 // named element crossing a triangle of the other, certain over the
 // checker's own pose boxes at t (motions.h).
@@ -162,8 +183,8 @@ json CheckWriter::enclosed_witness(const Witness& w) const {
   for (int k = 0; k < 2; ++k) {
     box[k] = pose_box_at(*bodies[k], w.t);
     if (!box[k]) fail("the pose of " + bodies[k]->name + " at the witness's t = " + to_string(w.t) + " has no finite enclosure");
-    if (w.displacement && w.displaced == k)  // a toleranced contact: that body translated
-      for (int r = 0; r < 3; ++r) box[k]->center[4 * r + 3] += (*w.displacement)[r];
+    if (const Vec3E* v = displacement_of(w, k))  // a toleranced contact: that body translated
+      for (int r = 0; r < 3; ++r) box[k]->center[4 * r + 3] += (*v)[r];
   }
   const std::vector<std::vector<Vec3E>> el[2] = {elements(a), elements(b)};
   for (int ea : named_elements(a, w.features[0]))
@@ -190,10 +211,7 @@ json CheckWriter::enclosed_witness(const Witness& w) const {
                   sides[edge_side] = {{"element", e[edge_side]}, {"vertices", json::array({i, j})}};
                   sides[1 - edge_side] = {{"element", e[1 - edge_side]}, {"vertices", json::array({x, y, z})}};
                   json out{{"t", rational(w.t)}, {"point_box", box_json}, {"a", sides[0]}, {"b", sides[1]}};
-                  if (w.displacement) {
-                    out["displacement"] = vec(*w.displacement);
-                    out["displaced"] = w.displaced == 0 ? "a" : "b";
-                  }
+                  add_displacements(out, w);
                   return out;
                 }
       }
@@ -216,6 +234,7 @@ json CheckWriter::enclosed_clearance_witness(const Witness& w) const {
     boxes.push_back(std::move(b3));
   }
   json out{{"t", rational(w.t)}, {"points_box", std::move(boxes)}};
+  add_displacements(out, w);
   for (int k = 0; k < 2; ++k) {
     const std::vector<std::vector<Vec3E>> el = elements(*bodies[k]);
     bool found = false;
@@ -241,10 +260,7 @@ json CheckWriter::witness() const {
   if (w.points_box) return enclosed_clearance_witness(w);
   if (w.point_box) return enclosed_witness(w);
   json out{{"t", rational(w.t)}, {"point", vec(w.point)}};
-  if (w.displacement) {
-    out["displacement"] = vec(*w.displacement);
-    out["displaced"] = w.displaced == 0 ? "a" : "b";
-  }
+  add_displacements(out, w);
   if (w.points) out["points"] = json::array({vec((*w.points)[0]), vec((*w.points)[1])});
   const Body* bodies[2] = {&a, &b};
   const char* keys[2] = {"a", "b"};
@@ -252,8 +268,8 @@ json CheckWriter::witness() const {
     const Body& body = *bodies[k];
     const std::string& feature = w.features[k];
     Mat34E m = pose(body, w.t);
-    if (w.displacement && w.displaced == k)
-      for (int i = 0; i < 3; ++i) m[4 * i + 3] += (*w.displacement)[i];
+    if (const Vec3E* v = displacement_of(w, k))
+      for (int i = 0; i < 3; ++i) m[4 * i + 3] += (*v)[i];
     const Vec3E& target = w.points ? (*w.points)[k] : w.point;
     if (feature == body.name + " interior") {
       auto ray = ray_from(body, placed_pieces(body, m), target);

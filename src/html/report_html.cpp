@@ -376,6 +376,11 @@ json witness_json(const Scene& scene, const CheckResult& c) {
                            to_display((*w.displacement)[2])};
     out["displaced"] = c.bodies[w.displaced];
   }
+  if (w.displacement_other) {
+    out["displacement_other"] = {to_display((*w.displacement_other)[0]), to_display((*w.displacement_other)[1]),
+                                 to_display((*w.displacement_other)[2])};
+    out["displaced_other"] = c.bodies[1 - w.displaced];
+  }
   return out;
 }
 
@@ -412,7 +417,10 @@ std::string timeline_html(const Scene& scene, const CheckResult& c, int index, b
            html_escape(w.root ? "~" + w.root->approx : to_string(w.t));
     if (w.displacement)
       out += " when " + html_escape(scene.bodies[c.bodies[w.displaced]].name) +
-             " is displaced within its tolerance (drawn at its nominal pose)";
+             (w.displacement_other ? " and " + html_escape(scene.bodies[c.bodies[1 - w.displaced]].name) + " are"
+                                   : std::string(" is")) +
+             " displaced within " + (w.displacement_other ? "their tolerances" : "its tolerance") +
+             " (drawn at " + (w.displacement_other ? "their nominal poses)" : "its nominal pose)");
   } else if (!c.undecided.empty()) {
     out += ": " + std::to_string(c.undecided.size()) + " undecided interval(s)";
   }

@@ -565,6 +565,8 @@ PYBIND11_MODULE(_tmcert, m) {
       .def_readonly("points", &api::Witness::points)
       .def_readonly("displacement", &api::Witness::displacement)
       .def_readonly("displaced", &api::Witness::displaced)
+      .def_readonly("displacement_other", &api::Witness::displacement_other)
+      .def_readonly("displaced_other", &api::Witness::displaced_other)
       .def_readonly("point_approx", &api::Witness::point_approx);
   py::class_<api::UndecidedInterval>(m, "_UndecidedInterval")
       .def_readonly("t0", &api::UndecidedInterval::t0)

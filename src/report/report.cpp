@@ -317,6 +317,15 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
       write_point_approx(w, *wit.displacement);
       w.member("displaced", scene.bodies[c.bodies[wit.displaced]].name);
     }
+    if (wit.displacement_other) {  // both bodies translated, each within its own tolerance
+      w.key("displacement_other");
+      w.begin_array();
+      for (const Exact& x : *wit.displacement_other) w.value(to_string(x));
+      w.end_array();
+      w.key("displacement_other_approx");
+      write_point_approx(w, *wit.displacement_other);
+      w.member("displaced_other", scene.bodies[c.bodies[1 - wit.displaced]].name);
+    }
     w.end_object();
   }
   w.key("undecided");
@@ -748,6 +757,9 @@ std::string result_summary(const Scene& scene, const SceneResult& r) {
       if (wit->displacement)
         out << " when " << scene.bodies[c.bodies[wit->displaced]].name << " is displaced by "
             << readable_point(*wit->displacement) << " (within its tolerance)";
+      if (wit->displacement && wit->displacement_other)
+        out << " and " << scene.bodies[c.bodies[1 - wit->displaced]].name << " by "
+            << readable_point(*wit->displacement_other) << " (within its own)";
       out << "\n";
     }
     const std::vector<UndecidedInterval> undecided = merged_undecided(c.undecided);

@@ -123,6 +123,10 @@ struct Witness {
   // tolerance, makes them touch at `point`.
   std::optional<Vec3E> displacement;
   int displaced = 0;
+  // Both bodies toleranced: the other body (1 - displaced) translated too,
+  // by `displacement_other`, within its own tolerance (only where neither
+  // translation alone suffices; proofs/witness.md, two displacements).
+  std::optional<Vec3E> displacement_other;
   // Clearance: a point of each body (in the check's order) no farther apart
   // than the clearance; `point` is the first of them.
   std::optional<std::array<Vec3E, 2>> points;

@@ -362,6 +362,57 @@ inline std::optional<Mat34E> inverse_affine(const Mat34E& m) {
   return inv;
 }
 
+// A clearance and a tolerance together (proofs/clearance.md section 7):
+// for closest points at squared distance d2 > c2 (the clearance squared),
+// a fraction lambda in [0, 1] of their difference, a short decimal, such
+// that translating one body by it leaves them within the clearance,
+// (1 - lambda)^2 d2 <= c2, and stays within that body's translation
+// reach, lambda^2 d2 <= r2; both decided exactly.  None when not found.
+inline std::optional<Exact> clearance_step(const Exact& d2, const Exact& c2, const Exact& r2) {
+  const double D = std::sqrt(CGAL::to_double(d2)), d = std::sqrt(CGAL::to_double(c2)),
+               r = std::sqrt(CGAL::to_double(r2));
+  if (!(D > 0) || !std::isfinite(D)) return std::nullopt;
+  const double lo = std::max(0.0, 1 - d / D), hi = std::min(1.0, r / D);
+  const double mid = (lo + hi) / 2;
+  CGAL::Gmpz scale(1);
+  for (int digits = 1; digits <= 15; ++digits) {
+    scale *= 10;
+    const Exact l(CGAL::Gmpz(static_cast<long>(std::llround(mid * std::pow(10.0, digits)))), scale);
+    if (l < 0 || l > 1) continue;
+    if ((1 - l) * (1 - l) * d2 <= c2 && l * l * d2 <= r2) return l;
+  }
+  return std::nullopt;
+}
+
+// Both bodies toleranced (proofs/witness.md, "Two displacements"): for
+// closest points at squared distance d2 > 0, fractions l0, l1 >= 0 of
+// their difference, short decimals with l0 + l1 <= 1, such that translating
+// the first body by l0 of the way towards the other and the second by l1
+// of the way back leaves them within the clearance c2 (squared; 0: they
+// meet, l0 + l1 = 1), (1 - l0 - l1)^2 d2 <= c2, each within its own
+// translation reach, l0^2 d2 <= r0 and l1^2 d2 <= r1; every inequality
+// decided exactly (double only aims).  None when not found.
+inline std::optional<std::array<Exact, 2>> shared_step(const Exact& d2, const Exact& c2, const Exact& r0, const Exact& r1) {
+  const double D = std::sqrt(CGAL::to_double(d2)), d = std::sqrt(CGAL::to_double(c2)),
+               s0 = std::sqrt(CGAL::to_double(r0)), s1 = std::sqrt(CGAL::to_double(r1));
+  if (!(D > 0) || !std::isfinite(D) || !(s0 + s1 > 0)) return std::nullopt;
+  // The total fraction: 1 without a clearance, else the middle of
+  // [1 - d/D, (s0 + s1)/D] within [0, 1]; shared in proportion to the reaches.
+  const double total = c2 > 0 ? (std::max(0.0, 1 - d / D) + std::min(1.0, (s0 + s1) / D)) / 2 : 1;
+  const double first = total * s0 / (s0 + s1);
+  CGAL::Gmpz scale(1);
+  for (int digits = 1; digits <= 15; ++digits) {
+    scale *= 10;
+    const double p = std::pow(10.0, digits);
+    const Exact T = c2 > 0 ? Exact(CGAL::Gmpz(static_cast<long>(std::llround(total * p))), scale) : Exact(1);
+    const Exact l0(CGAL::Gmpz(static_cast<long>(std::llround(first * p))), scale);
+    const Exact l1 = T - l0;
+    if (l0 < 0 || l1 < 0 || T > 1) continue;
+    if ((1 - T) * (1 - T) * d2 <= c2 && l0 * l0 * d2 <= r0 && l1 * l1 * d2 <= r1) return std::array{l0, l1};
+  }
+  return std::nullopt;
+}
+
 // Clearance at an enclosed pose (a transcendental motion at u, where the
 // poses are known only as boxes): a point p of one body and a point q of
 // the other, fixed in their bodies' frames (short decimal weights of two
@@ -371,17 +422,51 @@ inline std::optional<Mat34E> inverse_affine(const Mat34E& m) {
 // exactly with d^2.  The true poses at u are in the boxes, so the bodies
 // are within d at u.  The witness gives the two points' boxes and their
 // exact body coordinates (proofs/clearance.md section 6).
+//
+// `displaced` (a clearance and a tolerance together, proofs/clearance.md
+// section 8): the bodies may also be translated within their tolerances
+// first.  The translations v0 (moving body) and v1 (other) are fractions
+// of the closest pair's difference at the rational pose near the boxes'
+// centres (clearance_step for one body, else shared_step for both), exact
+// and within the reaches exactly; each point's box is translated by its
+// body's v before the same interval bound, and the witness states them.
 template <int B>
-bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<int, int>>* only) {
+bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<int, int>>* only, bool displaced = false) {
   const CheckExtras<B>& x = c.extras;
   if (!(x.clearance2 > 0)) return false;
+  if (displaced && !(x.reach2[0] > 0 || x.reach2[1] > 0)) return false;
   const std::array<PoseInterval, B> maps = x.enclosed->poses(u);
   const std::optional<std::array<Mat34E, B>> centres = box_centres<B>(maps);
   if (!centres) return false;
   const std::array<Mat34E, B>& near = *centres;
-  const auto hit = closest_within(c.moving.parts, &near[0], c.other.parts, B == 2 ? &near[B - 1] : nullptr, x.clearance2,
+  // Displaced: points up to d + r0 + r1 apart may serve, (d + r0 + r1)^2 <= 3 (d^2 + r0^2 + r1^2).
+  const Exact bound2 = displaced ? 3 * (x.clearance2 + x.reach2[0] + x.reach2[1]) : x.clearance2;
+  const auto hit = closest_within(c.moving.parts, &near[0], c.other.parts, B == 2 ? &near[B - 1] : nullptr, bound2,
                                   only, c.result.stats);
   if (!hit) return false;
+  // The translations (zero unless displaced), exact, within the reaches.
+  std::array<Vec3E, 2> shift{Vec3E{Exact(0), Exact(0), Exact(0)}, Vec3E{Exact(0), Exact(0), Exact(0)}};
+  std::array<bool, 2> shifted{false, false};
+  if (displaced) {
+    if (!(hit->points.d2 > 0)) return false;
+    std::array<Exact, 2> l{Exact(0), Exact(0)};
+    const int k = x.reach2[1] > x.reach2[0] ? 1 : 0;  // the longer reach first, alone
+    if (const std::optional<Exact> one = clearance_step(hit->points.d2, x.clearance2, x.reach2[k])) {
+      l[k] = *one;
+    } else if (x.reach2[0] > 0 && x.reach2[1] > 0) {
+      const std::optional<std::array<Exact, 2>> two = shared_step(hit->points.d2, x.clearance2, x.reach2[0], x.reach2[1]);
+      if (!two) return false;
+      l = *two;
+    } else {
+      return false;
+    }
+    for (int i = 0; i < 3; ++i) {
+      shift[0][i] = l[0] * (hit->points.b[i] - hit->points.a[i]);
+      shift[1][i] = l[1] * (hit->points.a[i] - hit->points.b[i]);
+    }
+    shifted = {l[0] > 0, l[1] > 0};
+    if (!shifted[0] && !shifted[1]) return false;
+  }
   // The simplices in their own frames (the other body's in world
   // coordinates when it stands still), and the closest points there.
   const Simplex& sa = c.moving.parts[hit->part_a].simplices[hit->simplex_a];
@@ -416,6 +501,9 @@ bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<in
     box[0] = place_interval(maps[0], p);
     if constexpr (B == 2) box[1] = place_interval(maps[B - 1], q);
     else box[1] = {to_interval(q[0]), to_interval(q[1]), to_interval(q[2])};
+    for (int s = 0; s < 2; ++s)  // translated within the tolerances (displaced)
+      if (shifted[s])
+        for (int i = 0; i < 3; ++i) box[s][i] += to_interval(shift[s][i]);
     Interval d2(0);
     for (int i = 0; i < 3; ++i) d2 += CGAL::square(box[0][i] - box[1][i]);
     within = std::isfinite(d2.sup()) && Exact(d2.sup()) <= x.clearance2;
@@ -441,31 +529,16 @@ bool enclosed_clearance(Check<B>& c, const Exact& u, const std::set<std::pair<in
   w.points_box = c.swapped ? decltype(boxes){boxes[1], boxes[0]} : boxes;
   w.point_box = (*w.points_box)[0];
   w.local_points = c.swapped ? std::array<Vec3E, 2>{q_body, p} : std::array<Vec3E, 2>{p, q_body};
+  if (shifted[0] || shifted[1]) {  // in the check's order: one displacement, or both
+    const int first = c.swapped ? 1 : 0;  // the check's first body, as moving (0) or other (1)
+    const int one = shifted[0] && shifted[1] ? first : (shifted[0] ? 0 : 1);
+    w.displacement = shift[one];
+    w.displaced = (one == 0) != c.swapped ? 0 : 1;
+    if (shifted[0] && shifted[1]) w.displacement_other = shift[1 - one];
+  }
   c.result.witness = w;
   c.result.verdict = Verdict::Collision;
   return true;
-}
-
-// A clearance and a tolerance together (proofs/clearance.md section 7):
-// for closest points at squared distance d2 > c2 (the clearance squared),
-// a fraction lambda in [0, 1] of their difference, a short decimal, such
-// that translating one body by it leaves them within the clearance,
-// (1 - lambda)^2 d2 <= c2, and stays within that body's translation
-// reach, lambda^2 d2 <= r2; both decided exactly.  None when not found.
-inline std::optional<Exact> clearance_step(const Exact& d2, const Exact& c2, const Exact& r2) {
-  const double D = std::sqrt(CGAL::to_double(d2)), d = std::sqrt(CGAL::to_double(c2)),
-               r = std::sqrt(CGAL::to_double(r2));
-  if (!(D > 0) || !std::isfinite(D)) return std::nullopt;
-  const double lo = std::max(0.0, 1 - d / D), hi = std::min(1.0, r / D);
-  const double mid = (lo + hi) / 2;
-  CGAL::Gmpz scale(1);
-  for (int digits = 1; digits <= 15; ++digits) {
-    scale *= 10;
-    const Exact l(CGAL::Gmpz(static_cast<long>(std::llround(mid * std::pow(10.0, digits)))), scale);
-    if (l < 0 || l > 1) continue;
-    if ((1 - l) * (1 - l) * d2 <= c2 && l * l * d2 <= r2) return l;
-  }
-  return std::nullopt;
 }
 
 // Tolerance and clearance (SCENE_FORMAT.md): at curve parameter u, where
@@ -482,7 +555,9 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
   std::optional<Mat34E> m2;
   if (extras.enclosed) {
     const auto exact = extras.enclosed->exact_poses(u);
-    if (!exact) return enclosed_clearance(*this, u, only) || displaced_crossing(*this, u, only);
+    if (!exact)
+      return enclosed_clearance(*this, u, only) || displaced_crossing(*this, u, only) ||
+             enclosed_clearance(*this, u, only, true);
     m1 = (*exact)[0];
     if constexpr (B == 2) m2 = (*exact)[1];
   } else {
@@ -496,20 +571,58 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
   const int k = extras.reach2[1] > extras.reach2[0] ? 1 : 0;  // the body translated: the longer reach
   const bool combined = extras.clearance2 > 0 && extras.reach2[k] > 0;
   if (combined) bound2 = 2 * (extras.clearance2 + extras.reach2[k]);
-  const auto hit = closest_within(moving.parts, &m1, other.parts, m2 ? &*m2 : nullptr, bound2, only, result.stats);
+  // Both bodies toleranced: where a translation of one body alone does not
+  // serve, points up to d + r0 + r1 apart may serve with both translated,
+  // and (d + r0 + r1)^2 <= 3 (d^2 + r0^2 + r1^2) (a second search, only
+  // where the first found nothing: the first's pair is the closest anyway).
+  const bool both = extras.reach2[0] > 0 && extras.reach2[1] > 0;
+  auto hit = closest_within(moving.parts, &m1, other.parts, m2 ? &*m2 : nullptr, bound2, only, result.stats);
+  if (!hit && both)
+    hit = closest_within(moving.parts, &m1, other.parts, m2 ? &*m2 : nullptr,
+                         3 * (extras.clearance2 + extras.reach2[0] + extras.reach2[1]), only, result.stats);
   if (!hit) return false;
   const ClosestPoints* best = &hit->points;
   const int best_i = hit->part_a, best_j = hit->part_b;
   const std::string a = moving.body->name + " " + moving.parts[best_i].name;
   const std::string b = other.body->name + " " + other.parts[best_j].name;
   Witness w{scene_t(u), swapped ? std::array{b, a} : std::array{a, b}, best->a};
+  // Both bodies translated, each by its share of the way (shared_step):
+  // the moving body's point a by l0 (b - a), the other's b by l1 (a - b).
+  auto both_translated = [&]() {
+    if (!both) return false;
+    const std::optional<std::array<Exact, 2>> l =
+        shared_step(best->d2, extras.clearance2, extras.reach2[0], extras.reach2[1]);
+    if (!l) return false;
+    Vec3E v0, v1, a_moved, b_moved;
+    for (int i = 0; i < 3; ++i) {
+      v0[i] = (*l)[0] * (best->b[i] - best->a[i]);
+      v1[i] = (*l)[1] * (best->a[i] - best->b[i]);
+      a_moved[i] = best->a[i] + v0[i];
+      b_moved[i] = best->b[i] + v1[i];
+    }
+    w.displacement = swapped ? v1 : v0;  // the first body of the check's
+    w.displaced = 0;
+    w.displacement_other = swapped ? v0 : v1;
+    if (extras.clearance2 > 0) {
+      w.points = swapped ? std::array{b_moved, a_moved} : std::array{a_moved, b_moved};
+      w.point = (*w.points)[0];
+    } else {
+      w.point = a_moved;  // = b_moved: l0 + l1 = 1
+    }
+    return true;
+  };
   if (best->d2 > 0) {
     if (extras.clearance2 > 0 && best->d2 <= extras.clearance2) {
       w.points = swapped ? std::array{best->b, best->a} : std::array{best->a, best->b};
       w.point = (*w.points)[0];
     } else if (combined) {  // translate body k by lambda of the way: within the clearance after it
       const std::optional<Exact> lambda = clearance_step(best->d2, extras.clearance2, extras.reach2[k]);
-      if (!lambda) return false;
+      if (!lambda) {
+        if (!both_translated()) return false;
+        result.witness = w;
+        result.verdict = Verdict::Collision;
+        return true;
+      }
       const Vec3E& from = k == 0 ? best->a : best->b;  // the translated body's point
       const Vec3E& to = k == 0 ? best->b : best->a;
       Vec3E v, moved;
@@ -530,7 +643,7 @@ bool Check<B>::distance_witness(const Exact& u, const std::set<std::pair<int, in
       w.displacement = Vec3E{best->a[0] - best->b[0], best->a[1] - best->b[1], best->a[2] - best->b[2]};
       w.displaced = swapped ? 0 : 1;
       w.point = best->a;
-    } else {
+    } else if (!both_translated()) {
       return false;
     }
   }

@@ -289,7 +289,67 @@ BOOST_AUTO_TEST_CASE(enclosed_clearance_witness) {
   {
     Case d = c;
     check0(d)["witness"]["points"] = json::array({json::array({"0", "0", "0"}), json::array({"0", "0", "0"})});
-    expect_malformed(d, "a clearance witness at an enclosed pose has no points and no displacement");
+    expect_malformed(d, "a clearance witness at an enclosed pose has no points");
+  }
+}
+
+// Both bodies toleranced (proofs/witness.md, "Two displacements"): the
+// witness translates the box by `displacement` and the wall by
+// `displacement_other`, each within its own tolerance; the checker applies
+// both to the exact poses and bounds each by its body's tolerance.
+BOOST_AUTO_TEST_CASE(two_displacements) {
+  Case c;
+  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-both-translation-violated.json");
+  tmcert::VerifyOptions options;
+  options.record_cover = true;
+  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  const json& w = check0(c)["witness"];
+  BOOST_REQUIRE(w.contains("displacement"));
+  BOOST_REQUIRE(w.contains("displacement_other"));
+  BOOST_TEST(w["displaced"] == "a");
+  BOOST_TEST(check(c).ok, check(c).message);
+  {
+    Case d = c;  // the wall left at its nominal pose: the point is not on it
+    check0(d)["witness"].erase("displacement_other");
+    expect_rejected(d, "witness.b: element");
+  }
+  {
+    Case d = c;  // (1/20)^2 * 8 = 1/50 > 1/100
+    check0(d)["witness"]["displacement_other"] = json::array({"0", "-1/20", "0"});
+    expect_rejected(d, "witness.displacement_other: (0, -1/20, 0) is not within the tolerance 1/10 of \"wall\"");
+  }
+  {
+    Case d = c;
+    check0(d)["witness"].erase("displacement");
+    check0(d)["witness"].erase("displaced");
+    expect_malformed(d, "needs \"displacement\" and \"displaced\"");
+  }
+}
+
+// A clearance and a tolerance together at an enclosed pose
+// (proofs/clearance.md section 8): the plate's pose box translated by the
+// displacement, the two weighted points within the clearance.
+BOOST_AUTO_TEST_CASE(enclosed_clearance_witness_with_displacement) {
+  Case c;
+  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) +
+                             "/scenes/tolerance-clearance-slerp-between-keyframes-violated.json");
+  tmcert::VerifyOptions options;
+  options.record_cover = true;
+  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  const json& w = check0(c)["witness"];
+  BOOST_REQUIRE(w.contains("points_box"));
+  BOOST_REQUIRE(w.contains("displacement"));
+  BOOST_TEST(w["displaced"] == "b");
+  BOOST_TEST(check(c).ok, check(c).message);
+  {
+    Case d = c;  // without the translation the plate stays 3/10 or more away
+    check0(d)["witness"]["displacement"] = json::array({"0", "0", "0"});
+    expect_rejected(d, "may be farther apart than the clearance");
+  }
+  {
+    Case d = c;  // (1/10)^2 * 4 = 1/25 > 9/400
+    check0(d)["witness"]["displacement"] = json::array({"0", "-1/10", "0"});
+    expect_rejected(d, "witness.displacement: (0, -1/10, 0) is not within the tolerance 3/20 of \"plate\"");
   }
 }
 

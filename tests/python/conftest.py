@@ -323,6 +323,11 @@ def assert_views_agree(result: tmcert.Result) -> None:
                 assert witness.displaced == w["displaced"]
             else:
                 assert witness.displacement is None and witness.displaced is None
+            if "displacement_other" in w:
+                assert_point(w["displacement_other"], witness.displacement_other, witness.displacement_other_float)
+                assert witness.displaced_other == w["displaced_other"]
+            else:
+                assert witness.displacement_other is None and witness.displaced_other is None
         assert len(check.undecided) == len(c["undecided"])
         for u, d in zip(check.undecided, c["undecided"]):
             assert u.t == (fraction(d["t"][0]), fraction(d["t"][1])) and u.reason == d["reason"]

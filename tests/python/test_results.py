@@ -86,6 +86,16 @@ def test_tolerance_displacement() -> None:
     assert_views_agree(result)
 
 
+def test_two_displacements() -> None:
+    result = tmcert.verify(SCENES / "tolerance-both-translation-violated.json")
+    (check,) = result.checks
+    w = check.witness
+    assert w.displaced == "box" and w.displaced_other == "wall"
+    assert sum(x * x for x in w.displacement) * 8 <= Fraction(1, 100)
+    assert sum(x * x for x in w.displacement_other) * 8 <= Fraction(1, 100)
+    assert_views_agree(result)
+
+
 def test_summary_is_the_cli_output() -> None:
     seconds = re.compile(r"[0-9.e+-]+ s\)")
     for scene in (SCENES / "cubic-crossing-irrational.json", SOURCE / "examples" / "octagons-near.json"):

@@ -188,4 +188,113 @@ BOOST_AUTO_TEST_CASE(no_enclosed_clearance_witness_where_the_clearance_holds) {
   BOOST_TEST(!r.checks[0].witness);
 }
 
+// Both bodies toleranced (proofs/witness.md, "Two displacements"):
+// shared_step splits the way between two closest points D apart so that
+// each body's translation stays within its own reach and, with a
+// clearance d, the rest is at most d; every inequality exact.
+BOOST_AUTO_TEST_CASE(shared_step_keeps_each_translation_within_its_reach) {
+  // Reaches 1/8 each (squared 1/64), distance 9/40 (squared 81/1600): one
+  // alone cannot close it, both together (1/4) can.
+  const Exact d2(81, 1600), r2(1, 64);
+  BOOST_TEST(!detail::clearance_step(d2, Exact(0), r2));
+  const auto l = detail::shared_step(d2, Exact(0), r2, r2);
+  BOOST_REQUIRE(l);
+  BOOST_TEST((*l)[0] + (*l)[1] == 1);  // without a clearance they meet
+  BOOST_TEST((*l)[0] >= 0);
+  BOOST_TEST((*l)[1] >= 0);
+  BOOST_TEST((*l)[0] * (*l)[0] * d2 <= r2);
+  BOOST_TEST((*l)[1] * (*l)[1] * d2 <= r2);
+  // Unequal reaches: the shares follow them.
+  const auto u = detail::shared_step(d2, Exact(0), Exact(1, 16), Exact(1, 400));
+  BOOST_REQUIRE(u);
+  BOOST_TEST((*u)[0] * (*u)[0] * d2 <= Exact(1, 16));
+  BOOST_TEST((*u)[1] * (*u)[1] * d2 <= Exact(1, 400));
+  // Beyond the sum of the reaches: none.
+  BOOST_TEST(!detail::shared_step(Exact(1, 16) + Exact(1, 1000000), Exact(0), r2, r2));
+  // With a clearance 1/20: (1 - l0 - l1)^2 d2 <= 1/400, and 9/40 - 1/20 = 7/40 < 1/4.
+  const auto c = detail::shared_step(d2, Exact(1, 400), r2, r2);
+  BOOST_REQUIRE(c);
+  const Exact rest = 1 - (*c)[0] - (*c)[1];
+  BOOST_TEST(rest >= 0);
+  BOOST_TEST(rest * rest * d2 <= Exact(1, 400));
+  BOOST_TEST((*c)[0] * (*c)[0] * d2 <= r2);
+  BOOST_TEST((*c)[1] * (*c)[1] * d2 <= r2);
+  // 3/10 apart, clearance 1/20 and reaches 1/10 each: 1/20 + 1/5 = 1/4 < 3/10, none.
+  BOOST_TEST(!detail::shared_step(Exact(9, 100), Exact(1, 400), Exact(1, 100), Exact(1, 100)));
+}
+
+// The box passing the wall 1/15 away, both with tolerance 1/10 and their 8
+// vertices as mass (translation reach 1/10/sqrt 8 = 0.0354 each): only
+// both translations together close the gap.  The witness translates each
+// within its own tolerance and the translated bodies share the point.
+BOOST_AUTO_TEST_CASE(a_contact_needing_both_translations_is_proven) {
+  const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-both-translation-violated.json");
+  const SceneResult r = verify_scene(scene, VerifyOptions{});
+  const CheckResult& c = r.checks[0];
+  BOOST_REQUIRE((c.verdict == Verdict::Collision));
+  BOOST_REQUIRE(c.witness);
+  const Witness& w = *c.witness;
+  BOOST_REQUIRE(w.displacement);
+  BOOST_REQUIRE(w.displacement_other);
+  BOOST_TEST(w.displaced == 0);
+  auto norm2 = [](const Vec3E& v) { return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]; };
+  BOOST_TEST(norm2(*w.displacement) * 8 <= Exact(1, 100));  // each within its own tolerance
+  BOOST_TEST(norm2(*w.displacement_other) * 8 <= Exact(1, 100));
+  BOOST_TEST((*w.displacement)[1] > 0);  // the box towards the wall (+y)
+  BOOST_TEST((*w.displacement_other)[1] < 0);  // the wall towards the box
+  // The point, moved back by each body's translation, is in that body at
+  // its nominal pose: the box centred at x = -2 + 4t, the wall fixed.
+  Vec3E in_box, in_wall;
+  for (int i = 0; i < 3; ++i) {
+    in_box[i] = w.point[i] - (*w.displacement)[i];
+    in_wall[i] = w.point[i] - (*w.displacement_other)[i];
+  }
+  BOOST_TEST(CGAL::abs(in_box[0] - (4 * w.t - 2)) <= Exact(1, 5));
+  BOOST_TEST(CGAL::abs(in_box[1]) <= Exact(3, 10));
+  BOOST_TEST(CGAL::abs(in_box[2]) <= Exact(1, 5));
+  BOOST_TEST(CGAL::abs(in_wall[0]) <= Exact(1, 5));
+  BOOST_TEST(in_wall[1] >= Exact(3, 10) + Exact(1, 15));
+  BOOST_TEST(in_wall[1] <= Exact(7, 10) + Exact(1, 15));
+  BOOST_TEST(CGAL::abs(in_wall[2]) <= Exact(1, 5));
+  const Scene safe = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-both-translation-safe.json");
+  BOOST_TEST((verify_scene(safe, VerifyOptions{}).checks[0].verdict == Verdict::Safe));
+}
+
+// A clearance and a tolerance together, violated only between slerp
+// keyframes (proofs/clearance.md section 8): the plate (tolerance 3/20,
+// four mass points: translation reach 3/40) passes the post at distance
+// 3/10 only at enclosed poses, clearance 1/4 < 3/10 < 1/4 + 3/40.  The
+// witness: the plate's point box translated by a displacement within the
+// tolerance, within the clearance of the post's for every pose of the
+// enclosure.
+BOOST_AUTO_TEST_CASE(a_toleranced_clearance_violation_at_an_enclosed_pose_is_proven) {
+  const Scene scene =
+      parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-clearance-slerp-between-keyframes-violated.json");
+  const SceneResult r = verify_scene(scene, VerifyOptions{});
+  const CheckResult& c = r.checks[0];
+  BOOST_REQUIRE((c.verdict == Verdict::Collision));
+  BOOST_REQUIRE(c.witness);
+  const Witness& w = *c.witness;
+  BOOST_REQUIRE(w.points_box);
+  BOOST_REQUIRE(w.local_points);
+  BOOST_REQUIRE(w.displacement);
+  BOOST_TEST(!w.displacement_other);  // the post has no tolerance
+  BOOST_TEST(w.displaced == 1);      // the plate, the check's second body
+  const Vec3E& v = *w.displacement;
+  BOOST_TEST((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * 4 <= Exact(9, 400));
+  BOOST_TEST(w.t > 0);
+  BOOST_TEST(w.t < 1);
+  Exact far2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto& a = (*w.points_box)[0][i];
+    const auto& b = (*w.points_box)[1][i];
+    const Exact m = std::max(CGAL::abs(a[1] - b[0]), CGAL::abs(b[1] - a[0]));
+    far2 += m * m;
+  }
+  BOOST_TEST(far2 <= Exact(1, 16));
+  const Scene safe =
+      parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-clearance-slerp-between-keyframes-safe.json");
+  BOOST_TEST((verify_scene(safe, VerifyOptions{}).checks[0].verdict == Verdict::Safe));
+}
+
 BOOST_AUTO_TEST_SUITE_END()

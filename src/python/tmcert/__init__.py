@@ -160,7 +160,9 @@ class Witness:
     ``point_float`` is the point (or the box's centre) as a float array.
     With a clearance, ``points`` gives a point of each body (in the check's
     order) no farther apart than it; with a tolerance, body ``displaced``
-    translated by ``displacement`` touches.
+    translated by ``displacement`` touches; where both bodies have a
+    tolerance and only both translations together reach, the other body
+    ``displaced_other`` is translated by ``displacement_other`` too.
     """
 
     t: Time
@@ -174,6 +176,9 @@ class Witness:
     displacement: Optional[Tuple[Fraction, Fraction, Fraction]]
     displacement_float: Optional[FloatArray]
     displaced: Optional[str]
+    displacement_other: Optional[Tuple[Fraction, Fraction, Fraction]] = None
+    displacement_other_float: Optional[FloatArray] = None
+    displaced_other: Optional[str] = None
 
     @staticmethod
     def _from(w: Any) -> "Witness":
@@ -185,7 +190,10 @@ class Witness:
             points=points, points_float=None if w.points is None else _floats(tuple(c.approx for c in p) for p in w.points),
             displacement=_point(w.displacement),
             displacement_float=None if w.displacement is None else _point_float(w.displacement),
-            displaced=w.displaced or None)
+            displaced=w.displaced or None,
+            displacement_other=_point(w.displacement_other),
+            displacement_other_float=None if w.displacement_other is None else _point_float(w.displacement_other),
+            displaced_other=w.displaced_other or None)
 
 
 @dataclass(frozen=True)
