@@ -78,7 +78,7 @@ struct VerifyArgs {
   std::string kernel = "filtered";
   bool json = false;
   std::string certificate;
-  int threads = 0;  // --threads; 0: not given (main() sets the default)
+  int threads = 0;  // --threads; 0: not given, the CPUs this process may run on
   bool all_pairs = false;
   std::string time_limit;  // seconds per check; empty: none
   std::string report;      // --report: HTML page; empty: none
@@ -214,7 +214,7 @@ int run_verify(const VerifyArgs& args) {
   if (!args.epsilon.empty()) written.epsilon = parse_epsilon(args.epsilon, OptionSpelling::CommandLine);
   if (args.max_depth >= 0) written.max_depth = args.max_depth;
   if (!args.time_limit.empty()) written.time_limit = time_limit_option(args.time_limit);
-  const int threads = args.threads;
+  const int threads = args.threads > 0 ? args.threads : available_cpus();
   written.threads = threads;
   written.all_pairs = args.all_pairs;
   written.certificate = !args.certificate.empty();
@@ -363,8 +363,7 @@ int main(int argc, char** argv) {
   CLI::Option* certificate_option = verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/2; re-check it with tmcert check)");
   CLI::Option* report_option = verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
   verify->add_option("--threads", args.threads,
-                     "worker threads (default: the CPUs this process may run on, at most one per 64 MiB of --memory-limit; "
-                     "the result does not depend on it)")
+                     "worker threads (default: the CPUs this process may run on; the result does not depend on it)")
       ->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
@@ -462,14 +461,6 @@ int main(int argc, char** argv) {
       const std::size_t lines = tmcert::merge_batch(merge_files, merge_output);
       std::cerr << "tmcert batch-merge: " << lines << " results from " << merge_files.size() << " files\n";
       return 0;
-    }
-    // verify's default thread count: every CPU this process may run on;
-    // under --memory-limit M at most one per 64 MiB (each thread reserves
-    // its stack and its caches in the address space the limit bounds).
-    if (args.threads == 0) {
-      args.threads = available_cpus();
-      if (memory_limit)
-        args.threads = static_cast<int>(std::clamp<unsigned long long>(memory_limit / 64, 1, static_cast<unsigned long long>(args.threads)));
     }
     return run_verify(args);
   } catch (const tmcert::InputError& e) {
