@@ -15,7 +15,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <sched.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
 
@@ -34,7 +33,6 @@
 #include <new>
 #include <optional>
 #include <string>
-#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -57,20 +55,6 @@ int exit_code(tmcert::Verdict v) {
   return 2;
 }
 
-// The CPUs this process may run on (its affinity mask: what taskset, a
-// cpuset or a batch scheduler's binding leaves it), between 1 and
-// kMaxThreads; the machine's hardware threads where the mask is unknown.
-int available_cpus() {
-  int n = 0;
-#ifdef __linux__
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof(set), &set) == 0) n = CPU_COUNT(&set);
-#endif
-  if (n <= 0) n = static_cast<int>(std::thread::hardware_concurrency());
-  return std::clamp(n, tmcert::kMinThreads, tmcert::kMaxThreads);
-}
-
 struct VerifyArgs {
   std::string scene;
   std::string epsilon;
@@ -78,7 +62,7 @@ struct VerifyArgs {
   std::string kernel = "filtered";
   bool json = false;
   std::string certificate;
-  int threads = 0;  // --threads; 0: not given, the CPUs this process may run on
+  int threads = 1;
   bool all_pairs = false;
   std::string time_limit;  // seconds per check; empty: none
   std::string report;      // --report: HTML page; empty: none
@@ -214,8 +198,7 @@ int run_verify(const VerifyArgs& args) {
   if (!args.epsilon.empty()) written.epsilon = parse_epsilon(args.epsilon, OptionSpelling::CommandLine);
   if (args.max_depth >= 0) written.max_depth = args.max_depth;
   if (!args.time_limit.empty()) written.time_limit = time_limit_option(args.time_limit);
-  const int threads = args.threads > 0 ? args.threads : available_cpus();
-  written.threads = threads;
+  written.threads = args.threads;
   written.all_pairs = args.all_pairs;
   written.certificate = !args.certificate.empty();
   VerifyOptions options = build_options(written, scene, EpsilonScope::PerCheck, OptionSpelling::CommandLine);
@@ -232,7 +215,7 @@ int run_verify(const VerifyArgs& args) {
   // --threads spreads the checks, not the parts of one check (the library
   // spreads both; the result is the same).
   options.threads = 1;
-  const SceneResult result = verify_scene(scene, options, threads);
+  const SceneResult result = verify_scene(scene, options, args.threads);
   // Every document is built before anything is written, and the files
   // before the verdict is printed: running out of memory on the way leaves
   // no file and prints no verdict (exit 4), and a write that fails is exit
@@ -362,9 +345,7 @@ int main(int argc, char** argv) {
   verify->add_flag("--json", args.json, "print the tmcert-result/1 document");
   CLI::Option* certificate_option = verify->add_option("--certificate", args.certificate, "write a certificate of the verdict to this file (tmcert-certificate/2; re-check it with tmcert check)");
   CLI::Option* report_option = verify->add_option("--report", args.report, "write a visual report of the result to this file (one self-contained HTML page)");
-  verify->add_option("--threads", args.threads,
-                     "worker threads (default: the CPUs this process may run on; the result does not depend on it)")
-      ->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
+  verify->add_option("--threads", args.threads, "worker threads")->check(CLI::Range(tmcert::kMinThreads, tmcert::kMaxThreads));
   verify->add_option("--time-limit", args.time_limit,
                      "seconds per check; when a check runs past it, the rest of its interval is undecided "
                      "(reason limit), never safe; default: 30 with refinement (no --epsilon, or --epsilon auto: its first "
