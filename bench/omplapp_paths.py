@@ -194,7 +194,7 @@ def main():
                     help="MiB, passed to every tmcert run (--memory-limit; exit 4 past it)")
     ap.add_argument("--reps", type=int, default=3, help="runs of OMPL's whole-path check (median)")
     ap.add_argument("--threads", type=int, default=1,
-                    help="tmcert verify --threads (default 1: OMPL's checking is one thread; tmcert's own default is every CPU)")
+                    help="tmcert verify --threads (default 1, as OMPL's checking)")
     ap.add_argument("--no-shortcuts", action="store_true")
     ap.add_argument("--no-certificates", action="store_true")
     ap.add_argument("--json", help="write every measurement to this file")
