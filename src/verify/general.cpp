@@ -23,6 +23,7 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -263,15 +264,30 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   // the time limit), is searched again there, alone, as the sequential
   // search would have.  So the result is the sequential one for every
   // thread count (proofs/enclosures.md section 7).
+  // A part's run is kept per start assumption: `ahead[k]` as first
+  // scheduled (start free, the first part as the caller says), `tested[k]`
+  // with its start test.  The worker that finishes a part not cleared
+  // entirely runs the next part with its start test at once, before any
+  // part further ahead: that is the run the merge will need there, and
+  // leaving it to a second round left it to be run after every part ahead,
+  // so that past a time limit the merge stopped at it and dropped the
+  // valid runs after it (escape, OMPL.app: stuck at t = 8 with two threads).
   struct Speculative {
     CheckResult part;
     bool done = false;
     bool start_free = false;  // what the run assumed
     std::exception_ptr error;
   };
-  std::vector<Speculative> ahead;
+  std::vector<Speculative> ahead, tested;
+  // One worker per slot: the first to claim it runs it (two runs of part
+  // k, with and without its start test, may both end not cleared and both
+  // reach for part k + 1 with its start test).
+  std::unique_ptr<std::atomic<bool>[]> claimed;
   if (options.threads > 1 && parts > 1) {
     ahead.resize(parts);
+    tested.resize(parts);
+    claimed.reset(new std::atomic<bool>[2 * parts]);
+    for (std::size_t i = 0; i < 2 * parts; ++i) claimed[i].store(false);
     std::atomic<std::size_t> first_witness{parts};
     // Runs the parts `jobs` (in parameter order) with the given start
     // assumptions on up to options.threads threads.
@@ -279,24 +295,39 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
       const int workers = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), jobs.size()));
       const int per_part = std::max(1, options.threads / std::max(1, static_cast<int>(jobs.size())));
       std::atomic<std::size_t> next{0};
+      // Runs part k with the start assumption into its slot; true when
+      // the run ended not cleared entirely (an undecided piece or a
+      // witness).  Skipped after a witness (one that a later run may take
+      // back: the parts after it are then left to the merge), or past the
+      // time limit.
+      auto run_into = [&](std::size_t k, bool start_free) {
+        if (k > first_witness.load() || past_deadline(options)) return false;
+        const bool first_slot = start_free || k == 0;
+        if (claimed[2 * k + (first_slot ? 0 : 1)].exchange(true)) return false;  // another worker runs it
+        Speculative& s = first_slot ? ahead[k] : tested[k];
+        s = Speculative{};
+        s.start_free = start_free;
+        try {
+          run_one(k, start_free, per_part, s.part);
+          s.done = true;
+          if (s.part.witness) {
+            std::size_t w = first_witness.load();
+            while (k < w && !first_witness.compare_exchange_weak(w, k)) {}
+          }
+          return !s.part.undecided.empty() || s.part.witness.has_value();
+        } catch (...) {
+          s.error = std::current_exception();
+          return false;
+        }
+      };
       auto worker = [&] {
         for (std::size_t j = next++; j < jobs.size(); j = next++) {
-          const auto [k, start_free] = jobs[j];
-          // After a witness (one that a later run may take back: the parts
-          // after it are then left to the merge), or past the time limit.
-          if (k > first_witness.load() || past_deadline(options)) continue;
-          Speculative& s = ahead[k];
-          s = Speculative{};
-          s.start_free = start_free;
-          try {
-            run_one(k, start_free, per_part, s.part);
-            s.done = true;
-            if (s.part.witness) {
-              std::size_t w = first_witness.load();
-              while (k < w && !first_witness.compare_exchange_weak(w, k)) {}
-            }
-          } catch (...) {
-            s.error = std::current_exception();
+          auto [k, start_free] = jobs[j];
+          // Not cleared: the next part with its start test, at once (and
+          // so on while those are not cleared either).
+          while (run_into(k, start_free) && k + 1 < parts) {
+            ++k;
+            start_free = false;
           }
         }
       };
@@ -308,11 +339,6 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
     std::vector<std::pair<std::size_t, bool>> jobs;
     for (std::size_t k = 0; k < parts; ++k) jobs.push_back({k, k == 0 ? start_proven_free : true});
     round(jobs);
-    jobs.clear();
-    for (std::size_t k = 1; k < parts; ++k)
-      if (ahead[k - 1].done && (!ahead[k - 1].part.undecided.empty() || ahead[k - 1].part.witness) && ahead[k].start_free)
-        jobs.push_back({k, false});
-    if (!jobs.empty()) round(jobs);
   }
 
   // The merge, in parameter order: each part's start is proven free by the
@@ -321,9 +347,13 @@ CheckResult detail::check_prepared_pair(const PreparedBody& pa, const PreparedBo
   for (std::size_t k = 0; k < parts; ++k) {
     const Exact& t0 = cuts[k];
     CheckResult part;
-    if (!ahead.empty() && ahead[k].start_free == start_free && (ahead[k].done || ahead[k].error)) {
-      if (ahead[k].error) std::rethrow_exception(ahead[k].error);
-      part = std::move(ahead[k].part);
+    Speculative* run = nullptr;  // a run with the sequential assumption, if any
+    if (!ahead.empty())
+      for (Speculative* s : {&ahead[k], &tested[k]})
+        if (s->start_free == start_free && (s->done || s->error)) run = s;
+    if (run) {
+      if (run->error) std::rethrow_exception(run->error);
+      part = std::move(run->part);
     } else if (past_deadline(options)) {
       // Time limit: the parts not yet searched are undecided, not cleared.
       part.undecided.push_back({t0, interval.second, StopReason::Limit});
