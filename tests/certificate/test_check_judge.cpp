@@ -7,6 +7,19 @@
 
 using namespace check_test;
 
+namespace {
+// A scene of tests/data/scenes, verified and certified here (its cover
+// recorded for the certificate).
+Case certified(const std::string& scene) {
+  Case c;
+  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/" + scene + ".json");
+  tmcert::VerifyOptions options;
+  options.record_cover = true;
+  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  return c;
+}
+}  // namespace
+
 BOOST_AUTO_TEST_SUITE(certificate_check)
 
 BOOST_AUTO_TEST_CASE(tampered_tilings_are_rejected) {
@@ -225,11 +238,7 @@ BOOST_AUTO_TEST_CASE(pieces_after_an_undecided_interval_need_start_claims_there)
 // the post; the checker translates its own pose box of the plate by the
 // displacement and re-decides the tolerance (W = 6, r = 1/10).
 BOOST_AUTO_TEST_CASE(enclosed_witness_with_displacement) {
-  Case c;
-  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-plate-post-slerp-collision.json");
-  tmcert::VerifyOptions options;
-  options.record_cover = true;
-  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  Case c = certified("tolerance-plate-post-slerp-collision");
   const json& w = check0(c)["witness"];
   BOOST_REQUIRE(w.contains("point_box"));
   BOOST_REQUIRE(w.contains("displacement"));
@@ -257,11 +266,7 @@ BOOST_AUTO_TEST_CASE(enclosed_witness_with_displacement) {
 // the checker places the two points by its own pose boxes at t and bounds
 // their distance by the clearance, exactly.
 BOOST_AUTO_TEST_CASE(enclosed_clearance_witness) {
-  Case c;
-  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/clearance-slerp-between-keyframes-violated.json");
-  tmcert::VerifyOptions options;
-  options.record_cover = true;
-  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  Case c = certified("clearance-slerp-between-keyframes-violated");
   const json& w = check0(c)["witness"];
   BOOST_REQUIRE(w.contains("points_box"));
   BOOST_TEST(!w.contains("point"));
@@ -298,11 +303,7 @@ BOOST_AUTO_TEST_CASE(enclosed_clearance_witness) {
 // `displacement_other`, each within its own tolerance; the checker applies
 // both to the exact poses and bounds each by its body's tolerance.
 BOOST_AUTO_TEST_CASE(two_displacements) {
-  Case c;
-  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-both-translation-violated.json");
-  tmcert::VerifyOptions options;
-  options.record_cover = true;
-  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  Case c = certified("tolerance-both-translation-violated");
   const json& w = check0(c)["witness"];
   BOOST_REQUIRE(w.contains("displacement"));
   BOOST_REQUIRE(w.contains("displacement_other"));
@@ -330,12 +331,7 @@ BOOST_AUTO_TEST_CASE(two_displacements) {
 // (proofs/clearance.md section 8): the plate's pose box translated by the
 // displacement, the two weighted points within the clearance.
 BOOST_AUTO_TEST_CASE(enclosed_clearance_witness_with_displacement) {
-  Case c;
-  c.scene = parse_scene_file(std::string(TMCERT_TEST_DATA) +
-                             "/scenes/tolerance-clearance-slerp-between-keyframes-violated.json");
-  tmcert::VerifyOptions options;
-  options.record_cover = true;
-  c.certificate = json::parse(cert::certificate_json(c.scene, tmcert::verify_scene(c.scene, options)));
+  Case c = certified("tolerance-clearance-slerp-between-keyframes-violated");
   const json& w = check0(c)["witness"];
   BOOST_REQUIRE(w.contains("points_box"));
   BOOST_REQUIRE(w.contains("displacement"));

@@ -143,6 +143,20 @@ BOOST_AUTO_TEST_CASE(no_displaced_witness_beyond_the_translations_reach) {
 // witness's t (proofs/clearance.md section 6); before the enclosed witness
 // the check stayed undecided.  Clearance 1/50 (never violated): no witness.
 namespace {
+// The largest squared distance of a point of one box from a point of the
+// other (a witness's two point boxes), exact.
+template <class Boxes>
+Exact farthest2(const Boxes& boxes) {
+  Exact far2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto& a = boxes[0][i];
+    const auto& b = boxes[1][i];
+    const Exact m = std::max(CGAL::abs(a[1] - b[0]), CGAL::abs(b[1] - a[0]));
+    far2 += m * m;
+  }
+  return far2;
+}
+
 Scene plate_past_post_clearance(const std::string& clearance) {
   Scene s = plate_past_post("26/50");
   s.bodies[0].tolerance = 0;
@@ -166,13 +180,7 @@ BOOST_AUTO_TEST_CASE(a_clearance_violated_at_an_enclosed_pose_is_proven) {
   BOOST_TEST(w.t > Exact(1, 4));
   BOOST_TEST(w.t < Exact(3, 4));
   // Every two points of the boxes are within the clearance.
-  Exact far2 = 0;
-  for (int i = 0; i < 3; ++i) {
-    const auto& a = (*w.points_box)[0][i];
-    const auto& b = (*w.points_box)[1][i];
-    const Exact m = std::max(CGAL::abs(a[1] - b[0]), CGAL::abs(b[1] - a[0]));
-    far2 += m * m;
-  }
+  const Exact far2 = farthest2(*w.points_box);
   BOOST_TEST(far2 <= Exact(1, 1600));
   // The plate's point is on its square (z = 0), the post's on its face.
   BOOST_TEST((*w.local_points)[0][2] == 0);
@@ -284,13 +292,7 @@ BOOST_AUTO_TEST_CASE(a_toleranced_clearance_violation_at_an_enclosed_pose_is_pro
   BOOST_TEST((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * 4 <= Exact(9, 400));
   BOOST_TEST(w.t > 0);
   BOOST_TEST(w.t < 1);
-  Exact far2 = 0;
-  for (int i = 0; i < 3; ++i) {
-    const auto& a = (*w.points_box)[0][i];
-    const auto& b = (*w.points_box)[1][i];
-    const Exact m = std::max(CGAL::abs(a[1] - b[0]), CGAL::abs(b[1] - a[0]));
-    far2 += m * m;
-  }
+  const Exact far2 = farthest2(*w.points_box);
   BOOST_TEST(far2 <= Exact(1, 16));
   const Scene safe =
       parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-clearance-slerp-between-keyframes-safe.json");
