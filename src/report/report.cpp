@@ -308,24 +308,19 @@ void write_check(JsonWriter& w, const Scene& scene, const CheckResult& c) {
       }
       w.end_array();
     }
-    if (wit.displacement) {
-      w.key("displacement");
+    // A body's translation: exact, approximate, and the body's name.
+    auto displacement = [&](const std::string& key, const Vec3E& v, const std::string& body_key, int body) {
+      w.key(key);
       w.begin_array();
-      for (const Exact& x : *wit.displacement) w.value(to_string(x));
+      for (const Exact& x : v) w.value(to_string(x));
       w.end_array();
-      w.key("displacement_approx");
-      write_point_approx(w, *wit.displacement);
-      w.member("displaced", scene.bodies[c.bodies[wit.displaced]].name);
-    }
-    if (wit.displacement_other) {  // both bodies translated, each within its own tolerance
-      w.key("displacement_other");
-      w.begin_array();
-      for (const Exact& x : *wit.displacement_other) w.value(to_string(x));
-      w.end_array();
-      w.key("displacement_other_approx");
-      write_point_approx(w, *wit.displacement_other);
-      w.member("displaced_other", scene.bodies[c.bodies[1 - wit.displaced]].name);
-    }
+      w.key(key + "_approx");
+      write_point_approx(w, v);
+      w.member(body_key, scene.bodies[c.bodies[body]].name);
+    };
+    if (wit.displacement) displacement("displacement", *wit.displacement, "displaced", wit.displaced);
+    if (wit.displacement_other)  // both bodies translated, each within its own tolerance
+      displacement("displacement_other", *wit.displacement_other, "displaced_other", 1 - wit.displaced);
     w.end_object();
   }
   w.key("undecided");
