@@ -157,6 +157,17 @@ Exact farthest2(const Boxes& boxes) {
   return far2;
 }
 
+// The witness of the first check of a scene of tests/data/scenes, which
+// must be a collision.
+Witness collision_witness(const std::string& name) {
+  const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/" + name + ".json");
+  const SceneResult r = verify_scene(scene, VerifyOptions{});
+  const CheckResult& c = r.checks[0];
+  BOOST_REQUIRE((c.verdict == Verdict::Collision));
+  BOOST_REQUIRE(c.witness);
+  return *c.witness;
+}
+
 Scene plate_past_post_clearance(const std::string& clearance) {
   Scene s = plate_past_post("26/50");
   s.bodies[0].tolerance = 0;
@@ -236,12 +247,7 @@ BOOST_AUTO_TEST_CASE(shared_step_keeps_each_translation_within_its_reach) {
 // both translations together close the gap.  The witness translates each
 // within its own tolerance and the translated bodies share the point.
 BOOST_AUTO_TEST_CASE(a_contact_needing_both_translations_is_proven) {
-  const Scene scene = parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-both-translation-violated.json");
-  const SceneResult r = verify_scene(scene, VerifyOptions{});
-  const CheckResult& c = r.checks[0];
-  BOOST_REQUIRE((c.verdict == Verdict::Collision));
-  BOOST_REQUIRE(c.witness);
-  const Witness& w = *c.witness;
+  const Witness w = collision_witness("tolerance-both-translation-violated");
   BOOST_REQUIRE(w.displacement);
   BOOST_REQUIRE(w.displacement_other);
   BOOST_TEST(w.displaced == 0);
@@ -276,13 +282,7 @@ BOOST_AUTO_TEST_CASE(a_contact_needing_both_translations_is_proven) {
 // tolerance, within the clearance of the post's for every pose of the
 // enclosure.
 BOOST_AUTO_TEST_CASE(a_toleranced_clearance_violation_at_an_enclosed_pose_is_proven) {
-  const Scene scene =
-      parse_scene_file(std::string(TMCERT_TEST_DATA) + "/scenes/tolerance-clearance-slerp-between-keyframes-violated.json");
-  const SceneResult r = verify_scene(scene, VerifyOptions{});
-  const CheckResult& c = r.checks[0];
-  BOOST_REQUIRE((c.verdict == Verdict::Collision));
-  BOOST_REQUIRE(c.witness);
-  const Witness& w = *c.witness;
+  const Witness w = collision_witness("tolerance-clearance-slerp-between-keyframes-violated");
   BOOST_REQUIRE(w.points_box);
   BOOST_REQUIRE(w.local_points);
   BOOST_REQUIRE(w.displacement);
